@@ -1,0 +1,3 @@
+from facegear_tehl.cli import main
+
+main()

@@ -1,0 +1,257 @@
+"""Case file (YAML) -> validated, frozen `Case` in SI units.
+
+Top-level blocks: `name`, `description`, one of `contact` (a plain elliptical contact) or `gear`
+(a face gear pair), and `materials`, `lubricant`, `solver`, `output`. Any problem raises
+`schema.CaseError` naming the key path, the value and what was expected.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+import math
+import re
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from facegear_tehl.lubricant import DENSITY_MODELS, KELVIN, RHEOLOGY_MODELS, VISCOSITY_MODELS, Lubricant
+from facegear_tehl.materials import Solid
+from facegear_tehl.schema import Block, CaseError, check
+
+THERMAL_MODELS = ("off", "reduced", "full", "auto")
+
+
+class _Loader(yaml.SafeLoader):
+    """Safe YAML loader that also reads YAML 1.2 floats such as `2.0e11` or `1e-3` as numbers
+    (PyYAML's YAML 1.1 rule wants a dot and a signed exponent and would read them as strings)."""
+
+
+_Loader.add_implicit_resolver(
+    "tag:yaml.org,2002:float",
+    re.compile(
+        r"""^(?:[-+]?(?:[0-9][0-9_]*)\.[0-9_]*(?:[eE][-+]?[0-9]+)?
+        |[-+]?(?:[0-9][0-9_]*)(?:[eE][-+]?[0-9]+)
+        |\.[0-9_]+(?:[eE][-+]?[0-9]+)?
+        |[-+]?\.(?:inf|Inf|INF)
+        |\.(?:nan|NaN|NAN))$""",
+        re.X,
+    ),
+    list("-+0123456789."),
+)
+
+
+@dataclass(frozen=True)
+class PlainContact:
+    """One elliptical contact given directly (SI; angle in degrees)."""
+
+    radius_x: float  # m
+    radius_y: float  # m
+    load: float  # N
+    entrainment_speed: float  # m/s, |(u1 + u2)/2|
+    slide_roll_ratio: float  # (u1 - u2)/u_e along the entrainment direction
+    entrainment_angle: float  # deg, entrainment velocity to the x (minor) axis
+
+
+@dataclass(frozen=True)
+class Materials:
+    body_1: Solid
+    body_2: Solid
+
+
+@dataclass(frozen=True)
+class SolverSettings:
+    """Numerical settings of the EHL solver."""
+
+    grid: int  # nodes per side on the finest grid, 2^n + 1
+    domain_x: tuple[float, float]  # in units of the minor semi-axis b
+    domain_y: tuple[float, float]  # in units of the major semi-axis a
+    thermal: str  # off | reduced | full | auto
+    coarsest_grid: int  # nodes per side on the coarsest grid of the hierarchy
+    cycles_per_level: int  # V-cycles per level in the full-multigrid start
+    max_cycles: int  # extra V-cycles allowed on the finest grid to meet the tolerances
+    tolerance: float  # relative change of pressure between cycles (L1 norm) to stop
+    load_tolerance: float  # relative load-balance error to accept
+
+
+@dataclass(frozen=True)
+class OutputSettings:
+    file: str | None  # default result path (relative to the case file); None: <case name>.h5
+
+
+@dataclass(frozen=True)
+class Case:
+    name: str
+    description: str
+    text: str  # the YAML text the case was read from
+    contact: PlainContact | None
+    materials: Materials
+    lubricant: Lubricant
+    solver: SolverSettings
+    output: OutputSettings
+
+    def with_grid(self, grid: int) -> "Case":
+        """The same case on another finest grid (validated like the YAML key solver.grid)."""
+        _check_grid(grid, "--grid")
+        check(grid >= self.solver.coarsest_grid, "--grid", grid, f"at least solver.coarsest_grid = {self.solver.coarsest_grid}")
+        return replace(self, solver=replace(self.solver, grid=grid))
+
+
+def _check_grid(n: int, key: str) -> None:
+    m = n - 1
+    check(n >= 5 and m & (m - 1) == 0, key, n, "2^n + 1 nodes per side (e.g. 65, 129, 257, 513)")
+
+
+def _solid(block: Block) -> Solid:
+    solid = Solid(
+        elastic_modulus=block.number("elastic_modulus", positive=True, unit="Pa"),
+        poisson_ratio=block.number("poisson_ratio", low=0.0, high=0.5, open_low=True, open_high=True),
+        density=block.number("density", 7850.0, positive=True, unit="kg/m^3"),
+        thermal_conductivity=block.number("thermal_conductivity", 46.0, positive=True, unit="W/(m K)"),
+        specific_heat=block.number("specific_heat", 470.0, positive=True, unit="J/(kg K)"),
+    )
+    block.finish()
+    return solid
+
+
+def _materials(block: Block) -> Materials:
+    materials = Materials(body_1=_solid(block.block("body_1")), body_2=_solid(block.block("body_2")))
+    block.finish()
+    return materials
+
+
+def _lubricant(block: Block) -> Lubricant:
+    rheology = block.choice("rheology", RHEOLOGY_MODELS, "newtonian")
+    if rheology == "ree_eyring":
+        eyring = block.number("eyring_stress", positive=True, unit="Pa")
+    else:
+        eyring = block.number("eyring_stress", math.inf, positive=True, unit="Pa")
+    temperature_c = block.number("inlet_temperature", 40.0, low=-100.0, high=400.0, unit="degC")
+    z = block.number("roelands_z", None, low=0.0, high=2.0, open_low=True) if block.has("roelands_z") else None
+    lubricant = Lubricant(
+        viscosity=block.number("viscosity", positive=True, unit="Pa s"),
+        inlet_temperature=temperature_c + KELVIN,
+        pressure_viscosity=block.number("pressure_viscosity", positive=True, unit="1/Pa"),
+        density=block.number("density", 870.0, positive=True, unit="kg/m^3"),
+        viscosity_model=block.choice("viscosity_model", VISCOSITY_MODELS, "roelands"),
+        density_model=block.choice("density_model", DENSITY_MODELS, "dowson_higginson"),
+        rheology=rheology,
+        eyring_stress=eyring,
+        roelands_z=z,
+        temperature_viscosity=block.number("temperature_viscosity", 0.0, nonnegative=True, unit="1/K"),
+        thermal_expansion=block.number("thermal_expansion", 0.0, nonnegative=True, high=0.01, unit="1/K"),
+        thermal_conductivity=block.number("thermal_conductivity", 0.13, positive=True, unit="W/(m K)"),
+        specific_heat=block.number("specific_heat", 2000.0, positive=True, unit="J/(kg K)"),
+    )
+    check(
+        lubricant.roelands_log_term > 0.0 or lubricant.viscosity_model != "roelands",
+        block.key_path("viscosity"),
+        lubricant.viscosity,
+        "a viscosity above the Roelands asymptote 6.3e-5 Pa s (use viscosity_model: barus otherwise)",
+    )
+    block.finish()
+    return lubricant
+
+
+def _plain_contact(block: Block) -> PlainContact:
+    contact = PlainContact(
+        radius_x=block.number("radius_x", positive=True, unit="m"),
+        radius_y=block.number("radius_y", positive=True, unit="m"),
+        load=block.number("load", positive=True, unit="N"),
+        entrainment_speed=block.number("entrainment_speed", positive=True, unit="m/s"),
+        slide_roll_ratio=block.number("slide_roll_ratio", 0.0, low=-2.0, high=2.0),
+        entrainment_angle=block.number("entrainment_angle", 0.0, low=-90.0, high=90.0, unit="deg"),
+    )
+    check(
+        contact.radius_y >= contact.radius_x,
+        block.key_path("radius_y"),
+        contact.radius_y,
+        f"radius_y >= radius_x = {contact.radius_x:g} m (x is the minor axis of the contact ellipse)",
+    )
+    check(
+        contact.radius_y / contact.radius_x <= 5000.0,
+        block.key_path("radius_y"),
+        contact.radius_y,
+        "radius_y / radius_x <= 5000",
+    )
+    block.finish()
+    return contact
+
+
+def _solver(block: Block) -> SolverSettings:
+    grid = block.integer("grid", 257)
+    _check_grid(grid, block.key_path("grid"))
+    coarsest = block.integer("coarsest_grid", 17)
+    _check_grid(coarsest, block.key_path("coarsest_grid"))
+    check(coarsest <= grid, block.key_path("coarsest_grid"), coarsest, f"at most solver.grid = {grid}")
+    domain = block.block("domain", {"x": [-4.5, 1.5], "y": [-3.0, 3.0]})
+    dx = domain.interval("x", (-4.5, 1.5))
+    dy = domain.interval("y", (-3.0, 3.0))
+    domain.finish()
+    check(dx[0] < -1.0 and dx[1] > 1.0, domain.key_path("x"), list(dx),
+          "an interval containing the contact [-1, 1] (units of the semi-axis b), e.g. [-4.5, 1.5]")
+    check(dy[0] < -1.0 and dy[1] > 1.0, domain.key_path("y"), list(dy),
+          "an interval containing the contact [-1, 1] (units of the semi-axis a), e.g. [-3, 3]")
+    thermal = block.get("thermal", "off")
+    if thermal is False:  # YAML 1.1 reads a bare `off` as false
+        thermal = "off"
+    check(isinstance(thermal, str) and thermal in THERMAL_MODELS, block.key_path("thermal"), thermal,
+          "one of " + ", ".join(THERMAL_MODELS))
+    settings = SolverSettings(
+        grid=grid,
+        domain_x=dx,
+        domain_y=dy,
+        thermal=thermal,
+        coarsest_grid=coarsest,
+        cycles_per_level=block.integer("cycles_per_level", 2, low=1, high=20),
+        max_cycles=block.integer("max_cycles", 40, low=0, high=1000),
+        tolerance=block.number("tolerance", 1e-5, positive=True, high=0.1),
+        load_tolerance=block.number("load_tolerance", 1e-4, positive=True, high=0.1),
+    )
+    block.finish()
+    return settings
+
+
+def _output(block: Block) -> OutputSettings:
+    settings = OutputSettings(file=block.string("file", None) if block.has("file") else None)
+    block.finish()
+    return settings
+
+
+def parse_case(text: str, name: str = "case") -> Case:
+    """Parse and validate the YAML text of a case."""
+    try:
+        raw: Any = yaml.load(text, Loader=_Loader)
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        where = f"line {mark.line + 1}, column {mark.column + 1}" if mark else "unknown position"
+        raise CaseError("(file)", f"YAML syntax error at {where}", "valid YAML") from None
+    top = Block(raw, "")
+    case_name = top.string("name", name)
+    description = top.string("description", "")
+    check(top.has("contact"), "contact", None, "a contact: block (one plain elliptical contact)")
+    contact = _plain_contact(top.block("contact"))
+    case = Case(
+        name=case_name,
+        description=description,
+        text=text,
+        contact=contact,
+        materials=_materials(top.block("materials")),
+        lubricant=_lubricant(top.block("lubricant")),
+        solver=_solver(top.block("solver", {})),
+        output=_output(top.block("output", {})),
+    )
+    top.finish()
+    return case
+
+
+def load_case(path: str | Path) -> Case:
+    """Read and validate a case file."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise CaseError("(file)", str(path), f"a readable case file ({exc.strerror})") from None
+    except UnicodeDecodeError:
+        raise CaseError("(file)", str(path), "a UTF-8 text file") from None
+    return parse_case(text, name=path.stem)

@@ -1,0 +1,151 @@
+"""Lubricant: pressure-temperature viscosity and density laws, thermal properties, rheology (SI units).
+
+Viscosity (ratio to the inlet value eta_0 at p = 0, T = T_0):
+  Roelands (1966), temperature form after Yang & Wen (1990):
+      eta/eta_0 = exp{(ln eta_0 + 9.67) [(1 + p/p_r)^z ((T - 138)/(T_0 - 138))^(-S_0) - 1]},  p_r = 1.96e8 Pa
+      with z = alpha p_r / (ln eta_0 + 9.67) unless given, S_0 = beta (T_0 - 138)/(ln eta_0 + 9.67)
+  Barus (1893) with an exponential temperature term:  eta/eta_0 = exp(alpha p - beta (T - T_0))
+Density (ratio to rho_0 at p = 0, T = T_0):
+  Dowson & Higginson (1966), in the form of the Venner & Lubrecht (2000) code, multiplied by a linear
+  thermal expansion term:  rho/rho_0 = (5.9e8 + 1.34 p)/(5.9e8 + p) * (1 - eps_T (T - T_0))
+  incompressible: rho/rho_0 = 1 - eps_T (T - T_0)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+import math
+
+import numpy as np
+from numba import njit
+
+# Roelands (1966): reference pressure and the asymptotic viscosity ln(eta_inf / Pa s) = -9.67.
+ROELANDS_PRESSURE = 1.96e8  # Pa
+ROELANDS_LN_ETA_INF = -9.67  # ln(Pa s)
+# Roelands (1966) temperature law: viscosity tends to infinity at 138 K.
+ROELANDS_T_INF = 138.0  # K
+# Dowson & Higginson (1966) density constants as written by Venner & Lubrecht (2000).
+DH_P1 = 5.9e8  # Pa
+DH_RATIO = 1.34  # rho(p -> inf)/rho_0
+KELVIN = 273.15  # K at 0 degC
+
+VISCOSITY_MODELS = ("roelands", "barus")
+DENSITY_MODELS = ("dowson_higginson", "incompressible")
+RHEOLOGY_MODELS = ("newtonian", "ree_eyring")
+
+# Integer codes used inside Numba kernels.
+ROELANDS, BARUS = 0, 1
+DOWSON_HIGGINSON, INCOMPRESSIBLE = 0, 1
+
+
+@dataclass(frozen=True)
+class Lubricant:
+    """Lubricant properties; all values SI (temperatures in K)."""
+
+    viscosity: float  # eta_0, Pa s at p = 0 and the inlet temperature
+    inlet_temperature: float  # T_0, K
+    pressure_viscosity: float  # alpha, 1/Pa (Barus coefficient; sets Roelands z unless roelands_z is given)
+    density: float  # rho_0, kg/m^3 at p = 0 and T_0
+    viscosity_model: str = "roelands"
+    density_model: str = "dowson_higginson"
+    rheology: str = "newtonian"
+    eyring_stress: float = math.inf  # tau_0, Pa (Ree-Eyring reference stress)
+    roelands_z: float | None = None  # Roelands pressure index; derived from alpha if None
+    temperature_viscosity: float = 0.0  # beta = -d ln(eta)/dT at T_0, 1/K
+    thermal_expansion: float = 0.0  # eps_T, 1/K
+    thermal_conductivity: float = 0.13  # k_f, W/(m K)
+    specific_heat: float = 2000.0  # c_f, J/(kg K)
+
+    @property
+    def roelands_log_term(self) -> float:
+        """ln(eta_0) + 9.67 (eta_0 in Pa s)."""
+        return math.log(self.viscosity) - ROELANDS_LN_ETA_INF
+
+    @property
+    def z(self) -> float:
+        """Roelands pressure-viscosity index z = alpha p_r / (ln eta_0 + 9.67) unless given."""
+        if self.roelands_z is not None:
+            return self.roelands_z
+        return self.pressure_viscosity * ROELANDS_PRESSURE / self.roelands_log_term
+
+    @property
+    def s0(self) -> float:
+        """Roelands temperature index S_0 = beta (T_0 - 138)/(ln eta_0 + 9.67)."""
+        return self.temperature_viscosity * (self.inlet_temperature - ROELANDS_T_INF) / self.roelands_log_term
+
+    @property
+    def effective_alpha(self) -> float:
+        """Pressure-viscosity coefficient at p = 0 of the chosen law, 1/Pa (Roelands: z (ln eta_0 + 9.67)/p_r)."""
+        if self.viscosity_model == "barus":
+            return self.pressure_viscosity
+        return self.z * self.roelands_log_term / ROELANDS_PRESSURE
+
+    def law_parameters(self) -> np.ndarray:
+        """Parameters for the Numba kernels `viscosity_ratio` and `density_ratio`."""
+        return np.array(
+            [
+                ROELANDS if self.viscosity_model == "roelands" else BARUS,
+                self.pressure_viscosity,
+                self.z,
+                self.roelands_log_term,
+                self.s0,
+                self.temperature_viscosity,
+                self.inlet_temperature,
+                DOWSON_HIGGINSON if self.density_model == "dowson_higginson" else INCOMPRESSIBLE,
+                self.thermal_expansion,
+            ],
+            dtype=np.float64,
+        )
+
+    def viscosity_at(self, pressure, temperature=None) -> np.ndarray:
+        """eta(p, T), Pa s; temperature in K (default: inlet)."""
+        p, t = _broadcast(pressure, temperature, self.inlet_temperature)
+        return self.viscosity * viscosity_ratio(p, t, self.law_parameters()).reshape(np.shape(p))
+
+    def density_at(self, pressure, temperature=None) -> np.ndarray:
+        """rho(p, T), kg/m^3; temperature in K (default: inlet)."""
+        p, t = _broadcast(pressure, temperature, self.inlet_temperature)
+        return self.density * density_ratio(p, t, self.law_parameters()).reshape(np.shape(p))
+
+
+def _broadcast(pressure, temperature, default_t):
+    p = np.asarray(pressure, dtype=np.float64)
+    t = np.full_like(p, default_t) if temperature is None else np.broadcast_to(
+        np.asarray(temperature, dtype=np.float64), p.shape
+    ).copy()
+    return np.ascontiguousarray(p), np.ascontiguousarray(t)
+
+
+@njit(cache=True)
+def viscosity_ratio(pressure, temperature, law):
+    """eta/eta_0 on an array of pressures (Pa, clipped at 0) and temperatures (K); law from `law_parameters`."""
+    out = np.empty(pressure.size)
+    p_flat = pressure.ravel()
+    t_flat = temperature.ravel()
+    model, alpha, z, log_term, s0, beta, t0 = law[0], law[1], law[2], law[3], law[4], law[5], law[6]
+    for n in range(p_flat.size):
+        p = max(p_flat[n], 0.0)
+        t = t_flat[n]
+        if model == ROELANDS:
+            temp_factor = ((t - ROELANDS_T_INF) / (t0 - ROELANDS_T_INF)) ** (-s0)
+            out[n] = math.exp(log_term * ((1.0 + p / ROELANDS_PRESSURE) ** z * temp_factor - 1.0))
+        else:
+            out[n] = math.exp(alpha * p - beta * (t - t0))
+    return out
+
+
+@njit(cache=True)
+def density_ratio(pressure, temperature, law):
+    """rho/rho_0 on arrays of pressure (Pa, clipped at 0) and temperature (K)."""
+    out = np.empty(pressure.size)
+    p_flat = pressure.ravel()
+    t_flat = temperature.ravel()
+    model, eps_t, t0 = law[7], law[8], law[6]
+    for n in range(p_flat.size):
+        p = max(p_flat[n], 0.0)
+        thermal = 1.0 - eps_t * (t_flat[n] - t0)
+        if model == DOWSON_HIGGINSON:
+            out[n] = (DH_P1 + DH_RATIO * p) / (DH_P1 + p) * thermal
+        else:
+            out[n] = thermal
+    return out
