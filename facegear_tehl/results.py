@@ -1,0 +1,332 @@
+"""The result file (HDF5): the one writer and the one reader.
+
+Layout (format 1.x, ARCHITECTURE.md):
+
+    /                   attrs: filetype, format_version, tehl_version, created, case_name, case_yaml,
+                        status (ok | not_converged | failed), message, models (JSON), overrides (JSON)
+    /points/<name>/     attrs: one per scalar (SI), units (JSON: scalar -> unit), converged, message,
+                        models (JSON); datasets x, y (kind 'axis'), fields (ny, nx) (kind 'field'),
+                        per-cycle arrays (kind 'history')
+    /contact/           path table (gear cases), one dataset per column, written if given
+    /heat/              table over points, written if given
+
+Every dataset carries `units`, `description` and `kind` attributes. Files are written to a temporary
+file in the target directory and renamed onto the target only when complete, so a crash or an
+interruption leaves the previous file (or no file), never a partial one. NaN and Inf are refused.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from datetime import datetime, timezone
+import json
+import os
+from pathlib import Path
+import secrets
+from typing import Any, Mapping
+
+import h5py
+import numpy as np
+
+from facegear_tehl import __version__
+from facegear_tehl.case import Case
+from facegear_tehl.solution import Field, PointSolution
+
+FILETYPE = "facegear_tehl result"
+FORMAT_VERSION = "1.0"
+STATUSES = ("ok", "not_converged", "failed")
+# Point attributes that are not scalars of the solution.
+_POINT_ATTRS = ("units", "converged", "message", "models")
+_AXES = ("x", "y")
+
+
+class ResultFileError(Exception):
+    """A file that is not a readable tehl result (missing, not HDF5, other program, other format)."""
+
+
+class NonFiniteError(ValueError):
+    """A value bound for a result file is NaN or Inf (the solver must never produce them)."""
+
+
+@dataclass(frozen=True)
+class RunResult:
+    """What one run produced, ready to be written.
+
+    points: one solution per solved point, in order (failed points included, with no data).
+    failed: names of the points whose solve raised an error.
+    contact: path table (gear cases); heat: table over points; name -> column.
+    overrides: command-line options that changed the case (e.g. grid, points).
+    """
+
+    case: Case
+    points: tuple[PointSolution, ...]
+    failed: tuple[str, ...] = ()
+    contact: Mapping[str, Field] = field(default_factory=dict)
+    heat: Mapping[str, Field] = field(default_factory=dict)
+    overrides: Mapping[str, Any] = field(default_factory=dict)
+
+    @property
+    def status(self) -> str:
+        if self.failed:
+            return "failed"
+        return "ok" if all(p.converged for p in self.points) else "not_converged"
+
+    @property
+    def message(self) -> str:
+        """One line per point that failed or did not converge."""
+        return "\n".join(f"{p.name}: {p.message or 'not converged'}" for p in self.points if not p.converged)
+
+    @property
+    def models(self) -> dict[str, str]:
+        """The models the case asked for (each point records the ones its solver used)."""
+        return {
+            "viscosity": self.case.lubricant.viscosity_model,
+            "density": self.case.lubricant.density_model,
+            "rheology": self.case.lubricant.rheology,
+            "thermal": self.case.solver.thermal,
+        }
+
+
+@dataclass(frozen=True)
+class PointResult:
+    """One /points/<name> group as read back."""
+
+    name: str
+    converged: bool
+    message: str
+    scalars: Mapping[str, float | int]
+    units: Mapping[str, str]
+    axes: Mapping[str, Field]
+    fields: Mapping[str, Field]
+    history: Mapping[str, Field]
+    models: Mapping[str, str]
+
+
+@dataclass(frozen=True)
+class Result:
+    """A result file as read back."""
+
+    path: Path
+    format_version: str
+    tehl_version: str
+    created: str
+    case_name: str
+    case_yaml: str
+    status: str
+    message: str
+    models: Mapping[str, str]
+    overrides: Mapping[str, Any]
+    points: Mapping[str, PointResult]
+    contact: Mapping[str, Field]
+    heat: Mapping[str, Field]
+
+
+# ----------------------------------------------------------------------------------------- writing
+
+
+def write_result(run: RunResult, path: str | Path) -> Path:
+    """Write `run` to `path` atomically; the previous file survives any failure or interruption."""
+    target = Path(path)
+    _check_run(run)
+    temporary = target.with_name(f".{target.name}.{secrets.token_hex(6)}.tmp")
+    try:
+        with h5py.File(temporary, "w-", track_order=True) as h5:
+            _write_root(h5, run)
+            points = h5.create_group("points", track_order=True)
+            for solution in run.points:
+                _write_point(points, solution)
+            _write_table(h5, "contact", run.contact)
+            _write_table(h5, "heat", run.heat)
+            h5.flush()
+        _fsync(temporary)
+        os.replace(temporary, target)
+    except BaseException:
+        temporary.unlink(missing_ok=True)
+        raise
+    _fsync(target.parent)
+    return target
+
+
+def _fsync(path: Path) -> None:
+    descriptor = os.open(path, os.O_RDONLY)
+    try:
+        os.fsync(descriptor)
+    finally:
+        os.close(descriptor)
+
+
+def _write_root(h5: h5py.File, run: RunResult) -> None:
+    h5.attrs["filetype"] = FILETYPE
+    h5.attrs["format_version"] = FORMAT_VERSION
+    h5.attrs["tehl_version"] = __version__
+    h5.attrs["created"] = datetime.now(timezone.utc).isoformat(timespec="seconds")
+    h5.attrs["case_name"] = run.case.name
+    h5.attrs["case_yaml"] = run.case.text
+    h5.attrs["status"] = run.status
+    h5.attrs["message"] = run.message
+    h5.attrs["models"] = json.dumps(run.models)
+    h5.attrs["overrides"] = json.dumps(dict(run.overrides))
+
+
+def _write_point(points: h5py.Group, solution: PointSolution) -> None:
+    group = points.create_group(solution.name, track_order=True)
+    for key, (value, _) in solution.scalars.items():
+        group.attrs[key] = value
+    group.attrs["units"] = json.dumps({key: units for key, (_, units) in solution.scalars.items()})
+    group.attrs["converged"] = bool(solution.converged)
+    group.attrs["message"] = solution.message
+    group.attrs["models"] = json.dumps(dict(solution.models))
+    for kind, entries in (("axis", solution.axes), ("field", solution.fields), ("history", solution.history)):
+        for name, column in entries.items():
+            _write_dataset(group, name, column, kind)
+
+
+def _write_table(h5: h5py.File, name: str, table: Mapping[str, Field]) -> None:
+    if table:
+        group = h5.create_group(name, track_order=True)
+        for column_name, column in table.items():
+            _write_dataset(group, column_name, column, "table")
+
+
+def _write_dataset(group: h5py.Group, name: str, column: Field, kind: str) -> None:
+    values = np.asarray(column.values)
+    if values.dtype.kind in "US":
+        dataset = group.create_dataset(name, data=values.astype(object), dtype=h5py.string_dtype())
+    elif values.ndim == 2:
+        dataset = group.create_dataset(name, data=values, compression="gzip", compression_opts=4, shuffle=True)
+    else:
+        dataset = group.create_dataset(name, data=values)
+    dataset.attrs["units"] = column.units
+    dataset.attrs["description"] = column.description
+    dataset.attrs["kind"] = kind
+
+
+def _check_run(run: RunResult) -> None:
+    """Reject what the file cannot hold before any byte is written."""
+    names = [p.name for p in run.points]
+    if len(set(names)) != len(names):
+        raise ValueError(f"duplicate point names: {names}")
+    for solution in run.points:
+        _check_point(solution)
+    for table_name, table in (("contact", run.contact), ("heat", run.heat)):
+        for name, column in table.items():
+            _check_column(f"/{table_name}/{name}", name, column)
+
+
+def _check_point(solution: PointSolution) -> None:
+    where = f"/points/{solution.name}"
+    if not solution.name or "/" in solution.name:
+        raise ValueError(f"point name {solution.name!r}: expected a non-empty name without '/'")
+    for key, (value, units) in solution.scalars.items():
+        if key in _POINT_ATTRS:
+            raise ValueError(f"{where}: scalar name {key!r} is reserved for the point's attributes")
+        if not isinstance(units, str):
+            raise ValueError(f"{where}.{key}: units {units!r} is not a string")
+        if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+            raise ValueError(f"{where}.{key}: scalar {value!r} is not a real number")
+        if not np.isfinite(value):
+            raise NonFiniteError(f"{where}.{key} = {value}: refusing to write a non-finite scalar")
+    data = [*solution.axes.items(), *solution.fields.items(), *solution.history.items()]
+    names = [name for name, _ in data]
+    for name in set(names):
+        if names.count(name) > 1:
+            raise ValueError(f"{where}/{name}: the name is used twice (axes, fields and history share one group)")
+    for name, column in data:
+        _check_column(f"{where}/{name}", name, column)
+    if solution.fields:
+        missing = [axis for axis in _AXES if axis not in solution.axes]
+        if missing:
+            raise ValueError(f"{where}: fields need the axes x and y (missing: {', '.join(missing)})")
+        shape = (np.size(solution.axes["y"].values), np.size(solution.axes["x"].values))
+        for name, column in solution.fields.items():
+            if np.shape(column.values) != shape:
+                raise ValueError(f"{where}/{name}: shape {np.shape(column.values)}, expected (ny, nx) = {shape}")
+
+
+def _check_column(where: str, name: str, column: Field) -> None:
+    if not name or "/" in name:
+        raise ValueError(f"{where}: expected a non-empty dataset name without '/'")
+    if not isinstance(column.units, str):
+        raise ValueError(f"{where}: units {column.units!r} is not a string")
+    values = np.asarray(column.values)
+    if values.dtype.kind in "US":
+        return
+    if values.dtype.kind not in "biuf":
+        raise ValueError(f"{where}: dtype {values.dtype} is not numeric or text")
+    bad = ~np.isfinite(values)
+    if bad.any():
+        raise NonFiniteError(
+            f"{where}: refusing to write {int(np.isnan(values).sum())} NaN and {int(np.isinf(values).sum())} Inf values"
+        )
+
+
+# ----------------------------------------------------------------------------------------- reading
+
+
+def read_result(path: str | Path) -> Result:
+    """Read a result file; ResultFileError if it is not a tehl result of a supported format."""
+    path = Path(path)
+    try:
+        h5 = h5py.File(path, "r")
+    except (OSError, ValueError) as exc:
+        raise ResultFileError(f"{path}: cannot open as an HDF5 file ({_reason(exc)})") from None
+    with h5:
+        attrs = h5.attrs
+        if attrs.get("filetype") != FILETYPE or "format_version" not in attrs:
+            raise ResultFileError(f"{path}: not a tehl result file (no filetype '{FILETYPE}' attribute)")
+        version = str(attrs["format_version"])
+        if version.split(".")[0] != FORMAT_VERSION.split(".")[0]:
+            raise ResultFileError(f"{path}: result format {version}; this tehl reads format {FORMAT_VERSION}")
+        try:
+            return Result(
+                path=path,
+                format_version=version,
+                tehl_version=str(attrs["tehl_version"]),
+                created=str(attrs["created"]),
+                case_name=str(attrs["case_name"]),
+                case_yaml=str(attrs["case_yaml"]),
+                status=str(attrs["status"]),
+                message=str(attrs["message"]),
+                models=json.loads(attrs["models"]),
+                overrides=json.loads(attrs["overrides"]),
+                points={name: _read_point(name, group) for name, group in h5["points"].items()},
+                contact=_read_table(h5.get("contact")),
+                heat=_read_table(h5.get("heat")),
+            )
+        except (KeyError, ValueError, TypeError) as exc:
+            raise ResultFileError(f"{path}: damaged tehl result ({_reason(exc)})") from None
+
+
+def _reason(exc: Exception) -> str:
+    return str(exc).strip("'\"") or type(exc).__name__
+
+
+def _read_point(name: str, group: h5py.Group) -> PointResult:
+    units = json.loads(group.attrs["units"])
+    by_kind: dict[str, dict[str, Field]] = {"axis": {}, "field": {}, "history": {}}
+    for dataset_name, dataset in group.items():
+        by_kind[str(dataset.attrs["kind"])][dataset_name] = _read_field(dataset)
+    return PointResult(
+        name=name,
+        converged=bool(group.attrs["converged"]),
+        message=str(group.attrs["message"]),
+        scalars={key: group.attrs[key].item() for key in units},
+        units=units,
+        axes=by_kind["axis"],
+        fields=by_kind["field"],
+        history=by_kind["history"],
+        models=json.loads(group.attrs["models"]),
+    )
+
+
+def _read_table(group: h5py.Group | None) -> dict[str, Field]:
+    return {} if group is None else {name: _read_field(dataset) for name, dataset in group.items()}
+
+
+def _read_field(dataset: h5py.Dataset) -> Field:
+    if h5py.check_string_dtype(dataset.dtype) is not None:
+        values = dataset.asstr()[()]
+        values = np.asarray(values, dtype=str)
+    else:
+        values = dataset[()]
+    return Field(values=values, units=str(dataset.attrs["units"]), description=str(dataset.attrs["description"]))

@@ -1,0 +1,77 @@
+"""Synthetic solver output for the results and CLI tests: analytic fields with known values, no solving.
+
+Pressure is the dry Hertz pressure of the case's contact, film thickness a paraboloid gap over a
+constant central film; both are exact functions of (x, y), so a round trip can be checked value by value.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from facegear_tehl.case import Case, load_case
+from facegear_tehl.contact import ContactPoint
+from facegear_tehl.points import contact_points
+from facegear_tehl.results import RunResult
+from facegear_tehl.solution import Field, PointSolution
+
+CASES = Path(__file__).resolve().parents[1] / "cases"
+BALL_ON_DISC = CASES / "ball_on_disc.yaml"
+H_C = 1.5e-7  # m, central film of the synthetic solution
+CYCLES = 7
+
+
+def ball_on_disc() -> Case:
+    return load_case(BALL_ON_DISC)
+
+
+def run_result(case: Case | None = None, **options) -> RunResult:
+    """A RunResult of the ball-on-disc case holding one synthetic solution (options go to `solution`)."""
+    case = case or ball_on_disc()
+    return RunResult(case=case, points=(solution(contact_points(case)[0], **options),))
+
+
+def hertz_pressure(x: np.ndarray, y: np.ndarray, a: float, b: float, p_hertz: float) -> np.ndarray:
+    """p = p_h sqrt(1 - (x/b)^2 - (y/a)^2) inside the ellipse, 0 outside; shape (ny, nx)."""
+    xx, yy = np.meshgrid(x, y)
+    return p_hertz * np.sqrt(np.clip(1.0 - (xx / b) ** 2 - (yy / a) ** 2, 0.0, None))
+
+
+def film(x: np.ndarray, y: np.ndarray, radius_x: float, radius_y: float) -> np.ndarray:
+    """h = h_c + x^2/(2 R_x) + y^2/(2 R_y); shape (ny, nx)."""
+    xx, yy = np.meshgrid(x, y)
+    return H_C + xx**2 / (2.0 * radius_x) + yy**2 / (2.0 * radius_y)
+
+
+def solution(point: ContactPoint, *, nx: int = 33, ny: int = 17, converged: bool = True) -> PointSolution:
+    """An analytic PointSolution for `point` on an (ny, nx) grid over the default domain."""
+    hertz = point.hertz
+    x = np.linspace(-4.5, 1.5, nx) * hertz.b
+    y = np.linspace(-3.0, 3.0, ny) * hertz.a
+    residuals = 10.0 ** -np.arange(1.0, CYCLES + 1.0)
+    return PointSolution(
+        name=point.name,
+        converged=converged,
+        message="" if converged else "residual 1e-3 above tolerance 1e-5 after 40 cycles",
+        scalars={
+            "h_c": (H_C, "m"),
+            "h_min": (0.6 * H_C, "m"),
+            "p_max": (1.02 * hertz.p_max, "Pa"),
+            "p_hertz": (hertz.p_max, "Pa"),
+            "a": (hertz.a, "m"),
+            "b": (hertz.b, "m"),
+            "load_error": (2.5e-6, "1"),
+            "iterations": (CYCLES, "1"),
+            "work_units": (41.5, "1"),
+            "wall_time": (0.25, "s"),
+            "error_estimate_h_c": (0.004, "1"),
+        },
+        fields={
+            "pressure": Field(hertz_pressure(x, y, hertz.a, hertz.b, hertz.p_max), "Pa", "pressure"),
+            "film_thickness": Field(film(x, y, point.radius_x, point.radius_y), "m", "film thickness"),
+        },
+        axes={"x": Field(x, "m", "node coordinate along the minor axis"), "y": Field(y, "m", "along the major axis")},
+        history={"residual_history": Field(residuals, "1", "relative pressure change per cycle")},
+        models={"viscosity": "roelands (Roelands 1966)", "thermal": "off"},
+    )

@@ -1,0 +1,287 @@
+"""Result files: round trip, units on every dataset, atomic writes, NaN refusal, rejection of foreign files."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+import json
+from pathlib import Path
+import signal
+import subprocess
+import sys
+import textwrap
+
+import h5py
+import numpy as np
+import pytest
+
+from facegear_tehl import results
+from facegear_tehl.results import (
+    FORMAT_VERSION,
+    NonFiniteError,
+    ResultFileError,
+    RunResult,
+    read_result,
+    write_result,
+)
+from facegear_tehl.solution import Field
+
+import synthetic
+
+
+@pytest.fixture(scope="module")
+def run() -> RunResult:
+    return synthetic.run_result()
+
+
+def _with_point(run: RunResult, **changes) -> RunResult:
+    return replace(run, points=(replace(run.points[0], **changes),))
+
+
+def _files(folder: Path) -> list[str]:
+    return sorted(p.name for p in folder.iterdir())
+
+
+def test_round_trip_keeps_every_value(run, tmp_path):
+    path = write_result(run, tmp_path / "r.h5")
+    result = read_result(path)
+    solution = run.points[0]
+    assert result.format_version == FORMAT_VERSION
+    assert result.case_name == "ball_on_disc"
+    assert result.case_yaml == synthetic.BALL_ON_DISC.read_text()
+    assert result.status == "ok" and result.message == ""
+    assert result.models == {"viscosity": "roelands", "density": "dowson_higginson", "rheology": "newtonian",
+                             "thermal": "off"}
+    assert list(result.points) == ["contact"]
+    point = result.points["contact"]
+    assert point.converged and point.message == ""
+    assert point.scalars == {key: value for key, (value, _) in solution.scalars.items()}
+    assert point.units == {key: units for key, (_, units) in solution.scalars.items()}
+    assert isinstance(point.scalars["iterations"], int)
+    assert point.models == solution.models
+    assert set(point.fields) == {"pressure", "film_thickness"}
+    assert set(point.axes) == {"x", "y"} and set(point.history) == {"residual_history"}
+    for read, written in [*zip(point.fields.values(), solution.fields.values()),
+                          *zip(point.axes.values(), solution.axes.values()),
+                          *zip(point.history.values(), solution.history.values())]:
+        np.testing.assert_array_equal(read.values, written.values)
+        assert (read.units, read.description) == (written.units, written.description)
+
+
+def test_fields_hold_the_analytic_values(run, tmp_path):
+    point = read_result(write_result(run, tmp_path / "r.h5")).points["contact"]
+    x, y = point.axes["x"].values, point.axes["y"].values
+    a, b, p_hertz = point.scalars["a"], point.scalars["b"], point.scalars["p_hertz"]
+    pressure = point.fields["pressure"].values
+    assert pressure.shape == (y.size, x.size)
+    assert pressure.max() == pytest.approx(p_hertz, rel=0.02)  # the grid has a node near the centre
+    iy, ix = 6, 22
+    assert pressure[iy, ix] == pytest.approx(p_hertz * np.sqrt(max(0.0, 1 - (x[ix] / b) ** 2 - (y[iy] / a) ** 2)))
+    contact = synthetic.ball_on_disc().contact
+    assert point.fields["film_thickness"].values[iy, ix] == pytest.approx(
+        synthetic.H_C + x[ix] ** 2 / (2 * contact.radius_x) + y[iy] ** 2 / (2 * contact.radius_y))
+    np.testing.assert_allclose(point.history["residual_history"].values, 10.0 ** -np.arange(1, synthetic.CYCLES + 1))
+
+
+def test_every_dataset_has_units_and_description(run, tmp_path):
+    contact = {"s": Field(np.linspace(-1e-3, 1e-3, 5), "m", "path coordinate")}
+    path = write_result(replace(run, contact=contact, heat={"mu": Field(np.array([0.05]), "1")}), tmp_path / "r.h5")
+    datasets = []
+    with h5py.File(path) as h5:
+        h5.visititems(lambda name, obj: datasets.append(obj) if isinstance(obj, h5py.Dataset) else None)
+        assert {d.name for d in datasets} >= {"/points/contact/pressure", "/points/contact/x", "/contact/s", "/heat/mu"}
+        for dataset in datasets:
+            assert isinstance(dataset.attrs["units"], str), dataset.name
+            assert "description" in dataset.attrs, dataset.name
+        root = dict(h5.attrs)
+        point_attrs = h5["points/contact"].attrs
+        assert json.loads(point_attrs["units"])["h_c"] == "m"
+        assert point_attrs["converged"] == np.True_
+    assert {"format_version", "tehl_version", "created", "case_yaml", "case_name", "status", "message",
+            "models"} <= set(root)
+
+
+def test_contact_and_heat_tables_round_trip(run, tmp_path):
+    velocities = np.arange(10.0).reshape(5, 2)
+    contact = {"s": Field(np.linspace(-1e-3, 1e-3, 5), "m", "path coordinate"),
+               "u1": Field(velocities, "m/s", "surface velocity of body 1"),
+               "label": Field(np.array(["S1", "", "S3", "", "S5"]), "", "meshing point")}
+    heat = {"friction_power": Field(np.array([12.5]), "W")}
+    result = read_result(write_result(replace(run, contact=contact, heat=heat), tmp_path / "r.h5"))
+    assert list(result.contact) == ["s", "u1", "label"]
+    np.testing.assert_array_equal(result.contact["u1"].values, velocities)
+    assert result.contact["u1"].units == "m/s"
+    assert list(result.contact["label"].values) == ["S1", "", "S3", "", "S5"]
+    assert result.heat["friction_power"].values.tolist() == [12.5]
+
+
+def test_tables_are_absent_when_not_given(run, tmp_path):
+    path = write_result(run, tmp_path / "r.h5")
+    with h5py.File(path) as h5:
+        assert set(h5) == {"points"}
+    assert read_result(path).contact == {} and read_result(path).heat == {}
+
+
+def test_status_and_message_flag_non_converged_and_failed_points(run, tmp_path):
+    not_converged = _with_point(run, converged=False, message="load error 3e-2 above 1e-4")
+    result = read_result(write_result(not_converged, tmp_path / "a.h5"))
+    assert result.status == "not_converged"
+    assert result.message == "contact: load error 3e-2 above 1e-4"
+    assert not result.points["contact"].converged
+
+    failed = _with_point(run, converged=False, message="failed: FloatingPointError: overflow", scalars={},
+                         fields={}, axes={}, history={})
+    result = read_result(write_result(replace(failed, failed=("contact",)), tmp_path / "b.h5"))
+    assert result.status == "failed"
+    assert result.points["contact"].fields == {} and result.points["contact"].scalars == {}
+
+
+def test_point_order_is_kept(run, tmp_path):
+    base = run.points[0]
+    names = ["S5", "S1", "S3"]
+    ordered = replace(run, points=tuple(replace(base, name=name) for name in names))
+    assert list(read_result(write_result(ordered, tmp_path / "r.h5")).points) == names
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+@pytest.mark.parametrize("where", ["field", "axis", "history", "scalar", "contact"])
+def test_non_finite_values_are_refused(run, tmp_path, where, bad):
+    target = tmp_path / "r.h5"
+    write_result(run, target)
+    before = target.read_bytes()
+    point = run.points[0]
+    if where == "scalar":
+        broken = _with_point(run, scalars={**point.scalars, "h_min": (bad, "m")})
+    elif where == "contact":
+        broken = replace(run, contact={"load": Field(np.array([1.0, bad]), "N")})
+    else:
+        attribute = {"field": "fields", "axis": "axes", "history": "history"}[where]
+        entries = dict(getattr(point, attribute))
+        name, column = next(iter(entries.items()))
+        values = np.array(column.values, dtype=float)
+        values.flat[values.size // 2] = bad
+        entries[name] = replace(column, values=values)
+        broken = _with_point(run, **{attribute: entries})
+    with pytest.raises(NonFiniteError, match="non-finite|NaN"):
+        write_result(broken, target)
+    assert target.read_bytes() == before
+    assert _files(tmp_path) == ["r.h5"]
+
+
+@pytest.mark.parametrize(
+    "changes, match",
+    [
+        ({"scalars": {"converged": (1.0, "1")}}, "reserved"),
+        ({"scalars": {"h_c": ("thin", "m")}}, "not a real number"),
+        ({"name": "S1/S2"}, "without '/'"),
+        ({"axes": {}}, "axes x and y"),
+    ],
+)
+def test_malformed_solutions_are_refused(run, tmp_path, changes, match):
+    with pytest.raises(ValueError, match=match):
+        write_result(_with_point(run, **changes), tmp_path / "r.h5")
+    assert _files(tmp_path) == []
+
+
+def test_field_shape_must_match_the_axes(run, tmp_path):
+    point = run.points[0]
+    fields = {**point.fields, "pressure": Field(point.fields["pressure"].values.T, "Pa")}
+    with pytest.raises(ValueError, match=r"expected \(ny, nx\)"):
+        write_result(_with_point(run, fields=fields), tmp_path / "r.h5")
+
+
+@pytest.mark.parametrize("interruption", [RuntimeError("disk full"), KeyboardInterrupt()])
+def test_failure_mid_write_keeps_the_previous_file(run, tmp_path, monkeypatch, interruption):
+    target = tmp_path / "r.h5"
+    write_result(run, target)
+    before = target.read_bytes()
+    write_point = results._write_point
+
+    def write_then_fail(points, solution):
+        write_point(points, solution)
+        assert len(_files(tmp_path)) == 2  # the temporary file exists next to the target
+        raise interruption
+
+    monkeypatch.setattr(results, "_write_point", write_then_fail)
+    with pytest.raises(type(interruption)):
+        write_result(run, target)
+    assert target.read_bytes() == before
+    assert _files(tmp_path) == ["r.h5"]
+
+
+def test_failure_mid_write_leaves_no_file(run, tmp_path, monkeypatch):
+    monkeypatch.setattr(results, "_write_table", lambda *args: (_ for _ in ()).throw(OSError("no space")))
+    with pytest.raises(OSError):
+        write_result(run, tmp_path / "r.h5")
+    assert _files(tmp_path) == []
+
+
+def test_overwrite_replaces_the_previous_file(run, tmp_path):
+    target = tmp_path / "r.h5"
+    write_result(_with_point(run, converged=False, message="stalled"), target)
+    write_result(run, target)
+    assert read_result(target).status == "ok"
+    assert _files(tmp_path) == ["r.h5"]
+
+
+_SLOW_WRITER = textwrap.dedent(
+    """
+    import signal, sys, time
+    sys.path.insert(0, {tests!r})
+    import synthetic
+    from facegear_tehl import results
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    write_point = results._write_point
+    def write_and_stall(points, solution):
+        write_point(points, solution)
+        print("writing", flush=True)
+        time.sleep(60)
+    results._write_point = write_and_stall
+    results.write_result(synthetic.run_result(), sys.argv[1])
+    """
+)
+
+
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGKILL])
+def test_interrupted_writer_process_keeps_the_previous_file(run, tmp_path, signum):
+    target = tmp_path / "r.h5"
+    write_result(_with_point(run, message="previous"), target)
+    before = target.read_bytes()
+    script = _SLOW_WRITER.format(tests=str(Path(__file__).parent))
+    with subprocess.Popen([sys.executable, "-c", script, str(target)], stdout=subprocess.PIPE, text=True) as writer:
+        assert writer.stdout.readline().strip() == "writing"
+        assert len(_files(tmp_path)) == 2
+        writer.send_signal(signum)
+        assert writer.wait(timeout=30) != 0
+    assert target.read_bytes() == before
+    if signum == signal.SIGINT:  # a catchable signal also removes the temporary file
+        assert _files(tmp_path) == ["r.h5"]
+
+
+def test_reader_rejects_foreign_files(tmp_path):
+    foreign = tmp_path / "other.h5"
+    with h5py.File(foreign, "w") as h5:
+        h5["pressure"] = np.zeros(3)
+    with pytest.raises(ResultFileError, match="not a tehl result"):
+        read_result(foreign)
+    text = tmp_path / "case.yaml"
+    text.write_text("name: x\n")
+    with pytest.raises(ResultFileError, match="cannot open"):
+        read_result(text)
+    with pytest.raises(ResultFileError, match="cannot open"):
+        read_result(tmp_path / "missing.h5")
+
+
+def test_reader_rejects_another_format_version(run, tmp_path):
+    path = write_result(run, tmp_path / "r.h5")
+    with h5py.File(path, "r+") as h5:
+        h5.attrs["format_version"] = "2.0"
+    with pytest.raises(ResultFileError, match="format 2.0"):
+        read_result(path)
+
+
+def test_reader_reports_a_damaged_file(run, tmp_path):
+    path = write_result(run, tmp_path / "r.h5")
+    with h5py.File(path, "r+") as h5:
+        del h5["points"]
+    with pytest.raises(ResultFileError, match="damaged"):
+        read_result(path)
