@@ -64,8 +64,8 @@ class SolverSettings:
     """Numerical settings of the EHL solver."""
 
     grid: int  # nodes per side on the finest grid, 2^n + 1
-    domain_x: tuple[float, float]  # in units of the minor semi-axis b
-    domain_y: tuple[float, float]  # in units of the major semi-axis a
+    domain_x: tuple[float, float] | None  # in units of the minor semi-axis b; None: automatic
+    domain_y: tuple[float, float] | None  # in units of the major semi-axis a; None: automatic
     thermal: str  # off | reduced | full | auto
     coarsest_grid: int  # nodes per side on the coarsest grid of the hierarchy
     cycles_per_level: int  # V-cycles per level in the full-multigrid start
@@ -181,17 +181,19 @@ def _plain_contact(block: Block) -> PlainContact:
 def _solver(block: Block) -> SolverSettings:
     grid = block.integer("grid", 257)
     _check_grid(grid, block.key_path("grid"))
-    coarsest = block.integer("coarsest_grid", 17)
+    coarsest = block.integer("coarsest_grid", 17, low=9)
     _check_grid(coarsest, block.key_path("coarsest_grid"))
     check(coarsest <= grid, block.key_path("coarsest_grid"), coarsest, f"at most solver.grid = {grid}")
-    domain = block.block("domain", {"x": [-4.5, 1.5], "y": [-3.0, 3.0]})
-    dx = domain.interval("x", (-4.5, 1.5))
-    dy = domain.interval("y", (-3.0, 3.0))
-    domain.finish()
-    check(dx[0] < -1.0 and dx[1] > 1.0, domain.key_path("x"), list(dx),
-          "an interval containing the contact [-1, 1] (units of the semi-axis b), e.g. [-4.5, 1.5]")
-    check(dy[0] < -1.0 and dy[1] > 1.0, domain.key_path("y"), list(dy),
-          "an interval containing the contact [-1, 1] (units of the semi-axis a), e.g. [-3, 3]")
+    dx = dy = None  # automatic: 4.5 semi-axes upstream, 1.5 downstream of the entrainment (ehl.solve)
+    if block.has("domain"):
+        domain = block.block("domain")
+        dx = domain.interval("x")
+        dy = domain.interval("y")
+        domain.finish()
+        check(dx[0] < -1.0 and dx[1] > 1.0, domain.key_path("x"), list(dx),
+              "an interval containing the contact [-1, 1] (units of the semi-axis b), e.g. [-4.5, 1.5]")
+        check(dy[0] < -1.0 and dy[1] > 1.0, domain.key_path("y"), list(dy),
+              "an interval containing the contact [-1, 1] (units of the semi-axis a), e.g. [-3, 3]")
     thermal = block.get("thermal", "off")
     if thermal is False:  # YAML 1.1 reads a bare `off` as false
         thermal = "off"
@@ -205,7 +207,7 @@ def _solver(block: Block) -> SolverSettings:
         coarsest_grid=coarsest,
         cycles_per_level=block.integer("cycles_per_level", 2, low=1, high=20),
         max_cycles=block.integer("max_cycles", 40, low=0, high=1000),
-        tolerance=block.number("tolerance", 1e-5, positive=True, high=0.1),
+        tolerance=block.number("tolerance", 1e-4, positive=True, high=0.1),
         load_tolerance=block.number("load_tolerance", 1e-4, positive=True, high=0.1),
     )
     block.finish()

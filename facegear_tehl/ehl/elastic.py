@@ -1,0 +1,62 @@
+"""Elastic deflection of the contacting half-spaces by FFT convolution (O(N log N)).
+
+In Hertzian units (X = x/b, Y = y/a, P = p/p_h, H = h R_x / b^2) the deflection of two elastic half-spaces
+(Boussinesq; Johnson 1985, §3.2) is
+
+    H_d(X, Y) = C_d \iint P(S, T) / sqrt((X - S)^2 + k^2 (Y - T)^2) dS dT,   C_d = 2 p_h a R_x / (pi E' b^2),
+
+with k = a/b. P is taken constant on each cell of size h_x x h_y around a node; the integral over a cell
+is the closed form of Venner & Lubrecht (2000, eq. 8.6) for 1/r over a rectangle, here stretched by k in Y:
+
+    K(d_i, d_j) = (1/k) R(d_i h_x - h_x/2, d_i h_x + h_x/2; k (d_j h_y - h_y/2), k (d_j h_y + h_y/2)),
+    R(x1, x2; y1, y2) = F(x2, y2) - F(x1, y2) - F(x2, y1) + F(x1, y1),   F(x, y) = x asinh(y/|x|) + y asinh(x/|y|).
+
+The discrete convolution W_ij = sum K(|i - i'|, |j - j'|) P_i'j' is evaluated with real FFTs on a grid padded
+to `scipy.fft.next_fast_len(2 n - 1)` (linear, not circular, convolution).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy import fft
+
+
+def _f(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """F(x, y) = x asinh(y/|x|) + y asinh(x/|y|): d^2F/dx dy = 1/sqrt(x^2 + y^2) in every quadrant
+    (F = 0 on the axes)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        fx = np.where(x != 0.0, x * np.arcsinh(y / np.where(x != 0.0, np.abs(x), 1.0)), 0.0)
+        fy = np.where(y != 0.0, y * np.arcsinh(x / np.where(y != 0.0, np.abs(y), 1.0)), 0.0)
+    return fx + fy
+
+
+def influence_coefficients(nx: int, ny: int, hx: float, hy: float, ellipticity: float) -> np.ndarray:
+    """K[d_j, d_i] for d_i in 0..nx-1, d_j in 0..ny-1 (shape (ny, nx)), without the factor C_d."""
+    di = np.arange(nx, dtype=np.float64)[None, :]
+    dj = np.arange(ny, dtype=np.float64)[:, None]
+    x1, x2 = di * hx - 0.5 * hx, di * hx + 0.5 * hx
+    y1, y2 = ellipticity * (dj * hy - 0.5 * hy), ellipticity * (dj * hy + 0.5 * hy)
+    rect = _f(x2, y2) - _f(x1, y2) - _f(x2, y1) + _f(x1, y1)
+    return rect / ellipticity
+
+
+class DeflectionOperator:
+    """W = K * P on an (ny, nx) grid by zero-padded real FFTs; `coefficients` keeps K[d_j, d_i]."""
+
+    def __init__(self, nx: int, ny: int, hx: float, hy: float, ellipticity: float):
+        self.nx, self.ny = nx, ny
+        self.coefficients = influence_coefficients(nx, ny, hx, hy, ellipticity)
+        self.shape = (fft.next_fast_len(2 * ny - 1, real=True), fft.next_fast_len(2 * nx - 1, real=True))
+        full = np.zeros(self.shape)
+        k = self.coefficients
+        # Place K(|d|) at circular offsets d and -d so that the product of transforms is a linear convolution.
+        full[:ny, :nx] = k
+        full[:ny, -(nx - 1):] = k[:, :0:-1]
+        full[-(ny - 1):, :nx] = k[:0:-1, :]
+        full[-(ny - 1):, -(nx - 1):] = k[:0:-1, :0:-1]
+        self._kernel_hat = fft.rfft2(full)
+
+    def apply(self, pressure: np.ndarray) -> np.ndarray:
+        """W_ij = sum_{i'j'} K(|i - i'|, |j - j'|) P_{i'j'}; pressure shape (ny, nx)."""
+        p_hat = fft.rfft2(pressure, s=self.shape)
+        return fft.irfft2(p_hat * self._kernel_hat, s=self.shape)[: self.ny, : self.nx]

@@ -1,0 +1,278 @@
+"""FAS multigrid for the EHL point contact: V-cycles, full-multigrid start, load balance, work units.
+
+Algorithm of Venner & Lubrecht (2000, ch. 8), written for any ellipticity and entrainment direction:
+- Unknowns per level: pressure P; film H = H_0 + C_d K*P + F_h, where F_h is the film right-hand side
+  (the gap geometry on the finest grid; on coarse grids the FAS term that makes H(I P) = I H).
+- Coarse-grid correction (FAS): P_c = I P, f_c = I (f - L P) + L_c P_c, F_c = I H - H_0 - C_d K_c*P_c,
+  force balance g_c = g_h + \\iint P_h - \\iint P_c; then P += I(P_c - I P) where P > 0.
+- The force balance \\iint P dX dY = 2 pi/3 fixes H_0; it is relaxed on the coarsest grid
+  (H_0 += c_h g), where its FAS right-hand side carries the fine-grid information.
+- Work unit: one relaxation sweep on the finest grid; a sweep on a grid with n nodes costs n/n_finest.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+import math
+
+import numpy as np
+
+from facegear_tehl.ehl import grid, reynolds
+from facegear_tehl.ehl.elastic import DeflectionOperator
+from facegear_tehl.lubricant import density_ratio, viscosity_ratio
+
+
+@dataclass(frozen=True)
+class Problem:
+    """The dimensionless problem on a rectangular domain (see scaling.py)."""
+
+    lam: float  # lambda
+    deflection_coefficient: float  # C_d
+    ellipticity: float  # k = a/b
+    geometry_y: float  # k^2 R_x/R_y
+    wedge_x: float  # cos psi
+    wedge_y: float  # kappa sin psi
+    p_hertz: float  # Pa, to evaluate the lubricant laws
+    law: np.ndarray  # lubricant law parameters (lubricant.Lubricant.law_parameters)
+    inlet_temperature: float  # K
+    domain_x: tuple[float, float]
+    domain_y: tuple[float, float]
+    load_integral: float = 2.0 * math.pi / 3.0
+
+
+@dataclass(frozen=True)
+class Relaxation:
+    """Parameters of the relaxation and the cycle (defaults: Venner & Lubrecht 2000)."""
+
+    xi_switch: float = 0.3  # eps/h^2 above which a node is relaxed Gauss-Seidel
+    under_gs: float = 0.4  # under-relaxation of Gauss-Seidel changes
+    under_jd: float = 0.2  # under-relaxation of Jacobi-distributive changes
+    pre_sweeps: int = 2
+    post_sweeps: int = 1
+    coarsest_sweeps: int = 40
+    force_factor: float = 0.1  # c_h in H_0 += c_h g on the coarsest grid
+    force_updates: int = 4  # H_0 updates per coarsest-grid solve
+
+
+@dataclass
+class Level:
+    """One grid of the hierarchy with its state (mutable solver state, not passed between stages)."""
+
+    x: np.ndarray
+    y: np.ndarray
+    deflection: DeflectionOperator
+    pattern_gs: np.ndarray
+    pattern_jd: np.ndarray
+    weight_x: float
+    weight_y: float
+    pressure: np.ndarray
+    film_rhs: np.ndarray
+    reynolds_rhs: np.ndarray
+    force_rhs: float = 0.0
+    film: np.ndarray = field(default=None)
+    rho: np.ndarray = field(default=None)
+    eps: np.ndarray = field(default=None)
+    pressure_restricted: np.ndarray = field(default=None)
+
+    @property
+    def nx(self) -> int:
+        return self.x.size
+
+    @property
+    def ny(self) -> int:
+        return self.y.size
+
+    @property
+    def hx(self) -> float:
+        return float(self.x[1] - self.x[0])
+
+    @property
+    def hy(self) -> float:
+        return float(self.y[1] - self.y[0])
+
+    @property
+    def nodes(self) -> int:
+        return self.x.size * self.y.size
+
+    def load_integral(self) -> float:
+        return float(self.pressure.sum()) * self.hx * self.hy
+
+
+class MultigridSolver:
+    """FAS multigrid solver of one dimensionless EHL problem on a hierarchy of nested grids."""
+
+    def __init__(self, problem: Problem, sizes: list[int], relaxation: Relaxation = Relaxation()):
+        self.problem = problem
+        self.relaxation = relaxation
+        self.levels: list[Level] = [self._make_level(n) for n in sizes]
+        self.h0 = 0.0
+        self.work_units = 0.0
+        self.finest_nodes = self.levels[-1].nodes
+
+    # ----------------------------------------------------------------- set-up
+    def _make_level(self, n: int) -> Level:
+        pb = self.problem
+        x = np.linspace(pb.domain_x[0], pb.domain_x[1], n)
+        y = np.linspace(pb.domain_y[0], pb.domain_y[1], n)
+        hx, hy = x[1] - x[0], y[1] - y[0]
+        deflection = DeflectionOperator(n, n, hx, hy, pb.ellipticity)
+        # Jacobi-distributive weights of a physical Laplacian (reynolds.py).
+        cx, cy = 1.0 / hx**2, 1.0 / (pb.ellipticity * hy) ** 2
+        wx, wy = 0.5 * cx / (cx + cy), 0.5 * cy / (cx + cy)
+        e_gs, e_jd = reynolds.pattern_kernels(deflection.coefficients, pb.deflection_coefficient, wx, wy)
+        xx, yy = np.meshgrid(x, y)
+        return Level(
+            x=x,
+            y=y,
+            deflection=deflection,
+            pattern_gs=e_gs,
+            pattern_jd=e_jd,
+            weight_x=wx,
+            weight_y=wy,
+            pressure=np.zeros((n, n)),
+            film_rhs=0.5 * xx**2 + 0.5 * pb.geometry_y * yy**2,
+            reynolds_rhs=np.zeros((n, n)),
+        )
+
+    def reset_rhs(self, level: Level) -> None:
+        """The original (finest-grid) right-hand sides: gap geometry, f = 0, target load."""
+        xx, yy = np.meshgrid(level.x, level.y)
+        level.film_rhs = 0.5 * xx**2 + 0.5 * self.problem.geometry_y * yy**2
+        level.reynolds_rhs = np.zeros_like(level.pressure)
+        level.force_rhs = -self.problem.load_integral
+
+    # ---------------------------------------------------------- single grid
+    def update_film(self, level: Level) -> None:
+        """H = H_0 + C_d K*P + F; then rho_bar, eta_bar and eps = rho_bar H^3/(eta_bar lambda)."""
+        pb = self.problem
+        w = level.deflection.apply(level.pressure)
+        level.film = self.h0 + pb.deflection_coefficient * w + level.film_rhs
+        p_pa = np.ascontiguousarray(level.pressure * pb.p_hertz)
+        temperature = np.full_like(p_pa, pb.inlet_temperature)
+        rho = density_ratio(p_pa, temperature, pb.law).reshape(p_pa.shape)
+        eta = viscosity_ratio(p_pa, temperature, pb.law).reshape(p_pa.shape)
+        positive_film = np.maximum(level.film, 0.0)
+        level.rho = rho
+        level.eps = rho * positive_film**3 / (eta * pb.lam)
+
+    def _args(self, level: Level):
+        pb = self.problem
+        return (
+            level.hx,
+            level.hy,
+            1.0 / pb.ellipticity**2,
+            abs(pb.wedge_x),
+            int(np.sign(pb.wedge_x)),
+            abs(pb.wedge_y),
+            int(np.sign(pb.wedge_y)),
+        )
+
+    def relax(self, level: Level) -> float:
+        """One line-relaxation sweep, then the film; returns the mean absolute pressure change."""
+        rx = self.relaxation
+        change = reynolds.relax_lines(
+            level.pressure,
+            level.rho * level.film,
+            level.rho,
+            level.eps,
+            level.reynolds_rhs,
+            *self._args(level),
+            level.pattern_gs,
+            level.pattern_jd,
+            level.weight_x,
+            level.weight_y,
+            rx.xi_switch,
+            rx.under_gs,
+            rx.under_jd,
+        )
+        self.work_units += level.nodes / self.finest_nodes
+        self.update_film(level)
+        return change / level.nodes
+
+    def residual(self, level: Level) -> np.ndarray:
+        out = np.empty_like(level.pressure)
+        reynolds.residual(level.pressure, level.rho * level.film, level.eps, level.reynolds_rhs, *self._args(level), out)
+        return out
+
+    def operator(self, level: Level) -> np.ndarray:
+        out = np.empty_like(level.pressure)
+        reynolds.apply_operator(level.pressure, level.rho * level.film, level.eps, *self._args(level), out)
+        return out
+
+    def force_error(self, level: Level) -> float:
+        """g = \\iint P dX dY + force_rhs (zero when the load balance holds)."""
+        return level.load_integral() + level.force_rhs
+
+    def solve_coarsest(self, level: Level) -> None:
+        """Relax the coarsest grid and its force balance together.
+
+        The sweeps come in `force_updates` groups; after each group H_0 moves to the root of the load error
+        g(H_0), by the secant through the last two (H_0, g) pairs once the slope has the physical sign
+        (dg/dH_0 < 0), else by H_0 += c_h g.
+        """
+        rx = self.relaxation
+        sweeps = max(rx.coarsest_sweeps // rx.force_updates, 1)
+        previous = None
+        for _ in range(rx.force_updates):
+            for _ in range(sweeps):
+                self.relax(level)
+            g = self.force_error(level)
+            step = rx.force_factor * g
+            if previous is not None:
+                h_prev, g_prev = previous
+                if self.h0 != h_prev:
+                    slope = (g - g_prev) / (self.h0 - h_prev)
+                    if slope < 0.0:
+                        step = min(max(-g / slope, -4.0 * abs(rx.force_factor * g)), 4.0 * abs(rx.force_factor * g))
+            previous = (self.h0, g)
+            self.h0 += step
+            self.update_film(level)
+
+    # ------------------------------------------------------------ multigrid
+    def coarsen(self, index: int) -> None:
+        """FAS restriction from level `index` to `index - 1`."""
+        fine, coarse = self.levels[index], self.levels[index - 1]
+        coarse.pressure = grid.restrict_pressure(fine.pressure)
+        coarse.pressure_restricted = coarse.pressure.copy()
+        w = coarse.deflection.apply(coarse.pressure)
+        coarse.film_rhs = grid.inject(fine.film) - self.h0 - self.problem.deflection_coefficient * w
+        self.update_film(coarse)
+        coarse.reynolds_rhs = grid.restrict_full_weighting(self.residual(fine)) + self.operator(coarse)
+        coarse.force_rhs = fine.force_rhs + fine.load_integral() - coarse.load_integral()
+
+    def refine(self, index: int) -> None:
+        """Add the interpolated coarse-grid correction where the fine pressure is positive."""
+        fine, coarse = self.levels[index], self.levels[index - 1]
+        correction = grid.prolong_bilinear(coarse.pressure - coarse.pressure_restricted)
+        active = fine.pressure > 0.0
+        fine.pressure[active] += correction[active]
+        np.maximum(fine.pressure, 0.0, out=fine.pressure)
+        self.update_film(fine)
+
+    def cycle(self, index: int) -> None:
+        """One V-cycle starting on level `index` (index 0: the coarsest grid, relaxed to convergence)."""
+        rx = self.relaxation
+        level = self.levels[index]
+        if index == 0:
+            self.solve_coarsest(level)
+            return
+        for _ in range(rx.pre_sweeps):
+            self.relax(level)
+        self.coarsen(index)
+        self.cycle(index - 1)
+        self.refine(index)
+        for _ in range(rx.post_sweeps):
+            self.relax(level)
+
+    def interpolate_up(self, index: int) -> None:
+        """Full-multigrid step: start level `index` from the bicubic interpolation of level `index - 1`."""
+        fine, coarse = self.levels[index], self.levels[index - 1]
+        self.reset_rhs(fine)
+        fine.pressure = np.maximum(grid.prolong_cubic(coarse.pressure), 0.0)
+        fine.pressure[0, :] = fine.pressure[-1, :] = 0.0
+        fine.pressure[:, 0] = fine.pressure[:, -1] = 0.0
+        self.update_film(fine)
+
+    def level_table(self) -> list[tuple[int, int, int, float]]:
+        """(level, nx, ny, share of the work of a finest-grid sweep) per level, coarsest first."""
+        return [(i, lv.nx, lv.ny, lv.nodes / self.finest_nodes) for i, lv in enumerate(self.levels)]

@@ -1,0 +1,272 @@
+"""Discrete Reynolds operator and its line relaxation (Numba kernels).
+
+Discretisation on a uniform (ny, nx) grid (arrays indexed [j, i], i along X), see `scaling.py`:
+    L(P)_ij = xi_e (P_i+1 - P_i) - xi_w (P_i - P_i-1) + xi_n (P_j+1 - P_j) - xi_s (P_j - P_j-1)
+              - |c_x| D_x(q) - |c_y| D_y(q),      q = rho_bar H
+    xi_e = (eps_i + eps_i+1)/(2 h_x^2),  xi_n = kappa^2 (eps_j + eps_j+1)/(2 h_y^2)  (and w, s alike)
+    D(q) = (1.5 q_0 - 2 q_-1 + 0.5 q_-2)/h, the second-order upstream difference taken against the
+    entrainment component on that axis (first order next to the boundary).
+The wedge term thus follows the entrainment direction in both axes (skewed entrainment).
+
+Relaxation (Venner & Lubrecht 2000, ch. 8): lines of constant Y are solved together with a banded
+approximation of the Jacobian, including the elastic coupling through the influence coefficients.
+Where xi = eps/h^2 is large (inlet, outlet) the line is relaxed Gauss-Seidel; where it is small (the
+Hertzian region, where the equation is an integral equation of the first kind) the changes are distributed
+Jacobi-wise, delta_ij - w_x (delta_i-1 + delta_i+1) - w_y (delta_j-1 + delta_j+1), with the weights of a
+physical Laplacian (w_x : w_y = 1/h_x^2 : 1/(k h_y)^2, 2 w_x + 2 w_y = 1): for a circle this is Venner's
+1/4 pattern; for a long ellipse (k >> 1) it tends to the line-contact pattern 1/2 along X.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+BAND = 3  # half-width of the banded line Jacobian (columns i-3 .. i+3)
+PATTERN_REACH = 2 * BAND  # |d| range of the pattern-effect kernels (wedge reaches i - 2 and band 3, +1 spread)
+
+
+@njit(cache=True)
+def _upwind(i: int, s: int, n: int):
+    """Coefficients (c0, c1, c2) of q_i, q_i-s, q_i-2s in the upstream difference (times 1/h)."""
+    if s == 0:
+        return 0.0, 0.0, 0.0
+    i2 = i - 2 * s
+    if i2 >= 0 and i2 <= n - 1:
+        return 1.5, -2.0, 0.5
+    return 1.0, -1.0, 0.0
+
+
+@njit(cache=True)
+def _coefficients(eps, j, i, rhx2, rhy2k):
+    e0 = eps[j, i]
+    xe = 0.5 * (eps[j, i + 1] + e0) * rhx2
+    xw = 0.5 * (eps[j, i - 1] + e0) * rhx2
+    xn = 0.5 * (eps[j + 1, i] + e0) * rhy2k
+    xs = 0.5 * (eps[j - 1, i] + e0) * rhy2k
+    return xe, xw, xn, xs
+
+
+@njit(cache=True)
+def _wedge(q, j, i, ax, sx, ay, sy, rhx, rhy):
+    ny, nx = q.shape
+    w = 0.0
+    if sx != 0:
+        c0, c1, c2 = _upwind(i, sx, nx)
+        w += ax * rhx * (c0 * q[j, i] + c1 * q[j, i - sx] + (c2 * q[j, i - 2 * sx] if c2 != 0.0 else 0.0))
+    if sy != 0:
+        c0, c1, c2 = _upwind(j, sy, ny)
+        w += ay * rhy * (c0 * q[j, i] + c1 * q[j - sy, i] + (c2 * q[j - 2 * sy, i] if c2 != 0.0 else 0.0))
+    return w
+
+
+@njit(cache=True)
+def _operator(p, q, eps, j, i, rhx, rhy, rhx2, rhy2k, ax, sx, ay, sy):
+    xe, xw, xn, xs = _coefficients(eps, j, i, rhx2, rhy2k)
+    poiseuille = xe * p[j, i + 1] + xw * p[j, i - 1] + xn * p[j + 1, i] + xs * p[j - 1, i] - (xe + xw + xn + xs) * p[j, i]
+    return poiseuille - _wedge(q, j, i, ax, sx, ay, sy, rhx, rhy)
+
+
+@njit(cache=True)
+def apply_operator(p, q, eps, hx, hy, kappa2, ax, sx, ay, sy, out):
+    """out = L(P) at interior nodes (0 on the boundary)."""
+    ny, nx = p.shape
+    rhx, rhy = 1.0 / hx, 1.0 / hy
+    rhx2, rhy2k = rhx * rhx, kappa2 * rhy * rhy
+    out[:, :] = 0.0
+    for j in range(1, ny - 1):
+        for i in range(1, nx - 1):
+            out[j, i] = _operator(p, q, eps, j, i, rhx, rhy, rhx2, rhy2k, ax, sx, ay, sy)
+
+
+@njit(cache=True)
+def residual(p, q, eps, f, hx, hy, kappa2, ax, sx, ay, sy, out):
+    """out = f - L(P) at interior nodes where P > 0 (cavitated nodes satisfy the complementarity), else 0."""
+    ny, nx = p.shape
+    rhx, rhy = 1.0 / hx, 1.0 / hy
+    rhx2, rhy2k = rhx * rhx, kappa2 * rhy * rhy
+    out[:, :] = 0.0
+    for j in range(1, ny - 1):
+        for i in range(1, nx - 1):
+            if p[j, i] > 0.0:
+                out[j, i] = f[j, i] - _operator(p, q, eps, j, i, rhx, rhy, rhx2, rhy2k, ax, sx, ay, sy)
+
+
+def pattern_kernels(k: np.ndarray, deflection_coefficient: float, wx: float, wy: float):
+    """Effect on H of a unit change at a node, by row offset e = 0..2 and column offset d = -6..6.
+
+    Returns (E_gs, E_jd), each shape (3, 2*PATTERN_REACH + 1): E_gs for a point change (C_d K), E_jd for the
+    distributed change delta - w_x (delta_i-1 + delta_i+1) - w_y (delta_j-1 + delta_j+1).
+    k: influence coefficients K[d_j, d_i] (shape (ny, nx), at least 4 x (PATTERN_REACH + 2)).
+    """
+    reach = PATTERN_REACH
+
+    def kk(dj: int, di: int) -> float:
+        return k[abs(dj), abs(di)]
+
+    e_gs = np.zeros((3, 2 * reach + 1))
+    e_jd = np.zeros((3, 2 * reach + 1))
+    for e in range(3):
+        for d in range(-reach, reach + 1):
+            e_gs[e, d + reach] = kk(e, d)
+            e_jd[e, d + reach] = kk(e, d) - wx * (kk(e, d - 1) + kk(e, d + 1)) - wy * (kk(e - 1, d) + kk(e + 1, d))
+    return deflection_coefficient * e_gs, deflection_coefficient * e_jd
+
+
+@njit(cache=True)
+def _solve_band(a, rhs, x, n, ml, mu):
+    """Solve a banded system in place by Gaussian elimination with partial pivoting.
+
+    Row r holds A[r, c] at a[r, c - r + ml] for c - r in [-ml, mu + ml] (the upper band is widened by ml
+    for the fill-in of row interchanges).
+    """
+    width = 2 * ml + mu + 1
+    for i in range(n):
+        # pivot among rows i..i+ml in column i
+        piv = i
+        best = abs(a[i, ml])
+        for r in range(i + 1, min(i + ml + 1, n)):
+            v = abs(a[r, i - r + ml])
+            if v > best:
+                best = v
+                piv = r
+        if piv != i:
+            for c in range(i, min(i + ml + mu + 1, n)):
+                ci = c - i + ml
+                cp = c - piv + ml
+                t = a[i, ci]
+                a[i, ci] = a[piv, cp]
+                a[piv, cp] = t
+            t = rhs[i]
+            rhs[i] = rhs[piv]
+            rhs[piv] = t
+        d = a[i, ml]
+        if d == 0.0:
+            d = 1e-300
+            a[i, ml] = d
+        for r in range(i + 1, min(i + ml + 1, n)):
+            factor = a[r, i - r + ml] / d
+            if factor != 0.0:
+                for c in range(i, min(i + ml + mu + 1, n)):
+                    cr = c - r + ml
+                    if cr < width:
+                        a[r, cr] -= factor * a[i, c - i + ml]
+                rhs[r] -= factor * rhs[i]
+    for i in range(n - 1, -1, -1):
+        s = rhs[i]
+        for c in range(i + 1, min(i + ml + mu + 1, n)):
+            s -= a[i, c - i + ml] * x[c]
+        x[i] = s / a[i, ml]
+
+
+@njit(cache=True)
+def relax_lines(p, q, rho, eps, f, hx, hy, kappa2, ax, sx, ay, sy, e_gs, e_jd, wx, wy, xi_switch, ur_gs, ur_jd):
+    """One sweep of line relaxation over lines of constant Y (in place on p); returns the L1 norm of changes.
+
+    H (through q = rho H), rho and eps are frozen during the sweep (recomputed by the caller afterwards).
+    Gauss-Seidel nodes see the already updated neighbours; Jacobi-distributive nodes see the pressures at
+    the start of the sweep.
+    """
+    ny, nx = p.shape
+    rhx, rhy = 1.0 / hx, 1.0 / hy
+    rhx2, rhy2k = rhx * rhx, kappa2 * rhy * rhy
+    ml = BAND
+    mu = BAND
+    reach = PATTERN_REACH
+    n = nx - 2
+    a = np.zeros((n, 2 * ml + mu + 1))
+    rhs = np.zeros(n)
+    x = np.zeros(n)
+    pj = p.copy()
+    gs = np.zeros((ny, nx), dtype=np.bool_)
+    for j in range(1, ny - 1):
+        for i in range(1, nx - 1):
+            xe, xw, xn, xs = _coefficients(eps, j, i, rhx2, rhy2k)
+            gs[j, i] = max(max(xe, xw), max(xn, xs)) > xi_switch
+    change = 0.0
+    for j in range(1, ny - 1):
+        a[:, :] = 0.0
+        for i in range(1, nx - 1):
+            r = i - 1
+            xe, xw, xn, xs = _coefficients(eps, j, i, rhx2, rhy2k)
+            xsum = xe + xw + xn + xs
+            src = pj if gs[j, i] else p
+            poiseuille = xe * src[j, i + 1] + xw * src[j, i - 1] + xn * src[j + 1, i] + xs * src[j - 1, i] - xsum * src[j, i]
+            rhs[r] = f[j, i] - (poiseuille - _wedge(q, j, i, ax, sx, ay, sy, rhx, rhy))
+            # Does the node couple to its line neighbours? (not across a cavitation boundary)
+            coupled = pj[j, i] > 0.0
+            for m in range(-2, 3):
+                ii = i + m
+                if ii >= 0 and ii <= nx - 1 and pj[j, ii] <= 0.0 and m != 0 and ii >= 1 and ii <= nx - 2:
+                    coupled = False
+            cx0, cx1, cx2 = _upwind(i, sx, nx)
+            cy0, cy1, cy2 = _upwind(j, sy, ny)
+            for m in range(-ml, mu + 1):
+                k = i + m
+                if k < 1 or k > nx - 2:
+                    continue
+                if m != 0 and not coupled:
+                    continue
+                pat = e_gs if gs[j, k] else e_jd
+                # elastic part: -d(wedge)/d(delta_k)
+                el = 0.0
+                if sx != 0:
+                    el += cx0 * rho[j, i] * pat[0, i - k + reach]
+                    el += cx1 * rho[j, i - sx] * pat[0, i - sx - k + reach]
+                    if cx2 != 0.0:
+                        el += cx2 * rho[j, i - 2 * sx] * pat[0, i - 2 * sx - k + reach]
+                    el *= ax * rhx
+                if sy != 0:
+                    ey = cy0 * rho[j, i] * pat[0, i - k + reach] + cy1 * rho[j - sy, i] * pat[1, i - k + reach]
+                    if cy2 != 0.0:
+                        ey += cy2 * rho[j - 2 * sy, i] * pat[2, i - k + reach]
+                    el += ay * rhy * ey
+                # Poiseuille part, for the pattern of column k
+                po = 0.0
+                if gs[j, k]:
+                    if m == 0:
+                        po = -xsum
+                    elif m == 1:
+                        po = xe
+                    elif m == -1:
+                        po = xw
+                else:
+                    if m == 0:
+                        po = -xsum - wx * (xe + xw) - wy * (xn + xs)
+                    elif m == 1:
+                        po = xe + wx * xsum
+                    elif m == -1:
+                        po = xw + wx * xsum
+                    elif m == 2:
+                        po = -wx * xe
+                    elif m == -2:
+                        po = -wx * xw
+                a[r, m + ml] = po - el
+        _solve_band(a, rhs, x, n, ml, mu)
+        for i in range(1, nx - 1):
+            delta = x[i - 1]
+            old = pj[j, i]
+            if gs[j, i]:
+                new = old + ur_gs * delta
+                if new < 0.0:
+                    new = 0.0
+                pj[j, i] = new
+                change += abs(new - old)
+            else:
+                new = old + ur_jd * delta
+                if new < 0.0:
+                    new = 0.0
+                pj[j, i] = new
+                d0 = new - old
+                change += abs(d0)
+                if new > 0.0 and pj[j, i - 1] > 0.0 and pj[j, i + 1] > 0.0 and pj[j - 1, i] > 0.0 and pj[j + 1, i] > 0.0:
+                    if i > 1:
+                        pj[j, i - 1] = max(pj[j, i - 1] - wx * d0, 0.0)
+                    if i < nx - 2:
+                        pj[j, i + 1] = max(pj[j, i + 1] - wx * d0, 0.0)
+                    if j > 1:
+                        pj[j - 1, i] = max(pj[j - 1, i] - wy * d0, 0.0)
+                    if j < ny - 2:
+                        pj[j + 1, i] = max(pj[j + 1, i] - wy * d0, 0.0)
+    p[:, :] = pj
+    return change

@@ -1,0 +1,108 @@
+"""Hertzian scaling of an elliptical EHL contact: the dimensionless variables of the solver, defined once.
+
+Dimensional problem (steady, isothermal, Newtonian; x along the minor axis b, y along the major axis a):
+    d/dx(rho h^3/(12 eta) dp/dx) + d/dy(rho h^3/(12 eta) dp/dy) = u_ex d(rho h)/dx + u_ey d(rho h)/dy
+    h = h_0 + x^2/(2 R_x) + y^2/(2 R_y) + (2/(pi E')) \iint p/r ds dt,       \iint p dx dy = w
+
+Dimensionless variables (Venner & Lubrecht 2000, stretched to the ellipse):
+    X = x/b,  Y = y/a,  P = p/p_h,  H = h R_x/b^2,  rho_bar = rho/rho_0,  eta_bar = eta/eta_0
+    k = a/b (ellipticity), kappa = b/a, D = R_x/R_y, U_e = |u_e| (cos psi, sin psi)
+
+Dimensionless problem:
+    d/dX(eps dP/dX) + kappa^2 d/dY(eps dP/dY) - cos(psi) d(rho_bar H)/dX - kappa sin(psi) d(rho_bar H)/dY = 0
+    eps = rho_bar H^3/(eta_bar lambda),   lambda = 12 eta_0 |u_e| R_x^2/(p_h b^3)
+    H = H_0 + X^2/2 + k^2 D Y^2/2 + C_d \iint P/sqrt((X-S)^2 + k^2 (Y-T)^2) dS dT,  C_d = 2 p_h a R_x/(pi E' b^2)
+    \iint P dX dY = 2 pi/3
+For a circle (k = D = 1): lambda = 6 eta_0 u_s R^2/(a^3 p_h) and C_d = 2/pi^2, exactly Venner & Lubrecht's form.
+
+Groups reported with results: Moes M = W (2U)^(-3/4), L = G (2U)^(1/4) and Hamrock-Dowson U, G, W, all built on
+R_x with U = eta_0 |u_e|/(E' R_x), W = w/(E' R_x^2), G = alpha E' (alpha: the low-pressure pressure-viscosity
+coefficient of the chosen viscosity law).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+import math
+
+from facegear_tehl.contact import ContactPoint
+from facegear_tehl.hertz import HertzContact
+from facegear_tehl.lubricant import Lubricant
+
+
+@dataclass(frozen=True)
+class Scaling:
+    hertz: HertzContact
+    lam: float  # lambda, 12 eta_0 |u_e| R_x^2/(p_h b^3)
+    deflection_coefficient: float  # C_d
+    wedge_x: float  # cos(psi)
+    wedge_y: float  # kappa sin(psi)
+    moes_m: float
+    moes_l: float
+    hamrock_u: float
+    hamrock_g: float
+    hamrock_w: float
+
+    @property
+    def b(self) -> float:
+        return self.hertz.b
+
+    @property
+    def a(self) -> float:
+        return self.hertz.a
+
+    @property
+    def p_h(self) -> float:
+        return self.hertz.p_max
+
+    @property
+    def ellipticity(self) -> float:
+        return self.hertz.ellipticity
+
+    @property
+    def kappa(self) -> float:
+        return 1.0 / self.hertz.ellipticity
+
+    @property
+    def geometry_y(self) -> float:
+        """Coefficient of Y^2/2 in the gap: k^2 R_x/R_y."""
+        return self.hertz.ellipticity**2 * self.hertz.radius_x / self.hertz.radius_y
+
+    @property
+    def film_scale(self) -> float:
+        """h = H * b^2/R_x, m."""
+        return self.hertz.b**2 / self.hertz.radius_x
+
+    @property
+    def load_integral(self) -> float:
+        """Target of \\iint P dX dY = w/(p_h a b) = 2 pi/3."""
+        return 2.0 * math.pi / 3.0
+
+
+def scaling_for(point: ContactPoint, lubricant: Lubricant) -> Scaling:
+    """The Hertzian scaling of one contact point."""
+    hertz = point.hertz
+    e_prime = point.reduced_modulus
+    ue = point.entrainment
+    speed = point.entrainment_speed
+    if speed <= 0.0:
+        raise ValueError(f"contact point {point.name}: entrainment speed must be positive, got {speed}")
+    r_x = point.radius_x
+    b, a, p_h = hertz.b, hertz.a, hertz.p_max
+    lam = 12.0 * lubricant.viscosity * speed * r_x**2 / (p_h * b**3)
+    c_d = 2.0 * p_h * a * r_x / (math.pi * e_prime * b**2)
+    u = lubricant.viscosity * speed / (e_prime * r_x)
+    w = point.load / (e_prime * r_x**2)
+    g = lubricant.effective_alpha * e_prime
+    return Scaling(
+        hertz=hertz,
+        lam=lam,
+        deflection_coefficient=c_d,
+        wedge_x=float(ue[0]) / speed,
+        wedge_y=(b / a) * float(ue[1]) / speed,
+        moes_m=w * (2.0 * u) ** -0.75,
+        moes_l=g * (2.0 * u) ** 0.25,
+        hamrock_u=u,
+        hamrock_g=g,
+        hamrock_w=w,
+    )
