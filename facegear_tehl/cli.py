@@ -1,0 +1,256 @@
+"""Command line: `tehl run | validate | info`.
+
+Exit codes: 0 ok; 1 unexpected error (or a point whose solve failed; its result is still written);
+2 bad input (case file, options, not a result file): one line `error: <key path>: ...`, no output file;
+3 not converged (result written, flagged).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+import signal
+import traceback
+from typing import Any, Iterable, Sequence
+
+import click
+
+from facegear_tehl import __version__
+from facegear_tehl.case import Case, load_case
+from facegear_tehl.points import contact_points, select_points
+from facegear_tehl.results import PointResult, Result, ResultFileError, read_result, write_result
+from facegear_tehl.schema import CaseError
+from facegear_tehl.solution import PointSolution
+
+EXIT_ERROR, EXIT_BAD_INPUT, EXIT_NOT_CONVERGED = 1, 2, 3
+
+
+class _Tehl(click.Group):
+    """Turns bad input into one line and exit 2, and any other error into one line and exit 1."""
+
+    def invoke(self, ctx: click.Context) -> Any:
+        try:
+            return super().invoke(ctx)
+        except (click.ClickException, click.exceptions.Exit, click.Abort):
+            raise
+        except (CaseError, ResultFileError) as exc:
+            click.echo(f"error: {exc}", err=True)
+            ctx.exit(EXIT_BAD_INPUT)
+        except Exception as exc:
+            if ctx.params.get("debug"):
+                traceback.print_exc()
+            click.echo(f"error: {type(exc).__name__}: {exc}", err=True)
+            ctx.exit(EXIT_ERROR)
+
+
+@click.group(cls=_Tehl, context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, prog_name="tehl")
+@click.option("--debug", is_flag=True, help="Show the traceback of unexpected errors.")
+def tehl(debug: bool) -> None:
+    """Thermal EHL of face gear pairs: one YAML case in, one HDF5 result out."""
+
+
+@tehl.command()
+@click.argument("case_file", metavar="CASE")
+@click.option("-o", "--output", help="Result file (default: output.file of the case, else <case name>.h5).")
+@click.option("--grid", type=int, help="Nodes per side of the finest grid, 2^n + 1 (overrides solver.grid).")
+@click.option("--points", help="Comma-separated point names to solve (e.g. S1,S3); default all.")
+@click.pass_context
+def run(ctx: click.Context, case_file: str, output: str | None, grid: int | None, points: str | None) -> None:
+    """Solve CASE and write the result file."""
+    case = load_case(case_file)
+    solver = (case if grid is None else case.with_grid(grid)).solver
+    names = _point_names(points)
+    selected = contact_points(case) if names is None else select_points(contact_points(case), names)
+    target = _output_path(Path(case_file), case, output)
+    click.echo(
+        f"tehl run: {case.name}: {', '.join(p.name for p in selected)} on a {solver.grid}x{solver.grid} grid",
+        err=True,
+    )
+    # Imported once the input is checked: only this command needs the solver (Numba kernels).
+    from facegear_tehl.run import run_case
+
+    run_result = run_case(case, grid=grid, points=names, progress=_report_progress)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    write_result(run_result, target)
+    result = read_result(target)
+    click.echo(summary_table(result.points.values()))
+    click.echo(f"result: {target} (status {result.status})")
+    if result.status == "failed":
+        click.echo(f"error: {result.message}", err=True)
+        ctx.exit(EXIT_ERROR)
+    if result.status == "not_converged":
+        click.echo(f"warning: not converged: {result.message}", err=True)
+        ctx.exit(EXIT_NOT_CONVERGED)
+
+
+@tehl.command()
+@click.argument("case_file", metavar="CASE")
+def validate(case_file: str) -> None:
+    """Check CASE without running it."""
+    case = load_case(case_file)
+    points = contact_points(case)
+    hertz = ", ".join(
+        f"{p.name}: p_hertz {p.hertz.p_max * 1e-6:.0f} MPa, a {p.hertz.a * 1e6:.1f} µm, b {p.hertz.b * 1e6:.1f} µm"
+        for p in points
+    )
+    lubricant = case.lubricant
+    click.echo(
+        f"ok: {case.name}: plain contact ({hertz}); grid {case.solver.grid}x{case.solver.grid}; models: viscosity "
+        f"{lubricant.viscosity_model}, density {lubricant.density_model}, rheology {lubricant.rheology}, "
+        f"thermal {case.solver.thermal}"
+    )
+
+
+@tehl.command()
+@click.argument("result_file", metavar="RESULT")
+@click.option("--json", "as_json", is_flag=True, help="Print the per-point scalars (SI) as JSON.")
+def info(result_file: str, as_json: bool) -> None:
+    """Show the per-point scalars of a result file."""
+    result = read_result(result_file)
+    click.echo(json.dumps(info_json(result), indent=2) if as_json else info_text(result))
+
+
+def info_json(result: Result) -> dict[str, Any]:
+    """{'case', 'status', 'message', 'format_version', 'points': {name: {scalar: SI value, 'converged',
+    'message'}}, 'units': {name: {scalar: unit}}}."""
+    return {
+        "case": result.case_name,
+        "status": result.status,
+        "message": result.message,
+        "format_version": result.format_version,
+        "points": {
+            name: {**p.scalars, "converged": p.converged, "message": p.message} for name, p in result.points.items()
+        },
+        "units": {name: dict(p.units) for name, p in result.points.items()},
+    }
+
+
+def info_text(result: Result) -> str:
+    """The file's header, then every scalar of every point (SI) with its units."""
+    header = [
+        ("case", result.case_name),
+        ("status", result.status),
+        ("created", f"{result.created} (tehl {result.tehl_version}, format {result.format_version})"),
+        ("models", ", ".join(f"{k} {v}" for k, v in result.models.items())),
+    ]
+    if result.overrides:
+        header.append(("overrides", ", ".join(f"{k} {v}" for k, v in result.overrides.items())))
+    for table_name, table in (("contact table", result.contact), ("heat table", result.heat)):
+        if table:
+            header.append((table_name, ", ".join(table)))
+    if result.message:
+        header.append(("message", result.message.replace("\n", "; ")))
+    width = max(len(key) for key, _ in header)
+    lines = [f"{key:<{width}}  {value}" for key, value in header]
+    points = list(result.points.values())
+    names = list(dict.fromkeys(key for p in points for key in p.scalars))
+    rows = [["converged", "", *("yes" if p.converged else "no" for p in points)]]
+    for key in names:
+        units = next(p.units[key] for p in points if key in p.units)
+        rows.append([key, units, *(f"{p.scalars[key]:.6g}" if key in p.scalars else "-" for p in points)])
+    lines += ["", format_table(["scalar", "units", *(p.name for p in points)], rows)]
+    return "\n".join(lines)
+
+
+# Summary columns: header, scalar key, factor from SI, format.
+_SUMMARY = (
+    ("h_c µm", "h_c", 1e6, "{:.4g}"),
+    ("h_min µm", "h_min", 1e6, "{:.4g}"),
+    ("p_max MPa", "p_max", 1e-6, "{:.1f}"),
+    ("p_hertz MPa", "p_hertz", 1e-6, "{:.1f}"),
+    ("load error", "load_error", 1.0, "{:.1e}"),
+    ("cycles", "iterations", 1.0, "{:.0f}"),
+    ("work units", "work_units", 1.0, "{:.1f}"),
+    ("wall time s", "wall_time", 1.0, "{:.2f}"),
+)
+# Error-estimate columns: header, scalar key, the quantity it estimates the error of.
+_ERROR_ESTIMATES = (("err h_c %", "error_estimate_h_c", "h_c"), ("err h_min %", "error_estimate_h_min", "h_min"))
+
+
+def summary_table(points: Iterable[PointResult]) -> str:
+    """One row per point: convergence, film, pressure, load balance and cost; '-' where a value is missing."""
+    rows = []
+    for p in points:
+        row = [p.name, "yes" if p.converged else "no"]
+        row += [fmt.format(p.scalars[key] * factor) if key in p.scalars else "-" for _, key, factor, fmt in _SUMMARY]
+        row += [_error_percent(p, key, of) for _, key, of in _ERROR_ESTIMATES]
+        rows.append(row)
+    headers = ["point", "converged", *(h for h, *_ in _SUMMARY), *(h for h, *_ in _ERROR_ESTIMATES)]
+    return format_table(headers, rows)
+
+
+def _error_percent(point: PointResult, key: str, of: str) -> str:
+    """An error estimate in % of its quantity: given in metres (absolute) or as a fraction (relative)."""
+    if key not in point.scalars:
+        return "-"
+    value = point.scalars[key]
+    if point.units.get(key) == "m":
+        if not point.scalars.get(of):
+            return "-"
+        value = value / point.scalars[of]
+    return f"{100.0 * abs(value):.2f}"
+
+
+def format_table(headers: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
+    """Plain-text table: first column left-aligned, the others right-aligned."""
+    widths = [max(len(str(cell)) for cell in column) for column in zip(headers, *rows)]
+
+    def line(cells: Sequence[str]) -> str:
+        first, *rest = cells
+        return "  ".join([f"{first:<{widths[0]}}", *(f"{c:>{w}}" for c, w in zip(rest, widths[1:]))]).rstrip()
+
+    return "\n".join([line(headers), line(["-" * w for w in widths]), *(line(r) for r in rows)])
+
+
+def _report_progress(solution: PointSolution, done: int, total: int) -> None:
+    if solution.converged:
+        state = "converged"
+    else:
+        state = solution.message or "not converged"
+    details = []
+    if "iterations" in solution.scalars:
+        details.append(f"{solution.scalar('iterations'):.0f} cycles")
+    if "wall_time" in solution.scalars:
+        details.append(f"{solution.scalar('wall_time'):.2f} s")
+    suffix = f" ({', '.join(details)})" if details else ""
+    click.echo(f"[{done}/{total}] {solution.name}: {state}{suffix}", err=True)
+
+
+def _point_names(option: str | None) -> list[str] | None:
+    if option is None:
+        return None
+    return list(dict.fromkeys(name.strip() for name in option.split(",") if name.strip()))
+
+
+def _output_path(case_file: Path, case: Case, option: str | None) -> Path:
+    """-o, else output.file of the case (relative to the case file), else <case name>.h5 here.
+
+    Checked before solving (CaseError): not a directory, and its nearest existing folder is writable.
+    """
+    if option is not None:
+        key, target = "--output", Path(option)
+    elif case.output.file is not None:
+        key, target = "output.file", case_file.parent / case.output.file
+    else:
+        key, target = "name", Path(f"{case.name}.h5")
+    if target.is_dir():
+        raise CaseError(key, str(target), "a file path, not a directory")
+    folder = target.absolute().parent
+    while not folder.exists():
+        folder = folder.parent
+    if not folder.is_dir() or not os.access(folder, os.W_OK):
+        raise CaseError(key, str(target), f"a path under a writable directory ({folder} is not)")
+    return target
+
+
+def _terminate(signum: int, frame: object) -> None:
+    """SIGTERM ends the run like Ctrl-C does: cleanups run and no partial result file is left."""
+    raise SystemExit(128 + signum)
+
+
+def main(argv: Sequence[str] | None = None) -> None:
+    """Console entry point `tehl`."""
+    signal.signal(signal.SIGTERM, _terminate)
+    tehl.main(args=argv, prog_name="tehl")

@@ -1,0 +1,368 @@
+"""Command line: bad input exits 2 with one line, runs write a result and a summary, exit codes, info,
+interrupted runs leave no partial file. The solver is replaced by a synthetic one except in the end-to-end
+tests at the bottom."""
+
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import json
+from pathlib import Path
+import signal
+import subprocess
+import sys
+import textwrap
+import types
+
+from click.testing import CliRunner
+import numpy as np
+import pytest
+
+from facegear_tehl.cli import tehl
+from facegear_tehl.results import read_result, write_result
+
+import synthetic
+
+CASE_TEXT = synthetic.BALL_ON_DISC.read_text()
+SOLVE, RUN = "facegear_tehl.ehl.solve", "facegear_tehl.run"
+HAVE_SOLVER = importlib.util.find_spec(SOLVE) is not None
+
+
+class FakeSolver:
+    """Stands in for `solve_point`: returns the synthetic solution, or raises `error`."""
+
+    def __init__(self) -> None:
+        self.converged = True
+        self.error: Exception | None = None
+        self.non_finite = False
+        self.calls: list[tuple] = []
+
+    def __call__(self, point, lubricant, settings):
+        self.calls.append((point, lubricant, settings))
+        if self.error is not None:
+            raise self.error
+        solution = synthetic.solution(point, converged=self.converged)
+        if self.non_finite:
+            solution.fields["pressure"].values[0, 0] = np.nan
+        return solution
+
+
+@pytest.fixture
+def fake_solver():
+    """`facegear_tehl.run` bound to a FakeSolver (the modules are restored afterwards)."""
+    solver = FakeSolver()
+    saved = {name: sys.modules.get(name) for name in (SOLVE, RUN)}
+    stub = types.ModuleType(SOLVE)
+    stub.solve_point = solver
+    sys.modules[SOLVE] = stub
+    sys.modules.pop(RUN, None)
+    importlib.import_module(RUN)
+    yield solver
+    for name, module in saved.items():
+        if module is None:
+            sys.modules.pop(name, None)
+        else:
+            sys.modules[name] = module
+
+
+def _case(folder: Path, text: str = CASE_TEXT, name: str = "case.yaml") -> Path:
+    path = folder / name
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text)
+    return path
+
+
+def _invoke(*args: str):
+    return CliRunner().invoke(tehl, [str(a) for a in args])
+
+
+def _files(folder: Path) -> list[str]:
+    return sorted(str(p.relative_to(folder)) for p in folder.rglob("*"))
+
+
+# ------------------------------------------------------------------------------------------ bad input
+
+def _replace(old: str, new: str) -> str:
+    assert old in CASE_TEXT
+    return CASE_TEXT.replace(old, new, 1)
+
+
+BAD_CASES = {
+    "missing key": (_replace("  load: 6.272", "  # no load"), "contact.load", "required"),
+    "unknown key": (_replace("  load: 6.272", "  laod: 6.0\n  load: 6.272"), "contact.laod", "did you mean 'load'"),
+    "wrong type": (_replace("  load: 6.272", "  load: heavy"), "contact.load", "a finite number"),
+    "negative load": (_replace("  load: 6.272", "  load: -6.272"), "contact.load", "positive"),
+    "radius_y < radius_x": (_replace("  radius_y: 0.0127", "  radius_y: 0.001"), "contact.radius_y", "radius_x"),
+    "poisson ratio 0.6": (_replace("poisson_ratio: 0.3", "poisson_ratio: 0.6"), "materials.body_1.poisson_ratio",
+                          "< 0.5"),
+    "grid 100": (_replace("  grid: 257", "  grid: 100"), "solver.grid", "2^n + 1"),
+    "domain without the contact": (_replace("x: [-4.5, 1.5]", "x: [-0.5, 1.5]"), "solver.domain.x", "containing"),
+    "broken yaml": (_replace("  radius_x: 0.0127", "  radius_x: [0.0127"), "(file)", "YAML syntax error"),
+    "missing file": (None, "(file)", "readable case file"),
+}
+
+
+def _bad_case(folder: Path, kind: str) -> Path:
+    text = BAD_CASES[kind][0]
+    return folder / "case.yaml" if text is None else _case(folder, text)
+
+
+def _assert_one_line_error(code: int, stderr: str, stdout: str, key: str, expected: str) -> None:
+    assert code == 2, stderr
+    lines = stderr.strip().splitlines()
+    assert len(lines) == 1, stderr
+    assert lines[0].startswith(f"error: {key}: "), lines[0]
+    assert expected in lines[0]
+    assert "Traceback" not in stderr + stdout
+
+
+@pytest.mark.parametrize("command", ["run", "validate"])
+@pytest.mark.parametrize("kind", BAD_CASES)
+def test_bad_case_exits_2_with_one_line(tmp_path, monkeypatch, kind, command):
+    monkeypatch.chdir(tmp_path)
+    case = _bad_case(tmp_path, kind)
+    before = _files(tmp_path)
+    result = _invoke(command, case)
+    _assert_one_line_error(result.exit_code, result.stderr, result.stdout, *BAD_CASES[kind][1:])
+    assert _files(tmp_path) == before
+
+
+@pytest.mark.parametrize("kind", BAD_CASES)
+def test_bad_case_exits_2_in_a_subprocess(tmp_path, kind):
+    case = _bad_case(tmp_path, kind)
+    before = _files(tmp_path)
+    process = subprocess.run([sys.executable, "-m", "facegear_tehl", "run", str(case)], cwd=tmp_path,
+                             capture_output=True, text=True, timeout=60)
+    _assert_one_line_error(process.returncode, process.stderr, process.stdout, *BAD_CASES[kind][1:])
+    assert _files(tmp_path) == before
+
+
+@pytest.mark.parametrize(
+    "options, key, expected",
+    [
+        (["--grid", "100"], "--grid", "2^n + 1"),
+        (["--grid", "9"], "--grid", "at least solver.coarsest_grid"),
+        (["-o", "."], "--output", "not a directory"),
+    ],
+)
+def test_bad_options_exit_2(tmp_path, monkeypatch, options, key, expected):
+    monkeypatch.chdir(tmp_path)
+    case = _case(tmp_path)
+    result = _invoke("run", case, *options)
+    _assert_one_line_error(result.exit_code, result.stderr, result.stdout, key, expected)
+    assert _files(tmp_path) == ["case.yaml"]
+
+
+@pytest.mark.parametrize("points, expected", [("S1,contact", "among: contact"), (",", "at least one point")])
+def test_bad_points_exit_2(tmp_path, monkeypatch, points, expected):
+    monkeypatch.chdir(tmp_path)
+    result = _invoke("run", _case(tmp_path), "--points", points)
+    _assert_one_line_error(result.exit_code, result.stderr, result.stdout, "--points", expected)
+    assert _files(tmp_path) == ["case.yaml"]
+
+
+def test_validate_prints_one_ok_line():
+    result = _invoke("validate", synthetic.BALL_ON_DISC)
+    assert result.exit_code == 0
+    lines = result.stdout.strip().splitlines()
+    assert len(lines) == 1
+    assert lines[0].startswith("ok: ball_on_disc: plain contact")
+    assert "p_hertz 450 MPa" in lines[0] and "grid 257x257" in lines[0] and "viscosity roelands" in lines[0]
+
+
+# ---------------------------------------------------------------------------- runs (synthetic solver)
+
+def test_run_writes_the_result_and_a_summary(tmp_path, monkeypatch, fake_solver):
+    monkeypatch.chdir(tmp_path)
+    result = _invoke("run", synthetic.BALL_ON_DISC)
+    assert result.exit_code == 0, result.output
+    assert _files(tmp_path) == ["ball_on_disc.h5"]  # <case name>.h5 in the current directory
+    assert "[1/1] contact: converged (7 cycles, 0.25 s)" in result.stderr
+    header, rule, row = result.stdout.splitlines()[:3]
+    assert header.split()[:4] == ["point", "converged", "h_c", "µm"]
+    assert "err h_min %" in header
+    cells = row.split()
+    assert cells[:4] == ["contact", "yes", "0.15", "0.09"]
+    assert cells[-3:] == ["0.25", "0.40", "-"]  # wall time, error estimates (h_min has none)
+    assert "result: ball_on_disc.h5 (status ok)" in result.stdout
+    written = read_result(tmp_path / "ball_on_disc.h5")
+    assert written.status == "ok" and written.case_yaml == CASE_TEXT and written.overrides == {}
+
+
+def test_run_output_paths(tmp_path, monkeypatch, fake_solver):
+    monkeypatch.chdir(tmp_path)
+    case = _case(tmp_path, CASE_TEXT + "output: {file: results/bod.h5}\n", name="cases/case.yaml")
+    assert _invoke("run", case).exit_code == 0
+    assert (tmp_path / "cases/results/bod.h5").is_file()  # output.file is relative to the case file
+    assert _invoke("run", case, "-o", "out/x.h5").exit_code == 0
+    assert (tmp_path / "out/x.h5").is_file()
+
+
+def test_run_grid_and_points_reach_the_solver(tmp_path, monkeypatch, fake_solver):
+    monkeypatch.chdir(tmp_path)
+    result = _invoke("run", synthetic.BALL_ON_DISC, "--grid", "33", "--points", "contact")
+    assert result.exit_code == 0, result.output
+    (point, lubricant, settings), = fake_solver.calls
+    assert settings.grid == 33 and point.name == "contact" and lubricant.viscosity == 0.04
+    assert point.load == 6.272 and point.radius_x == 0.0127
+    assert read_result(tmp_path / "ball_on_disc.h5").overrides == {"grid": 33, "points": ["contact"]}
+    assert "tehl run: ball_on_disc: contact on a 33x33 grid" in result.stderr
+
+
+def test_not_converged_exits_3_and_writes_a_flagged_result(tmp_path, monkeypatch, fake_solver):
+    monkeypatch.chdir(tmp_path)
+    fake_solver.converged = False
+    result = _invoke("run", synthetic.BALL_ON_DISC)
+    assert result.exit_code == 3
+    assert "warning: not converged: contact: residual 1e-3" in result.stderr
+    written = read_result(tmp_path / "ball_on_disc.h5")
+    assert written.status == "not_converged" and not written.points["contact"].converged
+    assert "contact  " in result.stdout and " no " in result.stdout
+
+
+def test_failed_point_exits_1_and_writes_a_flagged_result(tmp_path, monkeypatch, fake_solver):
+    monkeypatch.chdir(tmp_path)
+    fake_solver.error = FloatingPointError("overflow in the elastic deflection")
+    result = _invoke("run", synthetic.BALL_ON_DISC)
+    assert result.exit_code == 1
+    assert "Traceback" not in result.output
+    assert "error: contact: failed: FloatingPointError: overflow" in result.stderr
+    written = read_result(tmp_path / "ball_on_disc.h5")
+    assert written.status == "failed" and written.points["contact"].fields == {}
+    assert result.stdout.splitlines()[2].split()[2:] == ["-"] * 10
+
+
+def test_unexpected_error_exits_1_without_a_file(tmp_path, monkeypatch, fake_solver):
+    monkeypatch.chdir(tmp_path)
+    fake_solver.non_finite = True
+    result = _invoke("run", synthetic.BALL_ON_DISC)
+    assert result.exit_code == 1
+    lines = result.stderr.strip().splitlines()
+    assert lines[-1].startswith("error: NonFiniteError: /points/contact/pressure: refusing to write 1 NaN")
+    assert "Traceback" not in result.output
+    assert _files(tmp_path) == []
+
+
+def test_run_case_api(fake_solver):
+    from facegear_tehl import load_case, run_case
+
+    seen = []
+    run = run_case(load_case(synthetic.BALL_ON_DISC), grid=65, progress=lambda *args: seen.append(args))
+    assert run.status == "ok" and run.case.solver.grid == 65 and run.overrides == {"grid": 65}
+    assert [p.name for p in run.points] == ["contact"]
+    assert seen == [(run.points[0], 1, 1)]
+
+
+# ------------------------------------------------------------------------------------------- info
+
+@pytest.fixture
+def result_file(tmp_path) -> Path:
+    return write_result(synthetic.run_result(), tmp_path / "r.h5")
+
+
+def test_info_json_gives_the_scalars_in_si(result_file):
+    result = _invoke("info", result_file, "--json")
+    assert result.exit_code == 0
+    data = json.loads(result.stdout)
+    assert data["case"] == "ball_on_disc" and data["status"] == "ok"
+    point = data["points"]["contact"]
+    assert point["h_c"] == synthetic.H_C and point["iterations"] == synthetic.CYCLES
+    assert point["converged"] is True
+    assert data["units"]["contact"]["p_max"] == "Pa"
+
+
+def test_info_table(result_file):
+    result = _invoke("info", result_file)
+    assert result.exit_code == 0
+    lines = result.stdout.splitlines()
+    assert lines[0].split() == ["case", "ball_on_disc"]
+    assert any(line.split() == ["h_c", "m", "1.5e-07"] for line in lines)
+    assert any(line.split() == ["converged", "yes"] for line in lines)
+
+
+@pytest.mark.parametrize("content", [b"not hdf5", None])
+def test_info_rejects_what_is_not_a_result(tmp_path, content):
+    path = tmp_path / "r.h5"
+    if content is not None:
+        path.write_bytes(content)
+    result = _invoke("info", path)
+    assert result.exit_code == 2
+    assert result.stderr.startswith("error: ") and len(result.stderr.strip().splitlines()) == 1
+    process = subprocess.run([sys.executable, "-m", "facegear_tehl", "info", str(path)], capture_output=True,
+                             text=True, timeout=60)
+    assert process.returncode == 2 and "Traceback" not in process.stderr
+
+
+# -------------------------------------------------------------------------------- interrupted runs
+
+_STALLING_RUN = textwrap.dedent(
+    """
+    import signal, sys, time, types
+    sys.path.insert(0, {tests!r})
+    import synthetic
+    stub = types.ModuleType("facegear_tehl.ehl.solve")
+    stub.solve_point = lambda point, lubricant, settings: synthetic.solution(point)
+    sys.modules["facegear_tehl.ehl.solve"] = stub
+    from facegear_tehl import cli, results
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    write_point = results._write_point
+    def write_and_stall(points, solution):
+        write_point(points, solution)
+        print("writing", flush=True)
+        time.sleep(60)
+    results._write_point = write_and_stall
+    cli.main(sys.argv[1:])
+    """
+)
+
+
+@pytest.mark.parametrize("signum, code", [(signal.SIGTERM, 128 + signal.SIGTERM), (signal.SIGINT, 1)])
+def test_interrupted_run_keeps_the_previous_result(tmp_path, signum, code):
+    target = tmp_path / "r.h5"
+    write_result(synthetic.run_result(), target)
+    before = target.read_bytes()
+    script = _STALLING_RUN.format(tests=str(Path(__file__).parent))
+    command = [sys.executable, "-c", script, "run", str(synthetic.BALL_ON_DISC), "-o", str(target)]
+    with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) as run:
+        assert run.stdout.readline().strip() == "writing"
+        assert len(_files(tmp_path)) == 2  # the temporary file exists next to the target
+        run.send_signal(signum)
+        assert run.wait(timeout=30) == code
+        assert "Traceback" not in run.stderr.read()
+    assert target.read_bytes() == before
+    assert _files(tmp_path) == ["r.h5"]
+
+
+# ------------------------------------------------------------------------ end to end (real solver)
+
+needs_solver = pytest.mark.skipif(not HAVE_SOLVER, reason="facegear_tehl/ehl/solve.py is not in the tree yet")
+
+
+def _check_ball_on_disc(path: Path) -> None:
+    result = read_result(path)
+    point = result.points["contact"]
+    assert result.status in ("ok", "not_converged")
+    assert result.overrides["grid"] == 33
+    assert 0.0 < point.scalars["h_min"] < point.scalars["h_c"] < 1e-6
+    assert point.fields["pressure"].values.shape == (33, 33)
+    assert point.scalars["p_max"] == pytest.approx(450e6, rel=0.3)
+
+
+@needs_solver
+def test_run_end_to_end(tmp_path):
+    result = _invoke("run", synthetic.BALL_ON_DISC, "--grid", "33", "-o", tmp_path / "r.h5")
+    assert result.exit_code in (0, 3), result.output
+    assert "[1/1] contact:" in result.stderr
+    _check_ball_on_disc(tmp_path / "r.h5")
+
+
+@needs_solver
+def test_run_end_to_end_in_a_subprocess(tmp_path):
+    process = subprocess.run(["tehl", "run", str(synthetic.BALL_ON_DISC), "--grid", "33", "-o", "r.h5"],
+                             cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert process.returncode in (0, 3), process.stderr
+    _check_ball_on_disc(tmp_path / "r.h5")
+    info = subprocess.run([sys.executable, "-m", "facegear_tehl", "info", "r.h5", "--json"], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=60)
+    assert info.returncode == 0
+    assert json.loads(info.stdout)["points"]["contact"]["h_c"] > 0.0
