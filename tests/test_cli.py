@@ -1,18 +1,15 @@
 """Command line: bad input exits 2 with one line, runs write a result and a summary, exit codes, info,
-interrupted runs leave no partial file. The solver is replaced by a synthetic one except in the end-to-end
-tests at the bottom."""
+interrupted runs leave no partial file. A synthetic solver stands in for the real one (`fake_solver`),
+except in the end-to-end tests at the bottom."""
 
 from __future__ import annotations
 
-import importlib
-import importlib.util
 import json
 from pathlib import Path
 import signal
 import subprocess
 import sys
 import textwrap
-import types
 
 from click.testing import CliRunner
 import numpy as np
@@ -24,8 +21,6 @@ from facegear_tehl.results import read_result, write_result
 import synthetic
 
 CASE_TEXT = synthetic.BALL_ON_DISC.read_text()
-SOLVE, RUN = "facegear_tehl.ehl.solve", "facegear_tehl.run"
-HAVE_SOLVER = importlib.util.find_spec(SOLVE) is not None
 
 
 class FakeSolver:
@@ -48,21 +43,10 @@ class FakeSolver:
 
 
 @pytest.fixture
-def fake_solver():
-    """`facegear_tehl.run` bound to a FakeSolver (the modules are restored afterwards)."""
+def fake_solver(monkeypatch) -> FakeSolver:
     solver = FakeSolver()
-    saved = {name: sys.modules.get(name) for name in (SOLVE, RUN)}
-    stub = types.ModuleType(SOLVE)
-    stub.solve_point = solver
-    sys.modules[SOLVE] = stub
-    sys.modules.pop(RUN, None)
-    importlib.import_module(RUN)
-    yield solver
-    for name, module in saved.items():
-        if module is None:
-            sys.modules.pop(name, None)
-        else:
-            sys.modules[name] = module
+    monkeypatch.setattr("facegear_tehl.run.solve_point", solver)
+    return solver
 
 
 def _case(folder: Path, text: str = CASE_TEXT, name: str = "case.yaml") -> Path:
@@ -243,6 +227,14 @@ def test_unexpected_error_exits_1_without_a_file(tmp_path, monkeypatch, fake_sol
     assert _files(tmp_path) == []
 
 
+def test_debug_shows_the_traceback(tmp_path, monkeypatch, fake_solver):
+    monkeypatch.chdir(tmp_path)
+    fake_solver.non_finite = True
+    result = CliRunner().invoke(tehl, ["--debug", "run", str(synthetic.BALL_ON_DISC)])
+    assert result.exit_code == 1
+    assert "Traceback" in result.stderr and "NonFiniteError" in result.stderr
+
+
 def test_run_case_api(fake_solver):
     from facegear_tehl import load_case, run_case
 
@@ -297,13 +289,11 @@ def test_info_rejects_what_is_not_a_result(tmp_path, content):
 
 _STALLING_RUN = textwrap.dedent(
     """
-    import signal, sys, time, types
+    import signal, sys, time
     sys.path.insert(0, {tests!r})
     import synthetic
-    stub = types.ModuleType("facegear_tehl.ehl.solve")
-    stub.solve_point = lambda point, lubricant, settings: synthetic.solution(point)
-    sys.modules["facegear_tehl.ehl.solve"] = stub
-    from facegear_tehl import cli, results
+    from facegear_tehl import cli, results, run
+    run.solve_point = lambda point, lubricant, settings: synthetic.solution(point)
     signal.signal(signal.SIGINT, signal.default_int_handler)
     write_point = results._write_point
     def write_and_stall(points, solution):
@@ -335,9 +325,6 @@ def test_interrupted_run_keeps_the_previous_result(tmp_path, signum, code):
 
 # ------------------------------------------------------------------------ end to end (real solver)
 
-needs_solver = pytest.mark.skipif(not HAVE_SOLVER, reason="facegear_tehl/ehl/solve.py is not in the tree yet")
-
-
 def _check_ball_on_disc(path: Path) -> None:
     result = read_result(path)
     point = result.points["contact"]
@@ -348,7 +335,6 @@ def _check_ball_on_disc(path: Path) -> None:
     assert point.scalars["p_max"] == pytest.approx(450e6, rel=0.3)
 
 
-@needs_solver
 def test_run_end_to_end(tmp_path):
     result = _invoke("run", synthetic.BALL_ON_DISC, "--grid", "33", "-o", tmp_path / "r.h5")
     assert result.exit_code in (0, 3), result.output
@@ -356,7 +342,6 @@ def test_run_end_to_end(tmp_path):
     _check_ball_on_disc(tmp_path / "r.h5")
 
 
-@needs_solver
 def test_run_end_to_end_in_a_subprocess(tmp_path):
     process = subprocess.run(["tehl", "run", str(synthetic.BALL_ON_DISC), "--grid", "33", "-o", "r.h5"],
                              cwd=tmp_path, capture_output=True, text=True, timeout=300)
@@ -366,3 +351,12 @@ def test_run_end_to_end_in_a_subprocess(tmp_path):
                           capture_output=True, text=True, timeout=60)
     assert info.returncode == 0
     assert json.loads(info.stdout)["points"]["contact"]["h_c"] > 0.0
+
+
+def test_run_case_api_end_to_end(tmp_path):
+    from facegear_tehl import load_case, read_result, run_case
+
+    run = run_case(load_case(synthetic.BALL_ON_DISC), grid=33)
+    write_result(run, tmp_path / "r.h5")
+    _check_ball_on_disc(tmp_path / "r.h5")
+    assert read_result(tmp_path / "r.h5").points["contact"].scalars["h_c"] == run.points[0].scalar("h_c")
