@@ -1,4 +1,5 @@
-"""Synthetic solver output for the results and CLI tests: analytic fields with known values, no solving.
+"""Test helpers: synthetic solver output (analytic fields with known values, no solving) and a writer
+process to interrupt mid-write.
 
 Pressure is the dry Hertz pressure of the case's contact, film thickness a paraboloid gap over a
 constant central film; both are exact functions of (x, y), so a round trip can be checked value by value.
@@ -7,6 +8,9 @@ constant central film; both are exact functions of (x, y), so a round trip can b
 from __future__ import annotations
 
 from pathlib import Path
+import subprocess
+import sys
+import textwrap
 
 import numpy as np
 
@@ -75,3 +79,33 @@ def solution(point: ContactPoint, *, nx: int = 33, ny: int = 17, converged: bool
         history={"residual_history": Field(residuals, "1", "relative pressure change per cycle")},
         models={"viscosity": "roelands (Roelands 1966)", "thermal": "off"},
     )
+
+
+_STALLING_WRITER = textwrap.dedent(
+    """
+    import signal, sys, time
+    sys.path.insert(0, {tests!r})
+    import synthetic
+    from facegear_tehl import results
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    write_point = results._write_point
+    def write_and_stall(points, solution):
+        write_point(points, solution)
+        print("writing", flush=True)
+        time.sleep(60)
+    results._write_point = write_and_stall
+    """
+)
+
+
+def interrupt_while_writing(code: str, args: list[str], folder: Path, signum: int) -> tuple[int, str]:
+    """Run `code` (which writes a result into `folder`) in a Python process whose writer stalls after the
+    first point; send `signum` while the temporary file exists. Returns (exit code, stderr)."""
+    script = _STALLING_WRITER.format(tests=str(Path(__file__).parent)) + textwrap.dedent(code)
+    command = [sys.executable, "-c", script, *args]
+    with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) as process:
+        assert process.stdout.readline().strip() == "writing"
+        assert len(list(folder.iterdir())) == 2  # the target and the temporary file next to it
+        process.send_signal(signum)
+        code = process.wait(timeout=30)
+        return code, process.stderr.read()

@@ -9,7 +9,6 @@ from pathlib import Path
 import signal
 import subprocess
 import sys
-import textwrap
 
 from click.testing import CliRunner
 import numpy as np
@@ -287,38 +286,20 @@ def test_info_rejects_what_is_not_a_result(tmp_path, content):
 
 # -------------------------------------------------------------------------------- interrupted runs
 
-_STALLING_RUN = textwrap.dedent(
-    """
-    import signal, sys, time
-    sys.path.insert(0, {tests!r})
-    import synthetic
-    from facegear_tehl import cli, results, run
-    run.solve_point = lambda point, lubricant, settings: synthetic.solution(point)
-    signal.signal(signal.SIGINT, signal.default_int_handler)
-    write_point = results._write_point
-    def write_and_stall(points, solution):
-        write_point(points, solution)
-        print("writing", flush=True)
-        time.sleep(60)
-    results._write_point = write_and_stall
-    cli.main(sys.argv[1:])
-    """
-)
-
-
 @pytest.mark.parametrize("signum, code", [(signal.SIGTERM, 128 + signal.SIGTERM), (signal.SIGINT, 1)])
 def test_interrupted_run_keeps_the_previous_result(tmp_path, signum, code):
     target = tmp_path / "r.h5"
     write_result(synthetic.run_result(), target)
     before = target.read_bytes()
-    script = _STALLING_RUN.format(tests=str(Path(__file__).parent))
-    command = [sys.executable, "-c", script, "run", str(synthetic.BALL_ON_DISC), "-o", str(target)]
-    with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) as run:
-        assert run.stdout.readline().strip() == "writing"
-        assert len(_files(tmp_path)) == 2  # the temporary file exists next to the target
-        run.send_signal(signum)
-        assert run.wait(timeout=30) == code
-        assert "Traceback" not in run.stderr.read()
+    run_with_fake_solver = """
+        from facegear_tehl import cli, run
+        run.solve_point = lambda point, lubricant, settings: synthetic.solution(point)
+        cli.main(sys.argv[1:])
+    """
+    args = ["run", str(synthetic.BALL_ON_DISC), "-o", str(target)]
+    returncode, stderr = synthetic.interrupt_while_writing(run_with_fake_solver, args, tmp_path, signum)
+    assert returncode == code
+    assert "Traceback" not in stderr
     assert target.read_bytes() == before
     assert _files(tmp_path) == ["r.h5"]
 

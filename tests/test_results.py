@@ -6,9 +6,6 @@ from dataclasses import replace
 import json
 from pathlib import Path
 import signal
-import subprocess
-import sys
-import textwrap
 
 import h5py
 import numpy as np
@@ -223,35 +220,14 @@ def test_overwrite_replaces_the_previous_file(run, tmp_path):
     assert _files(tmp_path) == ["r.h5"]
 
 
-_SLOW_WRITER = textwrap.dedent(
-    """
-    import signal, sys, time
-    sys.path.insert(0, {tests!r})
-    import synthetic
-    from facegear_tehl import results
-    signal.signal(signal.SIGINT, signal.default_int_handler)
-    write_point = results._write_point
-    def write_and_stall(points, solution):
-        write_point(points, solution)
-        print("writing", flush=True)
-        time.sleep(60)
-    results._write_point = write_and_stall
-    results.write_result(synthetic.run_result(), sys.argv[1])
-    """
-)
-
-
 @pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGKILL])
 def test_interrupted_writer_process_keeps_the_previous_file(run, tmp_path, signum):
     target = tmp_path / "r.h5"
     write_result(_with_point(run, message="previous"), target)
     before = target.read_bytes()
-    script = _SLOW_WRITER.format(tests=str(Path(__file__).parent))
-    with subprocess.Popen([sys.executable, "-c", script, str(target)], stdout=subprocess.PIPE, text=True) as writer:
-        assert writer.stdout.readline().strip() == "writing"
-        assert len(_files(tmp_path)) == 2
-        writer.send_signal(signum)
-        assert writer.wait(timeout=30) != 0
+    code = "results.write_result(synthetic.run_result(), sys.argv[1])"
+    returncode, _ = synthetic.interrupt_while_writing(code, [str(target)], tmp_path, signum)
+    assert returncode != 0
     assert target.read_bytes() == before
     if signum == signal.SIGINT:  # a catchable signal also removes the temporary file
         assert _files(tmp_path) == ["r.h5"]
