@@ -3,11 +3,13 @@
 Layout (format 1.x, ARCHITECTURE.md):
 
     /                   attrs: filetype, format_version, tehl_version, created, case_name, case_yaml,
-                        status (ok | not_converged | failed), message, models (JSON), overrides (JSON)
+                        status (ok | not_converged | failed), message, warnings (JSON list),
+                        models (JSON), overrides (JSON)
     /points/<name>/     attrs: one per scalar (SI), units (JSON: scalar -> unit), converged, message,
                         models (JSON); datasets x, y (kind 'axis'), fields (ny, nx) (kind 'field'),
                         per-cycle arrays (kind 'history')
-    /contact/           path table (gear cases), one dataset per column, written if given
+    /contact/           gear contact analysis, written if given: one dataset per path column (kind
+                        'table'); attrs: scalar geometry (SI) and its units (JSON)
     /heat/              table over points, written if given
 
 Every dataset carries `units`, `description` and `kind` attributes. Files are written to a temporary
@@ -35,8 +37,8 @@ from facegear_tehl.solution import Field, PointSolution
 FILETYPE = "facegear_tehl result"
 FORMAT_VERSION = "1.0"
 STATUSES = ("ok", "not_converged", "failed")
-# Point attributes that are not scalars of the solution.
-_POINT_ATTRS = ("units", "converged", "message", "models")
+# Group attributes that are not scalars.
+_RESERVED_ATTRS = ("units", "converged", "message", "models")
 _AXES = ("x", "y")
 
 
@@ -54,7 +56,9 @@ class RunResult:
 
     points: one solution per solved point, in order (failed points included, with no data).
     failed: names of the points whose solve raised an error.
-    contact: path table (gear cases); heat: table over points; name -> column.
+    contact: path table (gear cases), name -> column; contact_scalars: name -> (value, units).
+    heat: table over points, name -> column.
+    warnings: remarks on the run that are not failures (e.g. from the contact analysis).
     overrides: command-line options that changed the case (e.g. grid, points).
     """
 
@@ -62,7 +66,9 @@ class RunResult:
     points: tuple[PointSolution, ...]
     failed: tuple[str, ...] = ()
     contact: Mapping[str, Field] = field(default_factory=dict)
+    contact_scalars: Mapping[str, tuple[float, str]] = field(default_factory=dict)
     heat: Mapping[str, Field] = field(default_factory=dict)
+    warnings: tuple[str, ...] = ()
     overrides: Mapping[str, Any] = field(default_factory=dict)
 
     @property
@@ -114,10 +120,13 @@ class Result:
     case_yaml: str
     status: str
     message: str
+    warnings: tuple[str, ...]
     models: Mapping[str, str]
     overrides: Mapping[str, Any]
     points: Mapping[str, PointResult]
     contact: Mapping[str, Field]
+    contact_scalars: Mapping[str, float | int]
+    contact_units: Mapping[str, str]
     heat: Mapping[str, Field]
 
 
@@ -135,8 +144,8 @@ def write_result(run: RunResult, path: str | Path) -> Path:
             points = h5.create_group("points", track_order=True)
             for solution in run.points:
                 _write_point(points, solution)
-            _write_table(h5, "contact", run.contact)
-            _write_table(h5, "heat", run.heat)
+            _write_table(h5, "contact", run.contact, run.contact_scalars)
+            _write_table(h5, "heat", run.heat, {})
             h5.flush()
         _fsync(temporary)
         os.replace(temporary, target)
@@ -164,15 +173,14 @@ def _write_root(h5: h5py.File, run: RunResult) -> None:
     h5.attrs["case_yaml"] = run.case.text
     h5.attrs["status"] = run.status
     h5.attrs["message"] = run.message
+    h5.attrs["warnings"] = json.dumps(list(run.warnings))
     h5.attrs["models"] = json.dumps(run.models)
     h5.attrs["overrides"] = json.dumps(dict(run.overrides))
 
 
 def _write_point(points: h5py.Group, solution: PointSolution) -> None:
     group = points.create_group(solution.name, track_order=True)
-    for key, (value, _) in solution.scalars.items():
-        group.attrs[key] = value
-    group.attrs["units"] = json.dumps({key: units for key, (_, units) in solution.scalars.items()})
+    _write_scalars(group, solution.scalars)
     group.attrs["converged"] = bool(solution.converged)
     group.attrs["message"] = solution.message
     group.attrs["models"] = json.dumps(dict(solution.models))
@@ -181,10 +189,19 @@ def _write_point(points: h5py.Group, solution: PointSolution) -> None:
             _write_dataset(group, name, column, kind)
 
 
-def _write_table(h5: h5py.File, name: str, table: Mapping[str, Field]) -> None:
-    if table:
+def _write_scalars(group: h5py.Group, scalars: Mapping[str, tuple[float, str]]) -> None:
+    for key, (value, _) in scalars.items():
+        group.attrs[key] = value
+    group.attrs["units"] = json.dumps({key: units for key, (_, units) in scalars.items()})
+
+
+def _write_table(
+    h5: h5py.File, name: str, columns: Mapping[str, Field], scalars: Mapping[str, tuple[float, str]]
+) -> None:
+    if columns or scalars:
         group = h5.create_group(name, track_order=True)
-        for column_name, column in table.items():
+        _write_scalars(group, scalars)
+        for column_name, column in columns.items():
             _write_dataset(group, column_name, column, "table")
 
 
@@ -208,6 +225,7 @@ def _check_run(run: RunResult) -> None:
         raise ValueError(f"duplicate point names: {names}")
     for solution in run.points:
         _check_point(solution)
+    _check_scalars("/contact", run.contact_scalars)
     for table_name, table in (("contact", run.contact), ("heat", run.heat)):
         for name, column in table.items():
             _check_column(f"/{table_name}/{name}", name, column)
@@ -217,15 +235,7 @@ def _check_point(solution: PointSolution) -> None:
     where = f"/points/{solution.name}"
     if not solution.name or "/" in solution.name:
         raise ValueError(f"point name {solution.name!r}: expected a non-empty name without '/'")
-    for key, (value, units) in solution.scalars.items():
-        if key in _POINT_ATTRS:
-            raise ValueError(f"{where}: scalar name {key!r} is reserved for the point's attributes")
-        if not isinstance(units, str):
-            raise ValueError(f"{where}.{key}: units {units!r} is not a string")
-        if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
-            raise ValueError(f"{where}.{key}: scalar {value!r} is not a real number")
-        if not np.isfinite(value):
-            raise NonFiniteError(f"{where}.{key} = {value}: refusing to write a non-finite scalar")
+    _check_scalars(where, solution.scalars)
     data = [*solution.axes.items(), *solution.fields.items(), *solution.history.items()]
     names = [name for name, _ in data]
     for name in set(names):
@@ -241,6 +251,18 @@ def _check_point(solution: PointSolution) -> None:
         for name, column in solution.fields.items():
             if np.shape(column.values) != shape:
                 raise ValueError(f"{where}/{name}: shape {np.shape(column.values)}, expected (ny, nx) = {shape}")
+
+
+def _check_scalars(where: str, scalars: Mapping[str, tuple[float, str]]) -> None:
+    for key, (value, units) in scalars.items():
+        if key in _RESERVED_ATTRS:
+            raise ValueError(f"{where}: scalar name {key!r} is reserved for the group's attributes")
+        if not isinstance(units, str):
+            raise ValueError(f"{where}.{key}: units {units!r} is not a string")
+        if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+            raise ValueError(f"{where}.{key}: scalar {value!r} is not a real number")
+        if not np.isfinite(value):
+            raise NonFiniteError(f"{where}.{key} = {value}: refusing to write a non-finite scalar")
 
 
 def _check_column(where: str, name: str, column: Field) -> None:
@@ -278,6 +300,8 @@ def read_result(path: str | Path) -> Result:
         if version.split(".")[0] != FORMAT_VERSION.split(".")[0]:
             raise ResultFileError(f"{path}: result format {version}; this tehl reads format {FORMAT_VERSION}")
         try:
+            contact = h5.get("contact")
+            contact_scalars, contact_units = _read_scalars(contact) if contact is not None else ({}, {})
             return Result(
                 path=path,
                 format_version=version,
@@ -287,10 +311,13 @@ def read_result(path: str | Path) -> Result:
                 case_yaml=str(attrs["case_yaml"]),
                 status=str(attrs["status"]),
                 message=str(attrs["message"]),
+                warnings=tuple(json.loads(attrs["warnings"])),
                 models=json.loads(attrs["models"]),
                 overrides=json.loads(attrs["overrides"]),
                 points={name: _read_point(name, group) for name, group in h5["points"].items()},
-                contact=_read_table(h5.get("contact")),
+                contact=_read_table(contact),
+                contact_scalars=contact_scalars,
+                contact_units=contact_units,
                 heat=_read_table(h5.get("heat")),
             )
         except (KeyError, ValueError, TypeError) as exc:
@@ -301,8 +328,13 @@ def _reason(exc: Exception) -> str:
     return str(exc).strip("'\"") or type(exc).__name__
 
 
-def _read_point(name: str, group: h5py.Group) -> PointResult:
+def _read_scalars(group: h5py.Group) -> tuple[dict[str, float | int], dict[str, str]]:
     units = json.loads(group.attrs["units"])
+    return {key: group.attrs[key].item() for key in units}, units
+
+
+def _read_point(name: str, group: h5py.Group) -> PointResult:
+    scalars, units = _read_scalars(group)
     by_kind: dict[str, dict[str, Field]] = {"axis": {}, "field": {}, "history": {}}
     for dataset_name, dataset in group.items():
         by_kind[str(dataset.attrs["kind"])][dataset_name] = _read_field(dataset)
@@ -310,7 +342,7 @@ def _read_point(name: str, group: h5py.Group) -> PointResult:
         name=name,
         converged=bool(group.attrs["converged"]),
         message=str(group.attrs["message"]),
-        scalars={key: group.attrs[key].item() for key in units},
+        scalars=scalars,
         units=units,
         axes=by_kind["axis"],
         fields=by_kind["field"],

@@ -103,8 +103,13 @@ def test_contact_and_heat_tables_round_trip(run, tmp_path):
                "u1": Field(velocities, "m/s", "surface velocity of body 1"),
                "label": Field(np.array(["S1", "", "S3", "", "S5"]), "", "meshing point")}
     heat = {"friction_power": Field(np.array([12.5]), "W")}
-    result = read_result(write_result(replace(run, contact=contact, heat=heat), tmp_path / "r.h5"))
+    scalars = {"contact_ratio": (1.56, "1"), "normal_load": (6950.4, "N")}
+    run = replace(run, contact=contact, contact_scalars=scalars, heat=heat, warnings=("S2 after S3",))
+    result = read_result(write_result(run, tmp_path / "r.h5"))
     assert list(result.contact) == ["s", "u1", "label"]
+    assert result.contact_scalars == {"contact_ratio": 1.56, "normal_load": 6950.4}
+    assert result.contact_units == {"contact_ratio": "1", "normal_load": "N"}
+    assert result.warnings == ("S2 after S3",)
     np.testing.assert_array_equal(result.contact["u1"].values, velocities)
     assert result.contact["u1"].units == "m/s"
     assert list(result.contact["label"].values) == ["S1", "", "S3", "", "S5"]
@@ -115,7 +120,8 @@ def test_tables_are_absent_when_not_given(run, tmp_path):
     path = write_result(run, tmp_path / "r.h5")
     with h5py.File(path) as h5:
         assert set(h5) == {"points"}
-    assert read_result(path).contact == {} and read_result(path).heat == {}
+    result = read_result(path)
+    assert result.contact == {} and result.heat == {} and result.contact_scalars == {} and result.warnings == ()
 
 
 def test_status_and_message_flag_non_converged_and_failed_points(run, tmp_path):
@@ -140,7 +146,7 @@ def test_point_order_is_kept(run, tmp_path):
 
 
 @pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
-@pytest.mark.parametrize("where", ["field", "axis", "history", "scalar", "contact"])
+@pytest.mark.parametrize("where", ["field", "axis", "history", "scalar", "contact", "contact scalar"])
 def test_non_finite_values_are_refused(run, tmp_path, where, bad):
     target = tmp_path / "r.h5"
     write_result(run, target)
@@ -150,6 +156,8 @@ def test_non_finite_values_are_refused(run, tmp_path, where, bad):
         broken = _with_point(run, scalars={**point.scalars, "h_min": (bad, "m")})
     elif where == "contact":
         broken = replace(run, contact={"load": Field(np.array([1.0, bad]), "N")})
+    elif where == "contact scalar":
+        broken = replace(run, contact_scalars={"contact_ratio": (bad, "1")})
     else:
         attribute = {"field": "fields", "axis": "axes", "history": "history"}[where]
         entries = dict(getattr(point, attribute))
