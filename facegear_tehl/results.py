@@ -300,6 +300,9 @@ def read_result(path: str | Path) -> Result:
         if version.split(".")[0] != FORMAT_VERSION.split(".")[0]:
             raise ResultFileError(f"{path}: result format {version}; this tehl reads format {FORMAT_VERSION}")
         try:
+            status = str(attrs["status"])
+            if status not in STATUSES:
+                raise ValueError(f"status {status!r}, expected one of {', '.join(STATUSES)}")
             contact = h5.get("contact")
             contact_scalars, contact_units = _read_scalars(contact) if contact is not None else ({}, {})
             return Result(
@@ -309,7 +312,7 @@ def read_result(path: str | Path) -> Result:
                 created=str(attrs["created"]),
                 case_name=str(attrs["case_name"]),
                 case_yaml=str(attrs["case_yaml"]),
-                status=str(attrs["status"]),
+                status=status,
                 message=str(attrs["message"]),
                 warnings=tuple(json.loads(attrs["warnings"])),
                 models=json.loads(attrs["models"]),

@@ -263,9 +263,13 @@ def test_reader_rejects_another_format_version(run, tmp_path):
         read_result(path)
 
 
-def test_reader_reports_a_damaged_file(run, tmp_path):
+@pytest.mark.parametrize("damage", ["no points", "unknown status"])
+def test_reader_reports_a_damaged_file(run, tmp_path, damage):
     path = write_result(run, tmp_path / "r.h5")
     with h5py.File(path, "r+") as h5:
-        del h5["points"]
+        if damage == "no points":
+            del h5["points"]
+        else:
+            h5.attrs["status"] = "fine"
     with pytest.raises(ResultFileError, match="damaged"):
         read_result(path)
