@@ -52,6 +52,7 @@ class Relaxation:
     coarsest_sweeps: int = 40
     force_factor: float = 0.1  # c_h in H_0 += c_h g on the coarsest grid
     force_updates: int = 4  # H_0 updates per coarsest-grid solve
+    force_damping: float = 1.0  # fraction of the secant step taken
 
 
 @dataclass
@@ -153,7 +154,8 @@ class MultigridSolver:
         eta = viscosity_ratio(p_pa, temperature, pb.law).reshape(p_pa.shape)
         positive_film = np.maximum(level.film, 0.0)
         level.rho = rho
-        level.eps = rho * positive_film**3 / (eta * pb.lam)
+        with np.errstate(over="ignore", invalid="ignore"):  # a diverging iterate is caught by the caller
+            level.eps = rho * positive_film**3 / (eta * pb.lam)
 
     def _args(self, level: Level):
         pb = self.problem
@@ -223,7 +225,8 @@ class MultigridSolver:
                 if self.h0 != h_prev:
                     slope = (g - g_prev) / (self.h0 - h_prev)
                     if slope < 0.0:
-                        step = min(max(-g / slope, -4.0 * abs(rx.force_factor * g)), 4.0 * abs(rx.force_factor * g))
+                        limit = 4.0 * abs(rx.force_factor * g)
+                        step = min(max(-rx.force_damping * g / slope, -limit), limit)
             previous = (self.h0, g)
             self.h0 += step
             self.update_film(level)

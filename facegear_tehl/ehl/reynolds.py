@@ -4,8 +4,8 @@ Discretisation on a uniform (ny, nx) grid (arrays indexed [j, i], i along X), se
     L(P)_ij = xi_e (P_i+1 - P_i) - xi_w (P_i - P_i-1) + xi_n (P_j+1 - P_j) - xi_s (P_j - P_j-1)
               - |c_x| D_x(q) - |c_y| D_y(q),      q = rho_bar H
     xi_e = (eps_i + eps_i+1)/(2 h_x^2),  xi_n = kappa^2 (eps_j + eps_j+1)/(2 h_y^2)  (and w, s alike)
-    D(q) = (1.5 q_0 - 2 q_-1 + 0.5 q_-2)/h, the second-order upstream difference taken against the
-    entrainment component on that axis (first order next to the boundary).
+    D(q) = (2 q_+1 + 3 q_0 - 6 q_-1 + q_-2)/(6 h), the third-order upwind-biased difference oriented by the
+    entrainment component on that axis (second-order upstream, then first order, next to the boundary).
 The wedge term thus follows the entrainment direction in both axes (skewed entrainment).
 
 Relaxation (Venner & Lubrecht 2000, ch. 8): lines of constant Y are solved together with a banded
@@ -28,13 +28,20 @@ PATTERN_REACH = 2 * BAND  # |d| range of the pattern-effect kernels (wedge reach
 
 @njit(cache=True)
 def _upwind(i: int, s: int, n: int):
-    """Coefficients (c0, c1, c2) of q_i, q_i-s, q_i-2s in the upstream difference (times 1/h)."""
+    """Coefficients (c_+1, c_0, c_-1, c_-2) of q_i+s, q_i, q_i-s, q_i-2s in the upwind difference (times 1/h).
+
+    Third-order upwind-biased (2, 3, -6, 1)/6 where the stencil fits, else second-order upstream
+    (0, 1.5, -2, 0.5), else first order (0, 1, -1, 0); s = 0: no entrainment on this axis.
+    """
     if s == 0:
-        return 0.0, 0.0, 0.0
-    i2 = i - 2 * s
-    if i2 >= 0 and i2 <= n - 1:
-        return 1.5, -2.0, 0.5
-    return 1.0, -1.0, 0.0
+        return 0.0, 0.0, 0.0, 0.0
+    has_next = i + s >= 0 and i + s <= n - 1
+    has_second = i - 2 * s >= 0 and i - 2 * s <= n - 1
+    if has_next and has_second:
+        return 1.0 / 3.0, 0.5, -1.0, 1.0 / 6.0
+    if has_second:
+        return 0.0, 1.5, -2.0, 0.5
+    return 0.0, 1.0, -1.0, 0.0
 
 
 @njit(cache=True)
@@ -52,11 +59,21 @@ def _wedge(q, j, i, ax, sx, ay, sy, rhx, rhy):
     ny, nx = q.shape
     w = 0.0
     if sx != 0:
-        c0, c1, c2 = _upwind(i, sx, nx)
-        w += ax * rhx * (c0 * q[j, i] + c1 * q[j, i - sx] + (c2 * q[j, i - 2 * sx] if c2 != 0.0 else 0.0))
+        cp, c0, c1, c2 = _upwind(i, sx, nx)
+        w += c0 * q[j, i] + c1 * q[j, i - sx]
+        if cp != 0.0:
+            w += cp * q[j, i + sx]
+        if c2 != 0.0:
+            w += c2 * q[j, i - 2 * sx]
+        w *= ax * rhx
     if sy != 0:
-        c0, c1, c2 = _upwind(j, sy, ny)
-        w += ay * rhy * (c0 * q[j, i] + c1 * q[j - sy, i] + (c2 * q[j - 2 * sy, i] if c2 != 0.0 else 0.0))
+        cp, c0, c1, c2 = _upwind(j, sy, ny)
+        wy = c0 * q[j, i] + c1 * q[j - sy, i]
+        if cp != 0.0:
+            wy += cp * q[j + sy, i]
+        if c2 != 0.0:
+            wy += c2 * q[j - 2 * sy, i]
+        w += ay * rhy * wy
     return w
 
 
@@ -199,8 +216,8 @@ def relax_lines(p, q, rho, eps, f, hx, hy, kappa2, ax, sx, ay, sy, e_gs, e_jd, w
                 ii = i + m
                 if ii >= 0 and ii <= nx - 1 and pj[j, ii] <= 0.0 and m != 0 and ii >= 1 and ii <= nx - 2:
                     coupled = False
-            cx0, cx1, cx2 = _upwind(i, sx, nx)
-            cy0, cy1, cy2 = _upwind(j, sy, ny)
+            cxp, cx0, cx1, cx2 = _upwind(i, sx, nx)
+            cyp, cy0, cy1, cy2 = _upwind(j, sy, ny)
             for m in range(-ml, mu + 1):
                 k = i + m
                 if k < 1 or k > nx - 2:
@@ -211,6 +228,8 @@ def relax_lines(p, q, rho, eps, f, hx, hy, kappa2, ax, sx, ay, sy, e_gs, e_jd, w
                 # elastic part: -d(wedge)/d(delta_k)
                 el = 0.0
                 if sx != 0:
+                    if cxp != 0.0:
+                        el += cxp * rho[j, i + sx] * pat[0, i + sx - k + reach]
                     el += cx0 * rho[j, i] * pat[0, i - k + reach]
                     el += cx1 * rho[j, i - sx] * pat[0, i - sx - k + reach]
                     if cx2 != 0.0:
@@ -218,6 +237,8 @@ def relax_lines(p, q, rho, eps, f, hx, hy, kappa2, ax, sx, ay, sy, e_gs, e_jd, w
                     el *= ax * rhx
                 if sy != 0:
                     ey = cy0 * rho[j, i] * pat[0, i - k + reach] + cy1 * rho[j - sy, i] * pat[1, i - k + reach]
+                    if cyp != 0.0:
+                        ey += cyp * rho[j + sy, i] * pat[1, i - k + reach]
                     if cy2 != 0.0:
                         ey += cy2 * rho[j - 2 * sy, i] * pat[2, i - k + reach]
                     el += ay * rhy * ey

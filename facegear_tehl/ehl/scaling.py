@@ -28,6 +28,7 @@ import math
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.hertz import HertzContact
 from facegear_tehl.lubricant import Lubricant
+from facegear_tehl.materials import Solid, reduced_modulus
 
 
 @dataclass(frozen=True)
@@ -106,3 +107,51 @@ def scaling_for(point: ContactPoint, lubricant: Lubricant) -> Scaling:
         hamrock_g=g,
         hamrock_w=w,
     )
+
+
+# Reference solids and oil of the Venner & Lubrecht (2000) benchmarks (BENCHMARKS.md): steel E = 200 GPa,
+# nu = 0.3 (E' = 2.198e11 Pa), eta_0 = 0.04 Pa s, alpha = 2.2e-8 1/Pa, R_x = 12.7 mm.
+_BENCH_STEEL = Solid(elastic_modulus=2.0e11, poisson_ratio=0.3)
+_BENCH_RADIUS = 0.0127  # m
+_BENCH_VISCOSITY = 0.04  # Pa s
+_BENCH_ALPHA = 2.2e-8  # 1/Pa
+
+
+def contact_from_moes(
+    moes_m: float,
+    moes_l: float,
+    radius_ratio_d: float = 1.0,
+    *,
+    entrainment_angle: float = 0.0,
+    slide_roll_ratio: float = 0.0,
+    viscosity_model: str = "barus",
+    density_model: str = "incompressible",
+) -> tuple[ContactPoint, Lubricant]:
+    """A physical contact with given Moes M, L and D = R_x/R_y (steel, the benchmark oil and R_x = 12.7 mm).
+
+    Inverts L = alpha E' (2U)^(1/4) for the speed and M = W (2U)^(-3/4) for the load.
+    """
+    e_prime = reduced_modulus(_BENCH_STEEL, _BENCH_STEEL)
+    two_u = (moes_l / (_BENCH_ALPHA * e_prime)) ** 4
+    w = moes_m * two_u**0.75
+    speed = 0.5 * two_u * e_prime * _BENCH_RADIUS / _BENCH_VISCOSITY
+    point = ContactPoint.from_rolling_sliding(
+        name="contact",
+        radius_x=_BENCH_RADIUS,
+        radius_y=_BENCH_RADIUS / radius_ratio_d,
+        load=w * e_prime * _BENCH_RADIUS**2,
+        entrainment_speed=speed,
+        slide_roll_ratio=slide_roll_ratio,
+        entrainment_angle_deg=entrainment_angle,
+        body_1=_BENCH_STEEL,
+        body_2=_BENCH_STEEL,
+    )
+    lubricant = Lubricant(
+        viscosity=_BENCH_VISCOSITY,
+        inlet_temperature=313.15,
+        pressure_viscosity=_BENCH_ALPHA,
+        density=870.0,
+        viscosity_model=viscosity_model,
+        density_model=density_model,
+    )
+    return point, lubricant

@@ -1,0 +1,1 @@
+"""The EHL numerical core: one elliptical contact, dimensionless inside (see `scaling.py`)."""
