@@ -15,6 +15,7 @@ from typing import Any
 
 import yaml
 
+from facegear_tehl.gears.spec import GearSpec, parse_gear_block
 from facegear_tehl.lubricant import DENSITY_MODELS, KELVIN, RHEOLOGY_MODELS, VISCOSITY_MODELS, Lubricant
 from facegear_tehl.materials import Solid
 from facegear_tehl.schema import Block, CaseError, check
@@ -89,6 +90,7 @@ class Case:
     lubricant: Lubricant
     solver: SolverSettings
     output: OutputSettings
+    gear: GearSpec | None = None  # a face gear pair; exactly one of contact and gear is set
 
     def with_grid(self, grid: int) -> "Case":
         """The same case on another finest grid (validated like the YAML key solver.grid)."""
@@ -231,8 +233,11 @@ def parse_case(text: str, name: str = "case") -> Case:
     top = Block(raw, "")
     case_name = top.string("name", name)
     description = top.string("description", "")
-    check(top.has("contact"), "contact", None, "a contact: block (one plain elliptical contact)")
-    contact = _plain_contact(top.block("contact"))
+    has_contact, has_gear = top.has("contact"), top.has("gear")
+    check(has_contact != has_gear, "contact/gear", "both blocks" if has_contact else None,
+          "exactly one of a contact: block (one plain elliptical contact) or a gear: block (a face gear pair)")
+    contact = _plain_contact(top.block("contact")) if has_contact else None
+    gear = parse_gear_block(top.block("gear")) if has_gear else None
     case = Case(
         name=case_name,
         description=description,
@@ -242,6 +247,7 @@ def parse_case(text: str, name: str = "case") -> Case:
         lubricant=_lubricant(top.block("lubricant")),
         solver=_solver(top.block("solver", {})),
         output=_output(top.block("output", {})),
+        gear=gear,
     )
     top.finish()
     return case

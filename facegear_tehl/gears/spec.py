@@ -1,0 +1,194 @@
+"""The `gear:` block of a case: a face gear pair, validated and converted to SI units (`GearSpec`).
+
+Keys (YAML units): pinion_teeth, shaper_teeth, face_gear_teeth, module (m), pressure_angle (deg),
+shaft_angle (deg, 0 < g < 180, convention of `geometry`: delta_1 + delta_2 = g), pinion_addendum and
+face_gear_addendum (m, default = module), inner_radius and outer_radius of the face gear (m),
+pinion_speed (rpm), pinion_torque (N m), load_sharing (iso_linear | equal | one coefficient per point),
+points ([S1, ..., S5] by default, any subset of these names, or a count of evenly spaced points over the
+whole path), and the optional misalignment shaft_angle_error (deg), offset (m), pinion_axial_shift (m),
+face_gear_axial_shift (m).
+
+Impossible gears are input errors (`CaseError` naming the key): Ns - N1 not in 1..3, a face width
+outside [L1, L2] or not covering the contact path, a contact ratio outside [1, 2), a face-gear tip that
+reaches below the pinion base circle, no contact under the given misalignment.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+import math
+
+import numpy as np
+
+from facegear_tehl.gears.geometry import PairGeometry, axial_section, pointing_limit, undercut_limit
+from facegear_tehl.gears.loads import LOAD_SHARING_MODELS, contact_ratio
+from facegear_tehl.gears.tca import MESHING_POINTS, ContactError, ContactPath, Misalignment
+from facegear_tehl.schema import Block, CaseError, check
+
+RPM = 2.0 * math.pi / 60.0  # rad/s per rev/min
+MAX_POINT_COUNT = 1000
+_PATH_CHECK_SAMPLES = 21  # samples of the path checked against the face width
+
+
+@dataclass(frozen=True)
+class GearSpec:
+    """A face gear pair and its operating point, SI units (angles in rad, speed in rad/s)."""
+
+    pinion_teeth: int
+    shaper_teeth: int
+    face_gear_teeth: int
+    module: float  # m
+    pressure_angle: float  # rad
+    shaft_angle: float  # rad
+    pinion_addendum: float  # m
+    face_gear_addendum: float  # m
+    inner_radius: float  # m, of the face gear
+    outer_radius: float  # m
+    pinion_speed: float  # rad/s
+    pinion_torque: float  # N m
+    load_sharing: str | tuple[float, ...]  # a model of loads.LOAD_SHARING_MODELS, or one coefficient per point
+    points: tuple[str, ...] | int  # names among S1..S5, or a count of evenly spaced points
+    misalignment: Misalignment = Misalignment()
+
+    @property
+    def geometry(self) -> PairGeometry:
+        return PairGeometry(
+            pinion_teeth=self.pinion_teeth,
+            shaper_teeth=self.shaper_teeth,
+            face_gear_teeth=self.face_gear_teeth,
+            module=self.module,
+            pressure_angle=self.pressure_angle,
+            shaft_angle=self.shaft_angle,
+            pinion_addendum=self.pinion_addendum,
+            face_gear_addendum=self.face_gear_addendum,
+        )
+
+    @property
+    def point_names(self) -> tuple[str, ...]:
+        """S1..S5 names, or P01..Pnn for a count of evenly spaced points."""
+        if isinstance(self.points, int):
+            width = max(2, len(str(self.points)))
+            return tuple(f"P{i + 1:0{width}d}" for i in range(self.points))
+        return self.points
+
+
+def parse_gear_block(block: Block) -> GearSpec:
+    """Read and validate the `gear:` block (see the module docstring)."""
+    n1 = block.integer("pinion_teeth", low=8)
+    ns = block.integer("shaper_teeth", low=1)
+    check(1 <= ns - n1 <= 3, block.key_path("shaper_teeth"), ns, "shaper_teeth - pinion_teeth in 1..3")
+    n2 = block.integer("face_gear_teeth", low=1)
+    check(n2 > ns, block.key_path("face_gear_teeth"), n2, f"more teeth than the shaper ({ns})")
+    module = block.number("module", positive=True, high=0.1, unit="m")
+    pressure_angle = block.number("pressure_angle", low=10.0, high=35.0, unit="deg")
+    shaft_angle = block.number("shaft_angle", low=0.0, high=180.0, open_low=True, open_high=True, unit="deg")
+    addendum_1 = block.number("pinion_addendum", module, positive=True, high=2.0 * module, unit="m")
+    addendum_2 = block.number("face_gear_addendum", module, positive=True, high=2.0 * module, unit="m")
+    inner = block.number("inner_radius", positive=True, unit="m")
+    outer = block.number("outer_radius", positive=True, unit="m")
+    check(outer > inner, block.key_path("outer_radius"), outer, f"more than inner_radius = {inner:g} m")
+    speed = block.number("pinion_speed", positive=True, unit="rpm")
+    torque = block.number("pinion_torque", positive=True, unit="N m")
+    points = _points(block)
+    count = points if isinstance(points, int) else len(points)
+    spec = GearSpec(
+        pinion_teeth=n1,
+        shaper_teeth=ns,
+        face_gear_teeth=n2,
+        module=module,
+        pressure_angle=math.radians(pressure_angle),
+        shaft_angle=math.radians(shaft_angle),
+        pinion_addendum=addendum_1,
+        face_gear_addendum=addendum_2,
+        inner_radius=inner,
+        outer_radius=outer,
+        pinion_speed=speed * RPM,
+        pinion_torque=torque,
+        load_sharing=_load_sharing(block, count),
+        points=points,
+        misalignment=Misalignment(
+            shaft_angle_error=math.radians(block.number("shaft_angle_error", 0.0, low=-1.0, high=1.0, unit="deg")),
+            offset=block.number("offset", 0.0, low=-module, high=module, unit="m"),
+            pinion_axial_shift=block.number("pinion_axial_shift", 0.0, low=-10 * module, high=10 * module, unit="m"),
+            face_gear_axial_shift=block.number("face_gear_axial_shift", 0.0, low=-module, high=module, unit="m"),
+        ),
+    )
+    block.finish()
+    _check_feasible(spec, block)
+    return spec
+
+
+def _points(block: Block) -> tuple[str, ...] | int:
+    value = block.get("points", list(MESHING_POINTS))
+    key = block.key_path("points")
+    if isinstance(value, int) and not isinstance(value, bool):
+        check(2 <= value <= MAX_POINT_COUNT, key, value, f"a count of points in 2..{MAX_POINT_COUNT}")
+        return value
+    check(
+        isinstance(value, list) and len(value) > 0 and all(isinstance(v, str) and v in MESHING_POINTS for v in value),
+        key,
+        value,
+        "a list of names among " + ", ".join(MESHING_POINTS) + " or a count of evenly spaced points",
+    )
+    check(len(set(value)) == len(value), key, value, "each point named once")
+    return tuple(value)
+
+
+def _load_sharing(block: Block, count: int) -> str | tuple[float, ...]:
+    value = block.get("load_sharing", "iso_linear")
+    key = block.key_path("load_sharing")
+    if isinstance(value, str):
+        check(value in LOAD_SHARING_MODELS, key, value, "one of " + ", ".join(LOAD_SHARING_MODELS) + " or a list")
+        return value
+    check(
+        isinstance(value, list)
+        and all(isinstance(v, (int, float)) and not isinstance(v, bool) and 0.0 < v <= 1.0 for v in value),
+        key,
+        value,
+        "one of " + ", ".join(LOAD_SHARING_MODELS) + ", or a list of coefficients in (0, 1]",
+    )
+    check(len(value) == count, key, value, f"one coefficient per point ({count})")
+    return tuple(float(v) for v in value)
+
+
+def _misalignment_key(spec: GearSpec, block: Block) -> str:
+    mis = spec.misalignment
+    for name in ("shaft_angle_error", "offset", "face_gear_axial_shift", "pinion_axial_shift"):
+        if getattr(mis, name):
+            return block.key_path(name)
+    return block.key_path("shaft_angle")
+
+
+def _check_feasible(spec: GearSpec, block: Block) -> None:
+    """Cross-key checks that need the geometry: L1, L2, path limits, contact ratio, face width."""
+    geo = spec.geometry
+    try:
+        l1, l2 = undercut_limit(geo), pointing_limit(geo)
+    except ValueError:
+        raise CaseError(block.key_path("shaft_angle"), math.degrees(spec.shaft_angle),
+                        "a shaft angle for which the face gear has an undercut and a pointing limit") from None
+    check(l2 > l1, block.key_path("face_gear_teeth"), spec.face_gear_teeth,
+          f"a face gear with pointing limit L2 = {l2:.4g} m above undercut limit L1 = {l1:.4g} m")
+    check(spec.inner_radius >= l1, block.key_path("inner_radius"), spec.inner_radius,
+          f"at least the undercut limit L1 = {l1:.5g} m (the face gear is undercut below it)")
+    check(spec.outer_radius <= l2, block.key_path("outer_radius"), spec.outer_radius,
+          f"at most the pointing limit L2 = {l2:.5g} m (the face-gear teeth are pointed beyond it)")
+    try:
+        path = ContactPath(geo, spec.misalignment)
+        s_min, s_max = path.limits()
+        samples = [path.state(s) for s in np.linspace(s_min, s_max, _PATH_CHECK_SAMPLES)]
+    except (ContactError, ValueError, np.linalg.LinAlgError):
+        key = _misalignment_key(spec, block)
+        raise CaseError(key, block.raw.get(key.rsplit(".", 1)[-1]), "a drive with a continuous pinion / face-gear contact") from None
+    check(s_min > -geo.r_p1 * math.sin(geo.pressure_angle), block.key_path("face_gear_addendum"), spec.face_gear_addendum,
+          "a face-gear addendum whose tip meets the pinion above its base circle")
+    eps = contact_ratio(s_min, s_max, geo.base_pitch)
+    check(1.0 <= eps < 2.0, block.key_path("pinion_addendum"), spec.pinion_addendum,
+          f"addenda giving a contact ratio in [1, 2); these give {eps:.4f}")
+    radii = [axial_section(geo, st.point - st.face_gear_origin)[1] for st in samples]
+    lowest, highest = min(radii), max(radii)
+    if lowest < spec.inner_radius or highest > spec.outer_radius:
+        key = block.key_path("inner_radius" if lowest < spec.inner_radius else "outer_radius")
+        value = spec.inner_radius if lowest < spec.inner_radius else spec.outer_radius
+        raise CaseError(key, value, f"a face width covering the contact path, at face-gear radii "
+                        f"{lowest:.5g} to {highest:.5g} m")
