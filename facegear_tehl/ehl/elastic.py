@@ -1,4 +1,4 @@
-"""Elastic deflection of the contacting half-spaces by FFT convolution (O(N log N)).
+r"""Elastic deflection of the contacting half-spaces by FFT convolution (O(N log N)).
 
 In Hertzian units (X = x/b, Y = y/a, P = p/p_h, H = h R_x / b^2) the deflection of two elastic half-spaces
 (Boussinesq; Johnson 1985, §3.2) is

@@ -1,4 +1,4 @@
-"""Hertzian scaling of an elliptical EHL contact: the dimensionless variables of the solver, defined once.
+r"""Hertzian scaling of an elliptical EHL contact: the dimensionless variables of the solver, defined once.
 
 Dimensional problem (steady, isothermal, Newtonian; x along the minor axis b, y along the major axis a):
     d/dx(rho h^3/(12 eta) dp/dx) + d/dy(rho h^3/(12 eta) dp/dy) = u_ex d(rho h)/dx + u_ey d(rho h)/dy

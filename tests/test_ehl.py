@@ -1,0 +1,110 @@
+"""Isothermal EHL solver against external references (BENCHMARKS.md, PHYSICS.md §2-3)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from facegear_tehl.case import SolverSettings
+from facegear_tehl.ehl.scaling import contact_from_moes, scaling_for
+from facegear_tehl.ehl.solve import solve_point
+
+
+def settings(grid, **kw):
+    base = dict(grid=grid, domain_x=(-4.5, 1.5), domain_y=(-3.0, 3.0), thermal="off", coarsest_grid=17,
+                cycles_per_level=2, max_cycles=40, tolerance=1e-4, load_tolerance=1e-4)
+    base.update(kw)
+    return SolverSettings(**base)
+
+
+def venner(solution, point):
+    """Film in Venner's scaling H = h R / a^2."""
+    a = solution.scalar("a")
+    return solution.scalar("h_c") * point.radius_x / a**2, solution.scalar("h_min") * point.radius_x / a**2
+
+
+def moes(solution, point, lubricant):
+    """Central film in Moes' scaling H = (h/R_x)(2U)^(-1/2)."""
+    sc = scaling_for(point, lubricant)
+    return solution.scalar("h_c") / (point.radius_x * math.sqrt(2.0 * sc.hamrock_u))
+
+
+def test_circular_roelands_dowson_higginson_against_reference():
+    # BENCHMARKS.md: M = 20, L = 10, Roelands + DH, 513^2 reference H_c = 0.4318, H_min = 0.2924.
+    point, lub = contact_from_moes(20.0, 10.0, viscosity_model="roelands", density_model="dowson_higginson")
+    sol = solve_point(point, lub, settings(257))
+    h_c, h_min = venner(sol, point)
+    assert sol.converged
+    assert h_c == pytest.approx(0.4318, rel=0.01)
+    assert h_min == pytest.approx(0.2924, rel=0.015)
+    assert abs(sol.scalar("load_error")) < 1e-3
+    assert np.isfinite(sol.fields["pressure"].values).all()
+
+
+def test_circular_barus_incompressible_against_reference():
+    # BENCHMARKS.md: Barus, incompressible, 513^2 reference H_c = 0.4973.
+    point, lub = contact_from_moes(20.0, 10.0)
+    sol = solve_point(point, lub, settings(257))
+    assert venner(sol, point)[0] == pytest.approx(0.4973, rel=0.01)
+
+
+@pytest.mark.parametrize("d, nvm", [(1.0, 4.4965), (0.5, 5.1459), (0.2, 5.7295)])
+def test_elliptical_central_film_against_nijenbanning(d, nvm):
+    # PHYSICS.md §2.3: NVM H_c(Moes) at M = 100, L = 10 (Barus, incompressible); NVM is a +-10-15 % fit.
+    point, lub = contact_from_moes(100.0, 10.0, d)
+    sol = solve_point(point, lub, settings(129, domain_x=None, domain_y=None))
+    assert moes(sol, point, lub) == pytest.approx(nvm, rel=0.10)
+
+
+def test_zero_angle_is_the_aligned_solver_and_circle_is_rotation_invariant():
+    point0, lub = contact_from_moes(20.0, 10.0)
+    aligned = solve_point(point0, lub, settings(65, domain_x=None, domain_y=None))
+    point0b, _ = contact_from_moes(20.0, 10.0, entrainment_angle=0.0)
+    again = solve_point(point0b, lub, settings(65, domain_x=None, domain_y=None))
+    assert np.array_equal(aligned.fields["pressure"].values, again.fields["pressure"].values)
+    point30, _ = contact_from_moes(20.0, 10.0, entrainment_angle=30.0)
+    rotated = solve_point(point30, lub, settings(129, domain_x=None, domain_y=None))
+    reference = solve_point(point0, lub, settings(129, domain_x=None, domain_y=None))
+    # within the discretisation error estimate of the 129^2 grid (about 0.8 % for H_c)
+    for key in ("h_c", "h_min"):
+        assert rotated.scalar(key) == pytest.approx(reference.scalar(key), rel=0.01)
+
+
+def test_skewed_ellipse_follows_chittenden_trend():
+    # Chittenden et al. (1985): h ~ R_e^(1 - 0.68 + 2*0.073) [1 - exp(-1.23 (R_s/R_e)^(2/3))] with the groups built
+    # on the radius in the entrainment direction R_e (Hamrock & Dowson's convention). Ratio to 0 deg within 15 %.
+    d = 0.2
+    point0, lub = contact_from_moes(100.0, 10.0, d)
+    base = solve_point(point0, lub, settings(129, domain_x=None, domain_y=None)).scalar("h_c")
+
+    def chittenden(theta):
+        rx, ry = 1.0, 1.0 / d
+        re = 1.0 / (math.cos(theta) ** 2 / rx + math.sin(theta) ** 2 / ry)
+        rs = 1.0 / (math.sin(theta) ** 2 / rx + math.cos(theta) ** 2 / ry)
+        return re ** (1 - 0.68 + 2 * 0.073) * (1 - math.exp(-1.23 * (rs / re) ** (2 / 3)))
+
+    for angle in (30.0, 60.0):
+        point, _ = contact_from_moes(100.0, 10.0, d, entrainment_angle=angle)
+        ratio = solve_point(point, lub, settings(129, domain_x=None, domain_y=None)).scalar("h_c") / base
+        expected = chittenden(math.radians(angle)) / chittenden(0.0)
+        assert ratio == pytest.approx(expected, rel=0.15)
+
+
+def test_heavy_load_converges_without_nan():
+    # M = 1000, L = 10 (p_h ~ 1.5-2 GPa in gear terms): the classic scheme produces NaN here (BENCHMARKS.md).
+    point, lub = contact_from_moes(1000.0, 10.0, viscosity_model="roelands", density_model="dowson_higginson")
+    sol = solve_point(point, lub, settings(129))
+    for f in sol.fields.values():
+        assert np.isfinite(f.values).all()
+    assert all(math.isfinite(v) for v, _ in sol.scalars.values())
+    assert sol.converged or sol.message
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("m, limit", [(20.0, 0.005), (200.0, 0.01)])
+def test_grid_convergence_257_to_513(m, limit):
+    # issue 2: h_c changes < 0.5 % (M = 20) and < 1 % (M = 200) between 257^2 and 513^2 (classic scheme: 1.45 %).
+    point, lub = contact_from_moes(m, 10.0)
+    h257 = solve_point(point, lub, settings(257)).scalar("h_c")
+    h513 = solve_point(point, lub, settings(513)).scalar("h_c")
+    assert abs(h513 / h257 - 1.0) < limit

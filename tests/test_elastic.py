@@ -1,0 +1,46 @@
+"""Deflection operator against the exact Hertz solution (Johnson 1985, §3.4 and §4.2)."""
+
+import numpy as np
+import pytest
+
+from facegear_tehl.ehl.elastic import DeflectionOperator, influence_coefficients
+from facegear_tehl.ehl.scaling import contact_from_moes, scaling_for
+
+
+@pytest.mark.parametrize("ratio", [1.0, 5.0, 100.0])
+def test_hertz_pressure_gives_hertz_approach(ratio):
+    # Inside a Hertz ellipse the elastic deflection equals the approach minus the quadratic gap:
+    # C_d K*P + X^2/2 + k^2 D Y^2/2 = delta R_x/b^2 for P = sqrt(1 - X^2 - Y^2).
+    point, lubricant = contact_from_moes(20.0, 10.0, 1.0 / ratio)
+    sc = scaling_for(point, lubricant)
+    n = 257
+    x = np.linspace(-1.5, 1.5, n)
+    operator = DeflectionOperator(n, n, x[1] - x[0], x[1] - x[0], sc.ellipticity)
+    xx, yy = np.meshgrid(x, x)
+    pressure = np.sqrt(np.maximum(1.0 - xx**2 - yy**2, 0.0))
+    deflection = sc.deflection_coefficient * operator.apply(pressure)
+    approach = sc.hertz.approach * point.radius_x / sc.b**2
+    inside = xx**2 + yy**2 < 1.0
+    error = np.abs(deflection + 0.5 * xx**2 + 0.5 * sc.geometry_y * yy**2 - approach)[inside].max()
+    assert error < 0.005 * approach
+
+
+def test_fft_convolution_is_the_direct_sum():
+    rng = np.random.default_rng(3)
+    nx, ny = 17, 21
+    operator = DeflectionOperator(nx, ny, 0.2, 0.15, 3.0)
+    pressure = rng.random((ny, nx))
+    k = operator.coefficients
+    direct = np.zeros_like(pressure)
+    for j in range(ny):
+        for i in range(nx):
+            dj = np.abs(np.arange(ny) - j)[:, None]
+            di = np.abs(np.arange(nx) - i)[None, :]
+            direct[j, i] = (k[dj, di] * pressure).sum()
+    assert np.allclose(operator.apply(pressure), direct, rtol=1e-12, atol=1e-12)
+
+
+def test_cell_integral_of_one_over_r():
+    # Self-influence of a square cell of side h: 4 h asinh(1) (the integral of 1/r over the square).
+    k = influence_coefficients(3, 3, 0.1, 0.1, 1.0)
+    assert k[0, 0] == pytest.approx(4 * 0.1 * np.arcsinh(1.0), rel=1e-14)
