@@ -1,4 +1,4 @@
-"""Command line: `tehl run | validate | info`.
+"""Command line: `tehl run | validate | contact | info`.
 
 Exit codes: 0 ok; 1 unexpected error (or a point whose solve failed; its result is still written);
 2 bad input (case file, options, not a result file): one line `error: <key path>: ...`, no output file;
@@ -18,6 +18,8 @@ import click
 
 from facegear_tehl import __version__
 from facegear_tehl.case import Case, load_case
+from facegear_tehl.gears.analysis import analyse_gear_pair
+from facegear_tehl.gears.report import contact_table
 from facegear_tehl.points import contact_points, select_points
 from facegear_tehl.results import PointResult, Result, ResultFileError, read_result, write_result
 from facegear_tehl.schema import CaseError
@@ -101,6 +103,16 @@ def validate(case_file: str) -> None:
         f"{lubricant.viscosity_model}, density {lubricant.density_model}, rheology {lubricant.rheology}, "
         f"thermal {case.solver.thermal}"
     )
+
+
+@tehl.command()
+@click.argument("case_file", metavar="CASE")
+def contact(case_file: str) -> None:
+    """Print the face gear contact analysis of CASE at its meshing points (no lubrication)."""
+    case = load_case(case_file)
+    if case.gear is None:
+        raise CaseError("gear", None, "a gear: block (tehl contact analyses a face gear pair)")
+    click.echo(contact_table(analyse_gear_pair(case.gear, case.materials.body_1, case.materials.body_2)))
 
 
 @tehl.command()
