@@ -25,6 +25,7 @@ from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.solution import Field, PointSolution
 
 ORDER = 2  # formal order of the discretisation, for the Richardson-scaled error estimate
+DIVERGED_LOAD_ERROR = 0.5  # a relative load error above this after a full cycle means the iteration is running away
 
 
 @dataclass(frozen=True)
@@ -147,7 +148,7 @@ def solve_point(point: ContactPoint, lubricant: Lubricant, settings: SolverSetti
     converged = False
     floor = math.nan
     cycles = settings.cycles_per_level
-    saved = (level.pressure.copy(), level.film.copy(), solver.h0)
+    best = (math.inf, level.pressure.copy(), level.film.copy(), solver.h0)  # (score, state): the best iterate
     if not message:
         previous = level.pressure.copy()
         for extra in range(settings.max_cycles + 1):
@@ -158,6 +159,12 @@ def solve_point(point: ContactPoint, lubricant: Lubricant, settings: SolverSetti
             change_history.append(change if extra > 0 else math.nan)
             residual_history.append(float(np.abs(residual[positive]).mean()) if positive.any() else 0.0)
             load_history.append(load_error)
+            if abs(load_error) > DIVERGED_LOAD_ERROR:
+                message = f"diverged at cycle {cycles} on the finest grid (load error {load_error:.2e})"
+                break
+            score = (change if extra > 0 else 1.0) + abs(load_error)
+            if score < best[0]:
+                best = (score, level.pressure.copy(), level.film.copy(), solver.h0)
             if extra > 0 and change < settings.tolerance and abs(load_error) < settings.load_tolerance:
                 converged = True
                 break
@@ -177,9 +184,11 @@ def solve_point(point: ContactPoint, lubricant: Lubricant, settings: SolverSetti
             cycles += 1
             if not _finite(level):
                 message = f"diverged at cycle {cycles} on the finest grid (non-finite pressure or film)"
-                level.pressure, level.film, solver.h0 = saved
                 break
-            saved = (level.pressure.copy(), level.film.copy(), solver.h0)
+        if not converged:
+            # report the best iterate, not the last (it may be running away)
+            _, level.pressure, level.film, solver.h0 = best
+            solver.update_film(level)
     wall = time.perf_counter() - start
     return _point_solution(point, lubricant, scaling, solver, level, summaries, converged, message, cycles, wall,
                            change_history, residual_history, load_history, floor)
