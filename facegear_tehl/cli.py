@@ -20,7 +20,7 @@ from facegear_tehl import __version__
 from facegear_tehl.case import Case, load_case
 from facegear_tehl.gears.analysis import analyse_gear_pair
 from facegear_tehl.gears.report import contact_table
-from facegear_tehl.points import contact_points, select_points
+from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.results import PointResult, Result, ResultFileError, read_result, write_result
 from facegear_tehl.schema import CaseError
 from facegear_tehl.solution import PointSolution
@@ -64,12 +64,15 @@ def run(ctx: click.Context, case_file: str, output: str | None, grid: int | None
     case = load_case(case_file)
     solver = (case if grid is None else case.with_grid(grid)).solver
     names = _point_names(points)
-    selected = contact_points(case) if names is None else select_points(contact_points(case), names)
+    analysis = contact_analysis(case)
+    selected = analysis.points if names is None else select_points(analysis.points, names)
     target = _output_path(Path(case_file), case, output)
     click.echo(
         f"tehl run: {case.name}: {', '.join(p.name for p in selected)} on a {solver.grid}x{solver.grid} grid",
         err=True,
     )
+    for warning in analysis.warnings:
+        click.echo(f"warning: {warning}", err=True)
     # Imported once the input is checked: only this command needs the solver (Numba kernels).
     from facegear_tehl.run import run_case
 
@@ -92,14 +95,18 @@ def run(ctx: click.Context, case_file: str, output: str | None, grid: int | None
 def validate(case_file: str) -> None:
     """Check CASE without running it."""
     case = load_case(case_file)
-    points = contact_points(case)
-    hertz = ", ".join(
-        f"{p.name}: p_hertz {p.hertz.p_max * 1e-6:.0f} MPa, a {p.hertz.a * 1e6:.1f} µm, b {p.hertz.b * 1e6:.1f} µm"
-        for p in points
-    )
+    points = contact_analysis(case).points
+    if case.gear is None:
+        point = points[0]
+        kind = (f"plain contact (p_hertz {point.hertz.p_max * 1e-6:.0f} MPa, a {point.hertz.a * 1e6:.1f} µm, "
+                f"b {point.hertz.b * 1e6:.1f} µm)")
+    else:
+        p_hertz = [p.hertz.p_max * 1e-6 for p in points]
+        kind = (f"face gear pair ({len(points)} points {points[0].name}..{points[-1].name}, "
+                f"p_hertz {min(p_hertz):.0f}..{max(p_hertz):.0f} MPa)")
     lubricant = case.lubricant
     click.echo(
-        f"ok: {case.name}: plain contact ({hertz}); grid {case.solver.grid}x{case.solver.grid}; models: viscosity "
+        f"ok: {case.name}: {kind}; grid {case.solver.grid}x{case.solver.grid}; models: viscosity "
         f"{lubricant.viscosity_model}, density {lubricant.density_model}, rheology {lubricant.rheology}, "
         f"thermal {case.solver.thermal}"
     )
@@ -148,12 +155,13 @@ def info_text(result: Result) -> str:
         ("models", ", ".join(f"{k} {v}" for k, v in result.models.items())),
     ]
     if result.overrides:
-        header.append(("overrides", ", ".join(f"{k} {v}" for k, v in result.overrides.items())))
-    for table_name, table in (("contact table", result.contact), ("heat table", result.heat)):
+        header.append(("overrides", ", ".join(f"{k} {_listed(v)}" for k, v in result.overrides.items())))
+    for table_name, table in (("contact path", result.contact), ("heat table", result.heat)):
         if table:
-            header.append((table_name, ", ".join(table)))
+            header.append((table_name, f"{len(table)} columns: {', '.join(table)}"))
     if result.message:
         header.append(("message", result.message.replace("\n", "; ")))
+    header += [("warning", warning) for warning in result.warnings]
     width = max(len(key) for key, _ in header)
     lines = [f"{key:<{width}}  {value}" for key, value in header]
     points = list(result.points.values())
@@ -163,7 +171,14 @@ def info_text(result: Result) -> str:
         units = next(p.units[key] for p in points if key in p.units)
         rows.append([key, units, *(f"{p.scalars[key]:.6g}" if key in p.scalars else "-" for p in points)])
     lines += ["", format_table(["scalar", "units", *(p.name for p in points)], rows)]
+    if result.contact_scalars:
+        contact_rows = [[key, result.contact_units[key], f"{value:.6g}"] for key, value in result.contact_scalars.items()]
+        lines += ["", format_table(["contact", "units", "value"], contact_rows)]
     return "\n".join(lines)
+
+
+def _listed(value: Any) -> str:
+    return ",".join(map(str, value)) if isinstance(value, list) else str(value)
 
 
 # Summary columns: header, scalar key, factor from SI, format.

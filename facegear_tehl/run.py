@@ -3,11 +3,14 @@ behind `tehl run`, for notebooks and scripts)."""
 
 from __future__ import annotations
 
+from dataclasses import replace
+import math
 from typing import Callable, Sequence
 
 from facegear_tehl.case import Case
 from facegear_tehl.ehl.solve import solve_point
-from facegear_tehl.points import contact_points, select_points
+from facegear_tehl.contact import ContactPoint
+from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.results import RunResult
 from facegear_tehl.solution import PointSolution
 
@@ -31,7 +34,8 @@ def run_case(
     if grid is not None:
         case = case.with_grid(grid)
         overrides["grid"] = grid
-    selected = contact_points(case)
+    analysis = contact_analysis(case)
+    selected = list(analysis.points)
     if points is not None:
         selected = select_points(selected, points)
         overrides["points"] = [p.name for p in selected]
@@ -50,7 +54,23 @@ def run_case(
                 axes={},
             )
             failed.append(point.name)
+        solution = _with_path_coordinate(solution, point)
         solutions.append(solution)
         if progress is not None:
             progress(solution, done, len(selected))
-    return RunResult(case=case, points=tuple(solutions), failed=tuple(failed), overrides=overrides)
+    return RunResult(
+        case=case,
+        points=tuple(solutions),
+        failed=tuple(failed),
+        contact=analysis.path,
+        contact_scalars=analysis.scalars,
+        warnings=analysis.warnings,
+        overrides=overrides,
+    )
+
+
+def _with_path_coordinate(solution: PointSolution, point: ContactPoint) -> PointSolution:
+    """Adds the point's place s on the contact path (gear cases) to its scalars, for plots along the path."""
+    if math.isnan(point.path_coordinate) or "path_coordinate" in solution.scalars:
+        return solution
+    return replace(solution, scalars={**solution.scalars, "path_coordinate": (point.path_coordinate, "m")})

@@ -16,7 +16,7 @@ import numpy as np
 
 from facegear_tehl.case import Case, load_case
 from facegear_tehl.contact import ContactPoint
-from facegear_tehl.points import contact_points
+from facegear_tehl.points import contact_analysis
 from facegear_tehl.results import RunResult
 from facegear_tehl.solution import Field, PointSolution
 
@@ -33,7 +33,7 @@ def ball_on_disc() -> Case:
 def run_result(case: Case | None = None, **options) -> RunResult:
     """A RunResult of the ball-on-disc case holding one synthetic solution (options go to `solution`)."""
     case = case or ball_on_disc()
-    return RunResult(case=case, points=(solution(contact_points(case)[0], **options),))
+    return RunResult(case=case, points=(solution(contact_analysis(case).points[0], **options),))
 
 
 def hertz_pressure(x: np.ndarray, y: np.ndarray, a: float, b: float, p_hertz: float) -> np.ndarray:

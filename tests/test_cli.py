@@ -226,6 +226,28 @@ def test_unexpected_error_exits_1_without_a_file(tmp_path, monkeypatch, fake_sol
     assert _files(tmp_path) == []
 
 
+FACE_GEAR = synthetic.CASES / "facegear_110.yaml"
+
+
+def test_validate_a_face_gear_case():
+    result = _invoke("validate", FACE_GEAR)
+    assert result.exit_code == 0
+    assert result.stdout.startswith("ok: facegear_110: face gear pair (5 points S1..S5, p_hertz ")
+
+
+def test_face_gear_run_writes_points_and_the_contact_path(tmp_path, fake_solver):
+    result = _invoke("run", FACE_GEAR, "--points", "S3,S1", "-o", tmp_path / "g.h5")
+    assert result.exit_code == 0, result.output
+    assert [call[0].name for call in fake_solver.calls] == ["S1", "S3"]  # in the order of the path
+    assert "[2/2] S3: converged" in result.stderr
+    written = read_result(tmp_path / "g.h5")
+    assert list(written.points) == ["S1", "S3"]
+    assert written.points["S3"].scalars["path_coordinate"] == 0.0  # S3 is the pitch point
+    assert written.points["S1"].scalars["path_coordinate"] < 0.0
+    assert written.contact["s"].units == "m" and written.contact["u1"].values.shape[1] == 2
+    assert written.contact_scalars["contact_ratio"] > 1.0 and written.contact_units["normal_load"] == "N"
+
+
 def test_debug_shows_the_traceback(tmp_path, monkeypatch, fake_solver):
     monkeypatch.chdir(tmp_path)
     fake_solver.non_finite = True
@@ -332,6 +354,14 @@ def test_run_end_to_end_in_a_subprocess(tmp_path):
                           capture_output=True, text=True, timeout=60)
     assert info.returncode == 0
     assert json.loads(info.stdout)["points"]["contact"]["h_c"] > 0.0
+
+
+def test_face_gear_point_end_to_end(tmp_path):
+    result = _invoke("run", FACE_GEAR, "--grid", "33", "--points", "S3", "-o", tmp_path / "g.h5")
+    assert result.exit_code in (0, 3), result.output
+    point = read_result(tmp_path / "g.h5").points["S3"]
+    assert 0.0 < point.scalars["h_min"] < point.scalars["h_c"] < 1e-5
+    assert point.scalars["a"] / point.scalars["b"] > 10.0  # elongated ellipse of the face gear
 
 
 def test_run_case_api_end_to_end(tmp_path):
