@@ -21,6 +21,7 @@ from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import grid
 from facegear_tehl.ehl.multigrid import Level, MultigridSolver, Problem, Relaxation
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
+from facegear_tehl.film_formulas import hamrock_dowson_central
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.solution import Field, PointSolution
 
@@ -47,17 +48,6 @@ def default_domain(scaling: Scaling) -> tuple[tuple[float, float], tuple[float, 
     norm = math.hypot(dx, dy)
     cx, cy = -1.5 * dx / norm, -1.5 * dy / norm
     return (cx - 3.0, cx + 3.0), (cy - 3.0, cy + 3.0)
-
-
-def hamrock_dowson_central(scaling: Scaling) -> float:
-    """Central film h_c/R_x = 2.69 U^0.67 G^0.53 W^-0.067 (1 - 0.61 exp(-0.73 k)) (Hamrock & Dowson 1977)."""
-    return (
-        2.69
-        * scaling.hamrock_u**0.67
-        * scaling.hamrock_g**0.53
-        * scaling.hamrock_w**-0.067
-        * (1.0 - 0.61 * math.exp(-0.73 * scaling.ellipticity))
-    )
 
 
 def _summary(level: Level) -> LevelSummary:
@@ -97,7 +87,11 @@ def _start_coarsest(solver: MultigridSolver, scaling: Scaling) -> None:
     solver.h0 = 0.0
     solver.update_film(level)
     # H_0 such that the Hertzian film at the centre equals the Hamrock-Dowson central film.
-    h_c_guess = hamrock_dowson_central(scaling) * scaling.hertz.radius_x / scaling.film_scale
+    h_c_guess = (
+        hamrock_dowson_central(scaling.hamrock_u, scaling.hamrock_g, scaling.hamrock_w, scaling.ellipticity)
+        * scaling.hertz.radius_x
+        / scaling.film_scale
+    )
     solver.h0 = h_c_guess - grid.bilinear_at(level.film, level.x, level.y, 0.0, 0.0)
     solver.update_film(level)
 
