@@ -177,3 +177,5 @@ def test_invalid_arguments():
         influence_matrix(17, 0.0)
     with pytest.raises(ValueError):
         band_source_temperature(0.0, 0.0)
+    with pytest.raises(ValueError):
+        surface_temperature_rise(np.ones(9), 1e-6, np.array([[1e4], [0.0]]))

@@ -77,7 +77,11 @@ def surface_temperature_rise(
         broadcasts against the rows, e.g. shape (ny, 1) when the speed varies from row to row.
     matrix: a prebuilt `influence_matrix(nx, dx)` to reuse.
     reverse: the surface moves toward -x (inlet at the last node) instead of +x.
+    A surface at rest (B = 0) is outside the kernel's validity (Pe = 0) and raises ValueError.
     """
+    effusivity = np.asarray(effusivity, dtype=float)
+    if not np.all(effusivity > 0.0):
+        raise ValueError("the high-Péclet kernel needs a moving surface (effusivity B = sqrt(k rho c |u|) > 0)")
     flux = np.asarray(flux, dtype=float)
     nx = flux.shape[-1]
     if matrix is None:
@@ -88,7 +92,7 @@ def surface_temperature_rise(
     rise = upstream_first @ matrix.T
     if reverse:
         rise = rise[..., ::-1]
-    return rise / np.asarray(effusivity, dtype=float)
+    return rise / effusivity
 
 
 def _source_weight(u: float) -> float:
