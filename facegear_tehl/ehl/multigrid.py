@@ -53,6 +53,7 @@ class Relaxation:
     force_factor: float = 0.1  # c_h in H_0 += c_h g on the coarsest grid
     force_updates: int = 4  # H_0 updates per coarsest-grid solve
     force_damping: float = 1.0  # fraction of the secant step taken
+    alternate_above: float = 0.25  # add Y-line sweeps when |c_y| > this * |c_x| (entrainment skewed > 14 deg)
 
 
 @dataclass
@@ -64,6 +65,8 @@ class Level:
     deflection: DeflectionOperator
     pattern_gs: np.ndarray
     pattern_jd: np.ndarray
+    pattern_gs_t: np.ndarray  # the same for Y-line relaxation (transposed problem)
+    pattern_jd_t: np.ndarray
     weight_x: float
     weight_y: float
     pressure: np.ndarray
@@ -121,6 +124,7 @@ class MultigridSolver:
         cx, cy = 1.0 / hx**2, 1.0 / (pb.ellipticity * hy) ** 2
         wx, wy = 0.5 * cx / (cx + cy), 0.5 * cy / (cx + cy)
         e_gs, e_jd = reynolds.pattern_kernels(deflection.coefficients, pb.deflection_coefficient, wx, wy)
+        e_gs_t, e_jd_t = reynolds.pattern_kernels(deflection.coefficients.T, pb.deflection_coefficient, wy, wx)
         xx, yy = np.meshgrid(x, y)
         return Level(
             x=x,
@@ -128,6 +132,8 @@ class MultigridSolver:
             deflection=deflection,
             pattern_gs=e_gs,
             pattern_jd=e_jd,
+            pattern_gs_t=e_gs_t,
+            pattern_jd_t=e_jd_t,
             weight_x=wx,
             weight_y=wy,
             pressure=np.zeros((n, n)),
@@ -162,6 +168,7 @@ class MultigridSolver:
         return (
             level.hx,
             level.hy,
+            1.0,
             1.0 / pb.ellipticity**2,
             abs(pb.wedge_x),
             int(np.sign(pb.wedge_x)),
@@ -170,25 +177,31 @@ class MultigridSolver:
         )
 
     def relax(self, level: Level) -> float:
-        """One line-relaxation sweep, then the film; returns the mean absolute pressure change."""
+        """One sweep of X-line relaxation (plus one of Y-line relaxation when the entrainment is skewed),
+        then the film; returns the mean absolute pressure change."""
         rx = self.relaxation
+        hx, hy, px, py, ax, sx, ay, sy = self._args(level)
         change = reynolds.relax_lines(
-            level.pressure,
-            level.rho * level.film,
-            level.rho,
-            level.eps,
-            level.reynolds_rhs,
-            *self._args(level),
-            level.pattern_gs,
-            level.pattern_jd,
-            level.weight_x,
-            level.weight_y,
-            rx.xi_switch,
-            rx.under_gs,
-            rx.under_jd,
+            level.pressure, level.rho * level.film, level.rho, level.eps, level.reynolds_rhs,
+            hx, hy, px, py, ax, sx, ay, sy,
+            level.pattern_gs, level.pattern_jd, level.weight_x, level.weight_y,
+            rx.xi_switch, rx.under_gs, rx.under_jd,
         )
         self.work_units += level.nodes / self.finest_nodes
         self.update_film(level)
+        if ay > rx.alternate_above * ax:
+            # Y-lines: the same kernel on the transposed problem (axes, factors and patterns swapped).
+            pressure_t = np.ascontiguousarray(level.pressure.T)
+            change += reynolds.relax_lines(
+                pressure_t, np.ascontiguousarray((level.rho * level.film).T), np.ascontiguousarray(level.rho.T),
+                np.ascontiguousarray(level.eps.T), np.ascontiguousarray(level.reynolds_rhs.T),
+                hy, hx, py, px, ay, sy, ax, sx,
+                level.pattern_gs_t, level.pattern_jd_t, level.weight_y, level.weight_x,
+                rx.xi_switch, rx.under_gs, rx.under_jd,
+            )
+            level.pressure = np.ascontiguousarray(pressure_t.T)
+            self.work_units += level.nodes / self.finest_nodes
+            self.update_film(level)
         return change / level.nodes
 
     def residual(self, level: Level) -> np.ndarray:

@@ -85,11 +85,12 @@ def _operator(p, q, eps, j, i, rhx, rhy, rhx2, rhy2k, ax, sx, ay, sy):
 
 
 @njit(cache=True)
-def apply_operator(p, q, eps, hx, hy, kappa2, ax, sx, ay, sy, out):
-    """out = L(P) at interior nodes (0 on the boundary)."""
+def apply_operator(p, q, eps, hx, hy, px, py, ax, sx, ay, sy, out):
+    """out = L(P) at interior nodes (0 on the boundary); px, py: factors of the x and y Poiseuille terms
+    (1 and kappa^2 in the ellipse frame)."""
     ny, nx = p.shape
     rhx, rhy = 1.0 / hx, 1.0 / hy
-    rhx2, rhy2k = rhx * rhx, kappa2 * rhy * rhy
+    rhx2, rhy2k = px * rhx * rhx, py * rhy * rhy
     out[:, :] = 0.0
     for j in range(1, ny - 1):
         for i in range(1, nx - 1):
@@ -97,11 +98,11 @@ def apply_operator(p, q, eps, hx, hy, kappa2, ax, sx, ay, sy, out):
 
 
 @njit(cache=True)
-def residual(p, q, eps, f, hx, hy, kappa2, ax, sx, ay, sy, out):
+def residual(p, q, eps, f, hx, hy, px, py, ax, sx, ay, sy, out):
     """out = f - L(P) at interior nodes where P > 0 (cavitated nodes satisfy the complementarity), else 0."""
     ny, nx = p.shape
     rhx, rhy = 1.0 / hx, 1.0 / hy
-    rhx2, rhy2k = rhx * rhx, kappa2 * rhy * rhy
+    rhx2, rhy2k = px * rhx * rhx, py * rhy * rhy
     out[:, :] = 0.0
     for j in range(1, ny - 1):
         for i in range(1, nx - 1):
@@ -177,7 +178,7 @@ def _solve_band(a, rhs, x, n, ml, mu):
 
 
 @njit(cache=True)
-def relax_lines(p, q, rho, eps, f, hx, hy, kappa2, ax, sx, ay, sy, e_gs, e_jd, wx, wy, xi_switch, ur_gs, ur_jd):
+def relax_lines(p, q, rho, eps, f, hx, hy, px, py, ax, sx, ay, sy, e_gs, e_jd, wx, wy, xi_switch, ur_gs, ur_jd):
     """One sweep of line relaxation over lines of constant Y (in place on p); returns the L1 norm of changes.
 
     H (through q = rho H), rho and eps are frozen during the sweep (recomputed by the caller afterwards).
@@ -186,7 +187,7 @@ def relax_lines(p, q, rho, eps, f, hx, hy, kappa2, ax, sx, ay, sy, e_gs, e_jd, w
     """
     ny, nx = p.shape
     rhx, rhy = 1.0 / hx, 1.0 / hy
-    rhx2, rhy2k = rhx * rhx, kappa2 * rhy * rhy
+    rhx2, rhy2k = px * rhx * rhx, py * rhy * rhy
     ml = BAND
     mu = BAND
     reach = PATTERN_REACH
