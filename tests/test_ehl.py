@@ -63,12 +63,14 @@ def test_zero_angle_is_the_aligned_solver_and_circle_is_rotation_invariant():
     point0b, _ = contact_from_moes(20.0, 10.0, entrainment_angle=0.0)
     again = solve_point(point0b, lub, settings(65, domain_x=None, domain_y=None))
     assert np.array_equal(aligned.fields["pressure"].values, again.fields["pressure"].values)
-    point30, _ = contact_from_moes(20.0, 10.0, entrainment_angle=30.0)
-    rotated = solve_point(point30, lub, settings(129, domain_x=None, domain_y=None))
     reference = solve_point(point0, lub, settings(129, domain_x=None, domain_y=None))
-    # within the discretisation error estimate of the 129^2 grid (about 0.8 % for H_c)
-    for key in ("h_c", "h_min"):
-        assert rotated.scalar(key) == pytest.approx(reference.scalar(key), rel=0.01)
+    for angle in (30.0, 60.0):
+        point, _ = contact_from_moes(20.0, 10.0, entrainment_angle=angle)
+        rotated = solve_point(point, lub, settings(129, domain_x=None, domain_y=None))
+        assert rotated.converged
+        # within the discretisation error estimate of the 129^2 grid (about 0.6 % for H_c)
+        for key in ("h_c", "h_min"):
+            assert rotated.scalar(key) == pytest.approx(reference.scalar(key), rel=0.006)
 
 
 def test_skewed_ellipse_follows_chittenden_trend():

@@ -110,6 +110,7 @@ class MultigridSolver:
         self.relaxation = relaxation
         self.levels: list[Level] = [self._make_level(n) for n in sizes]
         self.h0 = 0.0
+        self.last_h0_step = 0.0  # H_0 change of the last coarsest-grid solve
         self.work_units = 0.0
         self.finest_nodes = self.levels[-1].nodes
 
@@ -227,6 +228,7 @@ class MultigridSolver:
         """
         rx = self.relaxation
         sweeps = max(rx.coarsest_sweeps // rx.force_updates, 1)
+        h0_start = self.h0
         previous = None
         for _ in range(rx.force_updates):
             for _ in range(sweeps):
@@ -243,6 +245,13 @@ class MultigridSolver:
             previous = (self.h0, g)
             self.h0 += step
             self.update_film(level)
+        total = self.h0 - h0_start
+        if total * self.last_h0_step < 0.0:
+            # The step reverses the previous cycle's: damp the period-2 mode that noise on the free boundary
+            # excites through the FAS right-hand side of the force balance.
+            self.h0 = h0_start + 0.5 * total
+            self.update_film(level)
+        self.last_h0_step = self.h0 - h0_start
 
     # ------------------------------------------------------------ multigrid
     def coarsen(self, index: int) -> None:
