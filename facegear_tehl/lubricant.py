@@ -117,35 +117,42 @@ def _broadcast(pressure, temperature, default_t):
 
 
 @njit(cache=True)
+def viscosity_ratio_at(p, t, law):
+    """eta/eta_0 at one pressure p (Pa, clipped at 0) and temperature t (K); law from `law_parameters`."""
+    p = max(p, 0.0)
+    if law[0] == ROELANDS:
+        temp_factor = ((t - ROELANDS_T_INF) / (law[6] - ROELANDS_T_INF)) ** (-law[4])
+        return math.exp(law[3] * ((1.0 + p / ROELANDS_PRESSURE) ** law[2] * temp_factor - 1.0))
+    return math.exp(law[1] * p - law[5] * (t - law[6]))
+
+
+@njit(cache=True)
+def density_ratio_at(p, t, law):
+    """rho/rho_0 at one pressure p (Pa, clipped at 0) and temperature t (K)."""
+    p = max(p, 0.0)
+    thermal = 1.0 - law[8] * (t - law[6])
+    if law[7] == DOWSON_HIGGINSON:
+        return (DH_P1 + DH_RATIO * p) / (DH_P1 + p) * thermal
+    return thermal
+
+
+@njit(cache=True)
 def viscosity_ratio(pressure, temperature, law):
-    """eta/eta_0 on an array of pressures (Pa, clipped at 0) and temperatures (K); law from `law_parameters`."""
-    out = np.empty(pressure.size)
+    """eta/eta_0 on arrays of pressure (Pa) and temperature (K), flattened."""
     p_flat = pressure.ravel()
     t_flat = temperature.ravel()
-    model, alpha, z, log_term, s0, beta, t0 = law[0], law[1], law[2], law[3], law[4], law[5], law[6]
+    out = np.empty(p_flat.size)
     for n in range(p_flat.size):
-        p = max(p_flat[n], 0.0)
-        t = t_flat[n]
-        if model == ROELANDS:
-            temp_factor = ((t - ROELANDS_T_INF) / (t0 - ROELANDS_T_INF)) ** (-s0)
-            out[n] = math.exp(log_term * ((1.0 + p / ROELANDS_PRESSURE) ** z * temp_factor - 1.0))
-        else:
-            out[n] = math.exp(alpha * p - beta * (t - t0))
+        out[n] = viscosity_ratio_at(p_flat[n], t_flat[n], law)
     return out
 
 
 @njit(cache=True)
 def density_ratio(pressure, temperature, law):
-    """rho/rho_0 on arrays of pressure (Pa, clipped at 0) and temperature (K)."""
-    out = np.empty(pressure.size)
+    """rho/rho_0 on arrays of pressure (Pa) and temperature (K), flattened."""
     p_flat = pressure.ravel()
     t_flat = temperature.ravel()
-    model, eps_t, t0 = law[7], law[8], law[6]
+    out = np.empty(p_flat.size)
     for n in range(p_flat.size):
-        p = max(p_flat[n], 0.0)
-        thermal = 1.0 - eps_t * (t_flat[n] - t0)
-        if model == DOWSON_HIGGINSON:
-            out[n] = (DH_P1 + DH_RATIO * p) / (DH_P1 + p) * thermal
-        else:
-            out[n] = thermal
+        out[n] = density_ratio_at(p_flat[n], t_flat[n], law)
     return out

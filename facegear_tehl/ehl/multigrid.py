@@ -17,9 +17,8 @@ import math
 
 import numpy as np
 
-from facegear_tehl.ehl import grid, reynolds
+from facegear_tehl.ehl import flow, grid, reynolds
 from facegear_tehl.ehl.elastic import DeflectionOperator
-from facegear_tehl.lubricant import density_ratio, viscosity_ratio
 
 
 @dataclass(frozen=True)
@@ -35,6 +34,8 @@ class Problem:
     p_hertz: float  # Pa, to evaluate the lubricant laws
     law: np.ndarray  # lubricant law parameters (lubricant.Lubricant.law_parameters)
     inlet_temperature: float  # K
+    velocity_1: np.ndarray  # surface velocity of body 1 / |u_e|, (x, y)
+    velocity_2: np.ndarray  # surface velocity of body 2 / |u_e|, (x, y)
     domain_x: tuple[float, float]
     domain_y: tuple[float, float]
     load_integral: float = 2.0 * math.pi / 3.0
@@ -74,9 +75,14 @@ class Level:
     reynolds_rhs: np.ndarray
     force_rhs: float = 0.0
     film: np.ndarray = field(default=None)
-    rho: np.ndarray = field(default=None)
     eps: np.ndarray = field(default=None)
+    flux_x: np.ndarray = field(default=None)  # Couette factors f_x, f_y (flow.py)
+    flux_y: np.ndarray = field(default=None)
     pressure_restricted: np.ndarray = field(default=None)
+    # Frozen across-film state of the thermal / non-Newtonian model, shape (nz, ny, nx); None: isothermal
+    # Newtonian film at the inlet temperature.
+    temperature: np.ndarray | None = None
+    viscosity_factor: np.ndarray | None = None
 
     @property
     def nx(self) -> int:
@@ -151,68 +157,68 @@ class MultigridSolver:
 
     # ---------------------------------------------------------- single grid
     def update_film(self, level: Level) -> None:
-        """H = H_0 + C_d K*P + F; then rho_bar, eta_bar and eps = rho_bar H^3/(eta_bar lambda)."""
+        """H = H_0 + C_d K*P + F; then the flow coefficients eps, f_x, f_y (flow.py)."""
         pb = self.problem
         w = level.deflection.apply(level.pressure)
         level.film = self.h0 + pb.deflection_coefficient * w + level.film_rhs
-        p_pa = np.ascontiguousarray(level.pressure * pb.p_hertz)
-        temperature = np.full_like(p_pa, pb.inlet_temperature)
-        rho = density_ratio(p_pa, temperature, pb.law).reshape(p_pa.shape)
-        eta = viscosity_ratio(p_pa, temperature, pb.law).reshape(p_pa.shape)
-        positive_film = np.maximum(level.film, 0.0)
-        level.rho = rho
-        with np.errstate(over="ignore", invalid="ignore"):  # a diverging iterate is caught by the caller
-            level.eps = rho * positive_film**3 / (eta * pb.lam)
+        if level.eps is None:
+            level.eps = np.empty_like(level.film)
+            level.flux_x = np.empty_like(level.film)
+            level.flux_y = np.empty_like(level.film)
+        p_pa = level.pressure * pb.p_hertz
+        if level.temperature is None:
+            flow.isothermal_coefficients(p_pa, level.film, pb.law, pb.inlet_temperature, pb.lam, pb.wedge_x,
+                                         pb.wedge_y, level.eps, level.flux_x, level.flux_y)
+        else:
+            flow.layered_coefficients(p_pa, level.film, level.temperature, level.viscosity_factor, pb.law, pb.lam,
+                                      1.0 / pb.ellipticity, float(np.sign(pb.wedge_x)), float(np.sign(pb.wedge_y)),
+                                      pb.velocity_1, pb.velocity_2, level.eps, level.flux_x, level.flux_y)
 
     def _args(self, level: Level):
         pb = self.problem
-        return (
-            level.hx,
-            level.hy,
-            1.0,
-            1.0 / pb.ellipticity**2,
-            abs(pb.wedge_x),
-            int(np.sign(pb.wedge_x)),
-            abs(pb.wedge_y),
-            int(np.sign(pb.wedge_y)),
-        )
+        return level.hx, level.hy, 1.0, 1.0 / pb.ellipticity**2, int(np.sign(pb.wedge_x)), int(np.sign(pb.wedge_y))
+
+    def _fluxes(self, level: Level):
+        return level.flux_x * level.film, level.flux_y * level.film
 
     def relax(self, level: Level) -> float:
         """One sweep of X-line relaxation (plus one of Y-line relaxation when the entrainment is skewed),
         then the film; returns the mean absolute pressure change."""
         rx = self.relaxation
-        hx, hy, px, py, ax, sx, ay, sy = self._args(level)
+        hx, hy, px, py, sx, sy = self._args(level)
+        qx, qy = self._fluxes(level)
         change = reynolds.relax_lines(
-            level.pressure, level.rho * level.film, level.rho, level.eps, level.reynolds_rhs,
-            hx, hy, px, py, ax, sx, ay, sy,
+            level.pressure, qx, qy, level.flux_x, level.flux_y, level.eps, level.reynolds_rhs,
+            hx, hy, px, py, sx, sy,
             level.pattern_gs, level.pattern_jd, level.weight_x, level.weight_y,
             rx.xi_switch, rx.under_gs, rx.under_jd,
         )
         self.work_units += level.nodes / self.finest_nodes
         self.update_film(level)
-        if ay > rx.alternate_above * ax:
+        if abs(self.problem.wedge_y) > rx.alternate_above * abs(self.problem.wedge_x):
             # Y-lines: the same kernel on the transposed problem (axes, factors and patterns swapped).
-            pressure_t = np.ascontiguousarray(level.pressure.T)
+            qx, qy = self._fluxes(level)
+            t = np.ascontiguousarray
+            pressure_t = t(level.pressure.T)
             change += reynolds.relax_lines(
-                pressure_t, np.ascontiguousarray((level.rho * level.film).T), np.ascontiguousarray(level.rho.T),
-                np.ascontiguousarray(level.eps.T), np.ascontiguousarray(level.reynolds_rhs.T),
-                hy, hx, py, px, ay, sy, ax, sx,
+                pressure_t, t(qy.T), t(qx.T), t(level.flux_y.T), t(level.flux_x.T), t(level.eps.T),
+                t(level.reynolds_rhs.T), hy, hx, py, px, sy, sx,
                 level.pattern_gs_t, level.pattern_jd_t, level.weight_y, level.weight_x,
                 rx.xi_switch, rx.under_gs, rx.under_jd,
             )
-            level.pressure = np.ascontiguousarray(pressure_t.T)
+            level.pressure = t(pressure_t.T)
             self.work_units += level.nodes / self.finest_nodes
             self.update_film(level)
         return change / level.nodes
 
     def residual(self, level: Level) -> np.ndarray:
         out = np.empty_like(level.pressure)
-        reynolds.residual(level.pressure, level.rho * level.film, level.eps, level.reynolds_rhs, *self._args(level), out)
+        reynolds.residual(level.pressure, *self._fluxes(level), level.eps, level.reynolds_rhs, *self._args(level), out)
         return out
 
     def operator(self, level: Level) -> np.ndarray:
         out = np.empty_like(level.pressure)
-        reynolds.apply_operator(level.pressure, level.rho * level.film, level.eps, *self._args(level), out)
+        reynolds.apply_operator(level.pressure, *self._fluxes(level), level.eps, *self._args(level), out)
         return out
 
     def force_error(self, level: Level) -> float:

@@ -2,11 +2,13 @@
 
 Discretisation on a uniform (ny, nx) grid (arrays indexed [j, i], i along X), see `scaling.py`:
     L(P)_ij = xi_e (P_i+1 - P_i) - xi_w (P_i - P_i-1) + xi_n (P_j+1 - P_j) - xi_s (P_j - P_j-1)
-              - |c_x| D_x(q) - |c_y| D_y(q),      q = rho_bar H
+              - s_x D_x(q_x) - s_y D_y(q_y),      q_x = f_x H, q_y = f_y H
     xi_e = (eps_i + eps_i+1)/(2 h_x^2),  xi_n = kappa^2 (eps_j + eps_j+1)/(2 h_y^2)  (and w, s alike)
     D(q) = (2 q_+1 + 3 q_0 - 6 q_-1 + q_-2)/(6 h), the third-order upwind-biased difference oriented by the
     entrainment component on that axis (second-order upstream, then first order, next to the boundary).
-The wedge term thus follows the entrainment direction in both axes (skewed entrainment).
+The wedge term thus follows the entrainment direction in both axes (skewed entrainment). f_x, f_y are the
+Couette mass-flux factors (rho_bar cos(psi) and rho_bar kappa sin(psi) for an isothermal Newtonian film;
+see `flow.py` for the general form) signed by s_x, s_y so that the upwind difference acts on s q.
 
 Relaxation (Venner & Lubrecht 2000, ch. 8): lines of constant Y are solved together with a banded
 approximation of the Jacobian, including the elastic coupling through the influence coefficients.
@@ -55,37 +57,38 @@ def _coefficients(eps, j, i, rhx2, rhy2k):
 
 
 @njit(cache=True)
-def _wedge(q, j, i, ax, sx, ay, sy, rhx, rhy):
-    ny, nx = q.shape
+def _wedge(qx, qy, j, i, sx, sy, rhx, rhy):
+    """Upwind divergence of the Couette mass flux: sx d(qx)/dX + sy d(qy)/dY (qx, qy signed by sx, sy)."""
+    ny, nx = qx.shape
     w = 0.0
     if sx != 0:
         cp, c0, c1, c2 = _upwind(i, sx, nx)
-        w += c0 * q[j, i] + c1 * q[j, i - sx]
+        wx = c0 * qx[j, i] + c1 * qx[j, i - sx]
         if cp != 0.0:
-            w += cp * q[j, i + sx]
+            wx += cp * qx[j, i + sx]
         if c2 != 0.0:
-            w += c2 * q[j, i - 2 * sx]
-        w *= ax * rhx
+            wx += c2 * qx[j, i - 2 * sx]
+        w += rhx * wx
     if sy != 0:
         cp, c0, c1, c2 = _upwind(j, sy, ny)
-        wy = c0 * q[j, i] + c1 * q[j - sy, i]
+        wy = c0 * qy[j, i] + c1 * qy[j - sy, i]
         if cp != 0.0:
-            wy += cp * q[j + sy, i]
+            wy += cp * qy[j + sy, i]
         if c2 != 0.0:
-            wy += c2 * q[j - 2 * sy, i]
-        w += ay * rhy * wy
+            wy += c2 * qy[j - 2 * sy, i]
+        w += rhy * wy
     return w
 
 
 @njit(cache=True)
-def _operator(p, q, eps, j, i, rhx, rhy, rhx2, rhy2k, ax, sx, ay, sy):
+def _operator(p, qx, qy, eps, j, i, rhx, rhy, rhx2, rhy2k, sx, sy):
     xe, xw, xn, xs = _coefficients(eps, j, i, rhx2, rhy2k)
     poiseuille = xe * p[j, i + 1] + xw * p[j, i - 1] + xn * p[j + 1, i] + xs * p[j - 1, i] - (xe + xw + xn + xs) * p[j, i]
-    return poiseuille - _wedge(q, j, i, ax, sx, ay, sy, rhx, rhy)
+    return poiseuille - _wedge(qx, qy, j, i, sx, sy, rhx, rhy)
 
 
 @njit(cache=True)
-def apply_operator(p, q, eps, hx, hy, px, py, ax, sx, ay, sy, out):
+def apply_operator(p, qx, qy, eps, hx, hy, px, py, sx, sy, out):
     """out = L(P) at interior nodes (0 on the boundary); px, py: factors of the x and y Poiseuille terms
     (1 and kappa^2 in the ellipse frame)."""
     ny, nx = p.shape
@@ -94,11 +97,11 @@ def apply_operator(p, q, eps, hx, hy, px, py, ax, sx, ay, sy, out):
     out[:, :] = 0.0
     for j in range(1, ny - 1):
         for i in range(1, nx - 1):
-            out[j, i] = _operator(p, q, eps, j, i, rhx, rhy, rhx2, rhy2k, ax, sx, ay, sy)
+            out[j, i] = _operator(p, qx, qy, eps, j, i, rhx, rhy, rhx2, rhy2k, sx, sy)
 
 
 @njit(cache=True)
-def residual(p, q, eps, f, hx, hy, px, py, ax, sx, ay, sy, out):
+def residual(p, qx, qy, eps, f, hx, hy, px, py, sx, sy, out):
     """out = f - L(P) at interior nodes where P > 0 (cavitated nodes satisfy the complementarity), else 0."""
     ny, nx = p.shape
     rhx, rhy = 1.0 / hx, 1.0 / hy
@@ -107,7 +110,7 @@ def residual(p, q, eps, f, hx, hy, px, py, ax, sx, ay, sy, out):
     for j in range(1, ny - 1):
         for i in range(1, nx - 1):
             if p[j, i] > 0.0:
-                out[j, i] = f[j, i] - _operator(p, q, eps, j, i, rhx, rhy, rhx2, rhy2k, ax, sx, ay, sy)
+                out[j, i] = f[j, i] - _operator(p, qx, qy, eps, j, i, rhx, rhy, rhx2, rhy2k, sx, sy)
 
 
 def pattern_kernels(k: np.ndarray, deflection_coefficient: float, wx: float, wy: float):
@@ -178,10 +181,11 @@ def _solve_band(a, rhs, x, n, ml, mu):
 
 
 @njit(cache=True)
-def relax_lines(p, q, rho, eps, f, hx, hy, px, py, ax, sx, ay, sy, e_gs, e_jd, wx, wy, xi_switch, ur_gs, ur_jd):
+def relax_lines(p, qx, qy, fx, fy, eps, f, hx, hy, px, py, sx, sy, e_gs, e_jd, wx, wy, xi_switch, ur_gs, ur_jd):
     """One sweep of line relaxation over lines of constant Y (in place on p); returns the L1 norm of changes.
 
-    H (through q = rho H), rho and eps are frozen during the sweep (recomputed by the caller afterwards).
+    H (through qx = fx H, qy = fy H), the Couette factors fx, fy and eps are frozen during the sweep
+    (recomputed by the caller afterwards); dq/dP is approximated by f dH/dP.
     Gauss-Seidel nodes see the already updated neighbours; Jacobi-distributive nodes see the pressures at
     the start of the sweep.
     """
@@ -210,7 +214,7 @@ def relax_lines(p, q, rho, eps, f, hx, hy, px, py, ax, sx, ay, sy, e_gs, e_jd, w
             xsum = xe + xw + xn + xs
             src = pj if gs[j, i] else p
             poiseuille = xe * src[j, i + 1] + xw * src[j, i - 1] + xn * src[j + 1, i] + xs * src[j - 1, i] - xsum * src[j, i]
-            rhs[r] = f[j, i] - (poiseuille - _wedge(q, j, i, ax, sx, ay, sy, rhx, rhy))
+            rhs[r] = f[j, i] - (poiseuille - _wedge(qx, qy, j, i, sx, sy, rhx, rhy))
             # Does the node couple to its line neighbours? (not across a cavitation boundary)
             coupled = pj[j, i] > 0.0
             for m in range(-2, 3):
@@ -230,19 +234,19 @@ def relax_lines(p, q, rho, eps, f, hx, hy, px, py, ax, sx, ay, sy, e_gs, e_jd, w
                 el = 0.0
                 if sx != 0:
                     if cxp != 0.0:
-                        el += cxp * rho[j, i + sx] * pat[0, i + sx - k + reach]
-                    el += cx0 * rho[j, i] * pat[0, i - k + reach]
-                    el += cx1 * rho[j, i - sx] * pat[0, i - sx - k + reach]
+                        el += cxp * fx[j, i + sx] * pat[0, i + sx - k + reach]
+                    el += cx0 * fx[j, i] * pat[0, i - k + reach]
+                    el += cx1 * fx[j, i - sx] * pat[0, i - sx - k + reach]
                     if cx2 != 0.0:
-                        el += cx2 * rho[j, i - 2 * sx] * pat[0, i - 2 * sx - k + reach]
-                    el *= ax * rhx
+                        el += cx2 * fx[j, i - 2 * sx] * pat[0, i - 2 * sx - k + reach]
+                    el *= rhx
                 if sy != 0:
-                    ey = cy0 * rho[j, i] * pat[0, i - k + reach] + cy1 * rho[j - sy, i] * pat[1, i - k + reach]
+                    ey = cy0 * fy[j, i] * pat[0, i - k + reach] + cy1 * fy[j - sy, i] * pat[1, i - k + reach]
                     if cyp != 0.0:
-                        ey += cyp * rho[j + sy, i] * pat[1, i - k + reach]
+                        ey += cyp * fy[j + sy, i] * pat[1, i - k + reach]
                     if cy2 != 0.0:
-                        ey += cy2 * rho[j - 2 * sy, i] * pat[2, i - k + reach]
-                    el += ay * rhy * ey
+                        ey += cy2 * fy[j - 2 * sy, i] * pat[2, i - k + reach]
+                    el += rhy * ey
                 # Poiseuille part, for the pattern of column k
                 po = 0.0
                 if gs[j, k]:

@@ -114,6 +114,8 @@ def solve_point(point: ContactPoint, lubricant: Lubricant, settings: SolverSetti
         p_hertz=scaling.p_h,
         law=lubricant.law_parameters(),
         inlet_temperature=lubricant.inlet_temperature,
+        velocity_1=np.asarray(point.velocity_1) / point.entrainment_speed,
+        velocity_2=np.asarray(point.velocity_2) / point.entrainment_speed,
         domain_x=domain_x,
         domain_y=domain_y,
     )

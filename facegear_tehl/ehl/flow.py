@@ -1,0 +1,98 @@
+"""Flow coefficients of the generalised Reynolds equation (Yang & Wen 1990 form), dimensionless.
+
+Across the film (zeta = z/h from surface 1 at 0 to surface 2 at 1) the viscosity eta*(zeta) (Newtonian, or the
+Ree-Eyring effective viscosity, with temperature) and the density rho(zeta) vary. With the layer integrals
+
+    F0 = \\int d zeta/eta*,  F1 = \\int zeta d zeta/eta*,  f0(zeta) = \\int_0^zeta d zeta'/eta*,  f1(zeta) = \\int_0^zeta zeta' d zeta'/eta*
+    R0 = \\int rho d zeta,   R1 = \\int rho f1 d zeta,      R2 = \\int rho f0 d zeta
+
+the mass flux per unit width is m = -h^3 (F1 R2/F0 - R1) grad p + h [u_1 R0 + (u_2 - u_1) R2/F0]: the first term
+is the Poiseuille flow, the second the Couette flow (for constant properties rho h^3/(12 eta) and rho h u_e).
+In the solver's variables (scaling.py; rho, eta as ratios to rho_0, eta_0; velocities divided by |u_e|):
+
+    eps = 12 (F1 R2/F0 - R1) H^3/lambda
+    f_x = s_x [u_1x R0 + (u_2x - u_1x) R2/F0],   f_y = s_y kappa [u_1y R0 + (u_2y - u_1y) R2/F0]
+
+(s_x, s_y: signs of the entrainment components, which orient the upwind differences in reynolds.py).
+The layer count is odd (Simpson's rule across the film).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from facegear_tehl.lubricant import density_ratio_at, viscosity_ratio_at
+
+
+@njit(cache=True)
+def isothermal_coefficients(pressure_pa, film, law, temperature, lam, cx, cy, eps, fx, fy):
+    """Newtonian film at one temperature: eps = rho H^3/(eta lambda), f = s rho c (in place)."""
+    ny, nx = film.shape
+    for j in range(ny):
+        for i in range(nx):
+            rho = density_ratio_at(pressure_pa[j, i], temperature, law)
+            eta = viscosity_ratio_at(pressure_pa[j, i], temperature, law)
+            h = max(film[j, i], 0.0)
+            eps[j, i] = rho * h * h * h / (eta * lam)
+            fx[j, i] = rho * abs(cx)
+            fy[j, i] = rho * abs(cy)
+
+
+@njit(cache=True)
+def layer_integrals(eta, rho):
+    """(F0, F1, R0, R1, R2) for viscosity and density ratios on an odd number of equally spaced layer nodes.
+
+    f0, f1 are integrated exactly for 1/eta linear between nodes; R0, R1, R2 by Simpson's rule. Exact for
+    constant properties (F0 = 1/eta, F1 = 1/(2 eta), R1 = rho/(6 eta), R2 = rho/(2 eta)).
+    """
+    nz = eta.size
+    dz = 1.0 / (nz - 1)
+    f0 = 0.0
+    f1 = 0.0
+    r0 = 0.0
+    r1 = 0.0
+    r2 = 0.0
+    for k in range(nz):
+        if k == 0 or k == nz - 1:
+            w = dz / 3.0
+        elif k % 2 == 1:
+            w = 4.0 * dz / 3.0
+        else:
+            w = 2.0 * dz / 3.0
+        if k > 0:
+            z0 = (k - 1) * dz
+            z1 = k * dz
+            g0 = 1.0 / eta[k - 1]
+            g1 = 1.0 / eta[k]
+            f0 += 0.5 * dz * (g0 + g1)
+            f1 += dz * (z0 * g0 / 3.0 + z0 * g1 / 6.0 + z1 * g0 / 6.0 + z1 * g1 / 3.0)
+        r0 += w * rho[k]
+        r1 += w * rho[k] * f1
+        r2 += w * rho[k] * f0
+    return f0, f1, r0, r1, r2
+
+
+@njit(cache=True)
+def layered_coefficients(pressure_pa, film, temperature, viscosity_factor, law, lam, kappa, sx, sy, u1, u2,
+                         eps, fx, fy):
+    """eps, f_x, f_y for a film with layer temperatures (K) and viscosity factors eta*/eta, shape (nz, ny, nx).
+
+    u1, u2: surface velocities divided by |u_e|, in the (x, y) frame (in place).
+    """
+    nz, ny, nx = temperature.shape
+    eta = np.empty(nz)
+    rho = np.empty(nz)
+    for j in range(ny):
+        for i in range(nx):
+            p = pressure_pa[j, i]
+            for k in range(nz):
+                t = temperature[k, j, i]
+                eta[k] = viscosity_ratio_at(p, t, law) * viscosity_factor[k, j, i]
+                rho[k] = density_ratio_at(p, t, law)
+            f0, f1, r0, r1, r2 = layer_integrals(eta, rho)
+            h = max(film[j, i], 0.0)
+            eps[j, i] = 12.0 * (f1 * r2 / f0 - r1) * h * h * h / lam
+            couette = r2 / f0
+            fx[j, i] = sx * (u1[0] * r0 + (u2[0] - u1[0]) * couette)
+            fy[j, i] = sy * kappa * (u1[1] * r0 + (u2[1] - u1[1]) * couette)

@@ -1,0 +1,48 @@
+"""Generalised Reynolds coefficients (flow.py): limits with known closed forms."""
+
+import numpy as np
+import pytest
+
+from facegear_tehl.ehl.flow import isothermal_coefficients, layer_integrals, layered_coefficients
+from facegear_tehl.lubricant import Lubricant
+
+
+@pytest.mark.parametrize("nz", [3, 5, 9])
+def test_constant_properties_are_exact(nz):
+    # rho h^3/(12 eta) and rho h u_e: 12 (F1 R2/F0 - R1) = rho/eta, R2/F0 = rho/2.
+    f0, f1, r0, r1, r2 = layer_integrals(np.full(nz, 2.0), np.full(nz, 1.5))
+    assert 12 * (f1 * r2 / f0 - r1) == pytest.approx(0.75, rel=1e-14)
+    assert r2 / f0 == pytest.approx(0.75, rel=1e-14)
+
+
+def test_viscosity_linear_in_depth_against_quadrature():
+    # Couette share R2/F0 for eta(z) = 1 + 3 z (exact by scipy quadrature), rho = 1.
+    from scipy import integrate
+    eta = lambda z: 1.0 + 3.0 * z
+    f0_exact = integrate.quad(lambda z: 1 / eta(z), 0, 1)[0]
+    r2_exact = integrate.quad(lambda z: integrate.quad(lambda s: 1 / eta(s), 0, z)[0], 0, 1)[0]
+    z = np.linspace(0, 1, 33)
+    f0, _, _, _, r2 = layer_integrals(eta(z), np.ones_like(z))
+    assert f0 == pytest.approx(f0_exact, rel=1e-3)
+    assert r2 / f0 == pytest.approx(r2_exact / f0_exact, rel=1e-3)
+
+
+def test_layered_isothermal_newtonian_equals_isothermal():
+    lub = Lubricant(viscosity=0.03, inlet_temperature=313.15, pressure_viscosity=1.5e-8, density=880.0,
+                    temperature_viscosity=0.04, thermal_expansion=7e-4)
+    law = lub.law_parameters()
+    rng = np.random.default_rng(1)
+    p = rng.uniform(0, 1.5e9, (6, 7))
+    film = rng.uniform(0.1, 2.0, (6, 7))
+    a = [np.empty((6, 7)) for _ in range(3)]
+    b = [np.empty((6, 7)) for _ in range(3)]
+    cx, cy, kappa = 0.9, 0.02, 0.05
+    isothermal_coefficients(p, film, law, 313.15, 0.7, cx, cy, *a)
+    temperature = np.full((5, 6, 7), 313.15)
+    # u1 + u2 = 2 (cos psi, sin psi); cy = kappa sin psi
+    sin_psi = cy / kappa
+    u1 = np.array([1.3 * cx, 0.6 * sin_psi])
+    u2 = np.array([2 * cx - u1[0], 2 * sin_psi - u1[1]])
+    layered_coefficients(p, film, temperature, np.ones_like(temperature), law, 0.7, kappa, 1.0, 1.0, u1, u2, *b)
+    for x, y in zip(a, b):
+        assert np.allclose(x, y, rtol=1e-12, atol=0)
