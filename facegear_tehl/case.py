@@ -73,6 +73,9 @@ class SolverSettings:
     max_cycles: int  # extra V-cycles allowed on the finest grid to meet the tolerances
     tolerance: float  # relative change of pressure between cycles (L1 norm) to stop
     load_tolerance: float  # relative load-balance error to accept
+    thermal_layers: int = 9  # layer nodes across the film of the `full` thermal model (odd)
+    max_thermal_iterations: int = 40  # outer iterations of film state and pressure
+    thermal_tolerance: float = 1e-3  # largest temperature change per outer iteration, relative to the rise
 
 
 @dataclass(frozen=True)
@@ -211,7 +214,12 @@ def _solver(block: Block) -> SolverSettings:
         max_cycles=block.integer("max_cycles", 40, low=0, high=1000),
         tolerance=block.number("tolerance", 1e-4, positive=True, high=0.1),
         load_tolerance=block.number("load_tolerance", 1e-4, positive=True, high=0.1),
+        thermal_layers=block.integer("thermal_layers", 9, low=3, high=41),
+        max_thermal_iterations=block.integer("max_thermal_iterations", 40, low=1, high=500),
+        thermal_tolerance=block.number("thermal_tolerance", 1e-3, positive=True, high=0.1),
     )
+    check(settings.thermal_layers % 2 == 1, block.key_path("thermal_layers"), settings.thermal_layers,
+          "an odd number of layer nodes (Simpson's rule across the film), e.g. 7, 9 or 11")
     block.finish()
     return settings
 

@@ -1,0 +1,112 @@
+"""Energy equation in the film on layers across it (SI units; Numba kernels).
+
+Steady energy balance of the lubricant (Yang & Wen 1990; cross-film convection and conduction along the
+film neglected, as usual for thin films):
+
+    rho c (u dT/dx + v dT/dy) - k d^2T/dz^2 = tau . gamma_dot + beta_T T (u dp/dx + v dp/dy)
+
+with the thermal expansivity beta_T = -(1/rho) d rho/dT = eps_T/(1 - eps_T (T - T_0)) of the density law
+(lubricant.py). Layer nodes zeta_k = k/(nz - 1) across the film; the surface nodes k = 0 and nz - 1 carry
+the solid surface temperatures (Dirichlet, from the moving heat source of each solid). Each column (x, y)
+is a tridiagonal system in k; convection is upwinded per layer by the sign of the local velocity (reversed
+flow in the inlet), with the inlet temperature outside the domain, and the columns are swept Gauss-Seidel
+forwards and backwards. Compression cooling is implicit.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+
+@njit(cache=True)
+def _column(temperature, j, i, velocity_x, velocity_y, source, expansivity_grad, rho_c, k_f, film, dx, dy, t_inlet,
+            lower, diag, upper, rhs):
+    """Solve the interior layers of column (j, i) in place; returns the largest change (K)."""
+    nz, ny, nx = temperature.shape
+    n = nz - 2
+    h = max(film[j, i], 1e-12)
+    kz = k_f / (h / (nz - 1)) ** 2
+    for m in range(n):
+        k = m + 1
+        u = velocity_x[k, j, i]
+        v = velocity_y[k, j, i]
+        rc = rho_c[k, j, i]
+        if u >= 0.0:
+            t_x = temperature[k, j, i - 1] if i > 0 else t_inlet
+        else:
+            t_x = temperature[k, j, i + 1] if i < nx - 1 else t_inlet
+        if v >= 0.0:
+            t_y = temperature[k, j - 1, i] if j > 0 else t_inlet
+        else:
+            t_y = temperature[k, j + 1, i] if j < ny - 1 else t_inlet
+        ax = rc * abs(u) / dx
+        ay = rc * abs(v) / dy
+        comp = expansivity_grad[k, j, i]  # beta_T (u . grad p), W/(m^3 K) per K of T
+        d = ax + ay + 2.0 * kz
+        r = ax * t_x + ay * t_y + source[k, j, i]
+        if comp < 0.0:
+            d -= comp  # cooling by expansion: implicit
+        else:
+            r += comp * temperature[k, j, i]
+        lower[m] = -kz
+        upper[m] = -kz
+        diag[m] = d
+        rhs[m] = r
+    rhs[0] += kz * temperature[0, j, i]
+    rhs[n - 1] += kz * temperature[nz - 1, j, i]
+    # Thomas algorithm (diagonally dominant)
+    for m in range(1, n):
+        w = lower[m] / diag[m - 1]
+        diag[m] -= w * upper[m - 1]
+        rhs[m] -= w * rhs[m - 1]
+    change = 0.0
+    value = rhs[n - 1] / diag[n - 1]
+    change = max(change, abs(value - temperature[n, j, i]))
+    temperature[n, j, i] = value
+    for m in range(n - 2, -1, -1):
+        value = (rhs[m] - upper[m] * temperature[m + 2, j, i]) / diag[m]
+        change = max(change, abs(value - temperature[m + 1, j, i]))
+        temperature[m + 1, j, i] = value
+    return change
+
+
+@njit(cache=True)
+def sweep_film_temperature(temperature, velocity_x, velocity_y, source, expansivity_grad, rho_c, k_f, film, dx, dy,
+                           t_inlet, sweeps, tolerance):
+    """Gauss-Seidel sweeps (forward, then backward in x) over all columns; returns (sweeps done, last change)."""
+    nz, ny, nx = temperature.shape
+    n = nz - 2
+    lower = np.empty(n)
+    diag = np.empty(n)
+    upper = np.empty(n)
+    rhs = np.empty(n)
+    change = 0.0
+    done = 0
+    for s in range(sweeps):
+        change = 0.0
+        for j in range(ny):
+            if s % 2 == 0:
+                for i in range(nx):
+                    c = _column(temperature, j, i, velocity_x, velocity_y, source, expansivity_grad, rho_c, k_f,
+                                film, dx, dy, t_inlet, lower, diag, upper, rhs)
+                    change = max(change, c)
+            else:
+                for i in range(nx - 1, -1, -1):
+                    c = _column(temperature, j, i, velocity_x, velocity_y, source, expansivity_grad, rho_c, k_f,
+                                film, dx, dy, t_inlet, lower, diag, upper, rhs)
+                    change = max(change, c)
+        done = s + 1
+        if change < tolerance:
+            break
+    return done, change
+
+
+def wall_heat_flux(temperature: np.ndarray, film: np.ndarray, k_f: float) -> tuple[np.ndarray, np.ndarray]:
+    """Heat flux from the film into solid 1 (at z = 0) and solid 2 (at z = h), W/m^2, by second-order
+    one-sided differences: q_1 = k dT/dz|_0, q_2 = -k dT/dz|_h."""
+    nz = temperature.shape[0]
+    dz = np.maximum(film, 1e-12) / (nz - 1)
+    q1 = k_f * (-3.0 * temperature[0] + 4.0 * temperature[1] - temperature[2]) / (2.0 * dz)
+    q2 = k_f * (-3.0 * temperature[-1] + 4.0 * temperature[-2] - temperature[-3]) / (2.0 * dz)
+    return q1, q2

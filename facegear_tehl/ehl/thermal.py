@@ -1,0 +1,142 @@
+"""Thermal and non-Newtonian state of the film on the finest grid (SI units).
+
+One `update` maps the current pressure and film to the across-film state that the generalised Reynolds
+equation needs (temperature and eta*/eta per layer, flow.py):
+1. Newtonian viscosity per layer, eta(p, T_k) (lubricant.py);
+2. shear stress, shear rate, velocity and dissipation across the film (rheology.py);
+3. (thermal models) the energy equation in the film (energy.py), coupled to the two solids by the
+   high-Péclet moving heat source (jaeger.py): T_i = T_0 + (1/(sqrt(pi) B_i)) \\int q_i (x - s)^(-1/2) ds,
+   B_i = sqrt(k_i rho_i c_i |u_ix|), applied along x with the x component of each surface's velocity
+   (face gear surfaces move within 2 deg of x). A surface nearly at rest (Pe < 1) is given the effusivity
+   of Pe = 1, where the high-Péclet kernel would otherwise diverge: a bounded, conservative estimate.
+The film's interior layers and the surfaces are iterated `inner` times with under-relaxed surfaces.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+import math
+
+import numpy as np
+
+from facegear_tehl.ehl import energy, jaeger, rheology
+from facegear_tehl.lubricant import Lubricant, density_ratio, viscosity_ratio
+from facegear_tehl.materials import Solid
+
+MAX_TEMPERATURE_STEP = 50.0  # K, largest temperature change of one update
+
+
+@dataclass(frozen=True)
+class FilmState:
+    """Across-film state after one update; layer fields shaped (nz, ny, nx)."""
+
+    temperature: np.ndarray  # K
+    viscosity_factor: np.ndarray  # eta*/eta
+    dissipation: np.ndarray  # W/m^3
+    velocity_x: np.ndarray  # m/s
+    velocity_y: np.ndarray  # m/s
+    stress_1: np.ndarray  # (2, ny, nx) shear stress at surface 1, Pa
+    stress_2: np.ndarray  # (2, ny, nx) at surface 2, Pa
+    heat_flux_1: np.ndarray  # (ny, nx) into solid 1, W/m^2
+    heat_flux_2: np.ndarray  # (ny, nx) into solid 2, W/m^2
+    compression: np.ndarray  # beta_T T (u . grad p), W/m^3
+    change: float  # largest temperature change of this update, K
+
+
+class FilmThermalModel:
+    """Across-film state on a uniform (ny, nx) grid with node coordinates x, y (m)."""
+
+    def __init__(self, x: np.ndarray, y: np.ndarray, layers: int, lubricant: Lubricant, body_1: Solid,
+                 body_2: Solid, velocity_1: np.ndarray, velocity_2: np.ndarray, half_width: float,
+                 solve_energy: bool, inner: int = 2, surface_relaxation: float = 0.6):
+        if layers < 3 or layers % 2 == 0:
+            raise ValueError(f"layers across the film must be odd and >= 3, got {layers}")
+        self.x, self.y = x, y
+        self.dx, self.dy = float(x[1] - x[0]), float(y[1] - y[0])
+        self.layers = layers
+        self.lubricant = lubricant
+        self.velocity_1 = np.asarray(velocity_1, dtype=float)
+        self.velocity_2 = np.asarray(velocity_2, dtype=float)
+        self.solve_energy = solve_energy
+        self.inner = inner
+        self.surface_relaxation = surface_relaxation
+        self.law = lubricant.law_parameters()
+        self.t_inlet = lubricant.inlet_temperature
+        self.tau0 = lubricant.eyring_stress if lubricant.rheology == "ree_eyring" else math.inf
+        self.matrix = jaeger.influence_matrix(x.size, self.dx)
+        self._stress = None  # surface-1 shear stress of the last update: the warm start of the next
+        self.effusivity = tuple(
+            self._effusivity(body, float(v[0]), half_width) for body, v in ((body_1, self.velocity_1), (body_2, self.velocity_2))
+        )
+
+    @staticmethod
+    def _effusivity(body: Solid, speed: float, half_width: float) -> float:
+        """B = sqrt(k rho c |u|), with |u| at least the speed of Pe = u b/(2 kappa) = 1."""
+        slowest = 2.0 * body.thermal_diffusivity / half_width
+        return body.thermal_effusivity_speed(max(abs(speed), slowest))
+
+    def initial_temperature(self) -> np.ndarray:
+        return np.full((self.layers, self.y.size, self.x.size), self.t_inlet)
+
+    def _surface(self, flux: np.ndarray, index: int, speed: float) -> np.ndarray:
+        return self.t_inlet + jaeger.surface_temperature_rise(flux, self.dx, self.effusivity[index],
+                                                              matrix=self.matrix, reverse=speed < 0.0)
+
+    def update(self, pressure: np.ndarray, film: np.ndarray, temperature: np.ndarray) -> FilmState:
+        """The film state for pressure (Pa) and film (m) starting from the layer temperatures (K).
+
+        The temperature moves by at most MAX_TEMPERATURE_STEP per update (a continuation in temperature:
+        a Newtonian film under heavy sliding would otherwise overshoot by thousands of kelvin before the
+        viscosity has dropped)."""
+        nz = self.layers
+        start = temperature
+        p = np.ascontiguousarray(np.maximum(pressure, 0.0))
+        grad_y, grad_x = np.gradient(p, self.dy, self.dx)
+        temperature = temperature.copy()
+        lub = self.lubricant
+        shape = temperature.shape
+        viscosity_factor = np.empty(shape)
+        dissipation = np.empty(shape)
+        velocity_x = np.empty(shape)
+        velocity_y = np.empty(shape)
+        warm = self._stress is not None
+        stress_1 = self._stress.copy() if warm else np.zeros((2,) + p.shape)
+        stress_2 = np.empty((2,) + p.shape)
+        p_layers = np.ascontiguousarray(np.broadcast_to(p, shape))
+        change = 0.0
+        for _ in range(self.inner if self.solve_energy else 1):
+            eta = lub.viscosity * viscosity_ratio(p_layers, temperature, self.law).reshape(shape)
+            rheology.shear_state(p, film, np.ascontiguousarray(grad_x), np.ascontiguousarray(grad_y), eta,
+                                 self.velocity_1, self.velocity_2, self.tau0, warm, viscosity_factor, dissipation,
+                                 velocity_x, velocity_y, stress_1, stress_2)
+            warm = True
+            expansivity = lub.thermal_expansion / (1.0 - lub.thermal_expansion * (temperature - self.t_inlet))
+            compression_coefficient = expansivity * (velocity_x * grad_x + velocity_y * grad_y)
+            if not self.solve_energy:
+                break
+            rho_c = lub.density * density_ratio(p_layers, temperature, self.law).reshape(shape) * lub.specific_heat
+            before = temperature.copy()
+            energy.sweep_film_temperature(temperature, velocity_x, velocity_y, dissipation, compression_coefficient,
+                                          rho_c, lub.thermal_conductivity, film, self.dx, self.dy, self.t_inlet,
+                                          6, 1e-3)
+            q1, q2 = energy.wall_heat_flux(temperature, film, lub.thermal_conductivity)
+            w = self.surface_relaxation
+            temperature[0] += w * (self._surface(q1, 0, float(self.velocity_1[0])) - temperature[0])
+            temperature[-1] += w * (self._surface(q2, 1, float(self.velocity_2[0])) - temperature[-1])
+            np.clip(temperature, start - MAX_TEMPERATURE_STEP, start + MAX_TEMPERATURE_STEP, out=temperature)
+            change = float(np.abs(temperature - before).max())
+        self._stress = stress_1
+        q1, q2 = energy.wall_heat_flux(temperature, film, lub.thermal_conductivity)
+        return FilmState(
+            temperature=temperature,
+            viscosity_factor=viscosity_factor,
+            dissipation=dissipation,
+            velocity_x=velocity_x,
+            velocity_y=velocity_y,
+            stress_1=stress_1,
+            stress_2=stress_2,
+            heat_flux_1=q1,
+            heat_flux_2=q2,
+            compression=compression_coefficient * temperature,
+            change=change,
+        )
