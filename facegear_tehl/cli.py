@@ -20,10 +20,13 @@ from facegear_tehl import __version__
 from facegear_tehl.case import Case, load_case
 from facegear_tehl.gears.analysis import analyse_gear_pair
 from facegear_tehl.gears.report import contact_table
+from facegear_tehl.parallel import worker_count
 from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.results import PointResult, Result, ResultFileError, read_result, write_result
 from facegear_tehl.schema import CaseError
 from facegear_tehl.solution import PointSolution
+from facegear_tehl.sweep import (check_tolerance, parse_grids, report_tables, run_sweep, summary_lines, with_thermal,
+                                 write_csv)
 
 EXIT_ERROR, EXIT_BAD_INPUT, EXIT_NOT_CONVERGED = 1, 2, 3
 
@@ -58,17 +61,23 @@ def tehl(debug: bool) -> None:
 @click.option("-o", "--output", help="Result file (default: output.file of the case, else <case name>.h5).")
 @click.option("--grid", type=int, help="Nodes per side of the finest grid, 2^n + 1 (overrides solver.grid).")
 @click.option("--points", help="Comma-separated point names to solve (e.g. S1,S3); default all.")
+@click.option("--jobs", type=int, help="Worker processes solving points side by side (default: all cores).")
 @click.pass_context
-def run(ctx: click.Context, case_file: str, output: str | None, grid: int | None, points: str | None) -> None:
+def run(
+    ctx: click.Context, case_file: str, output: str | None, grid: int | None, points: str | None, jobs: int | None
+) -> None:
     """Solve CASE and write the result file."""
     case = load_case(case_file)
+    workers = worker_count(jobs)
     solver = (case if grid is None else case.with_grid(grid)).solver
     names = _point_names(points)
     analysis = contact_analysis(case)
     selected = analysis.points if names is None else select_points(analysis.points, names)
     target = _output_path(Path(case_file), case, output)
+    processes = min(workers, len(selected))
     click.echo(
-        f"tehl run: {case.name}: {', '.join(p.name for p in selected)} on a {solver.grid}x{solver.grid} grid",
+        f"tehl run: {case.name}: {', '.join(p.name for p in selected)} on a {solver.grid}x{solver.grid} grid"
+        + (f", {processes} worker processes" if processes > 1 else ""),
         err=True,
     )
     for warning in analysis.warnings:
@@ -76,18 +85,75 @@ def run(ctx: click.Context, case_file: str, output: str | None, grid: int | None
     # Imported once the input is checked: only this command needs the solver (Numba kernels).
     from facegear_tehl.run import run_case
 
-    run_result = run_case(case, grid=grid, points=names, progress=_report_progress)
+    run_result = run_case(case, grid=grid, points=names, progress=_report_progress, jobs=workers)
     target.parent.mkdir(parents=True, exist_ok=True)
     write_result(run_result, target)
     result = read_result(target)
     click.echo(summary_table(result.points.values()))
     click.echo(f"result: {target} (status {result.status})")
+    _exit_on_status(ctx, result)
+
+
+def _exit_on_status(ctx: click.Context, result: Result) -> None:
+    """Exit 1 if a point failed, 3 if one did not converge (the file is written either way)."""
     if result.status == "failed":
         click.echo(f"error: {result.message}", err=True)
         ctx.exit(EXIT_ERROR)
     if result.status == "not_converged":
         click.echo(f"warning: not converged: {result.message}", err=True)
         ctx.exit(EXIT_NOT_CONVERGED)
+
+
+@tehl.command()
+@click.argument("case_file", metavar="CASE")
+@click.option("--grids", default="33,65,129,257,513", show_default=True,
+              help="Nodes per side of each grid: ascending, each refining the previous by 2, at least three.")
+@click.option("--point", help="Point to solve (default: the case's first, S1 for a face gear pair).")
+@click.option("--thermal", help="Thermal model, overrides solver.thermal: off | reduced | full | auto.")
+@click.option("--tol", "tolerance", type=float, default=0.01, show_default=True,
+              help="Relative change to the next grid below which a quantity counts as grid-independent.")
+@click.option("-o", "--output", help="Sweep file, HDF5 (default: <case name>_sweep_<point>.h5); the CSV goes next to it.")
+@click.option("--jobs", type=int, help="Worker processes solving grids side by side (default: all cores).")
+@click.pass_context
+def sweep(
+    ctx: click.Context,
+    case_file: str,
+    grids: str,
+    point: str | None,
+    thermal: str | None,
+    tolerance: float,
+    output: str | None,
+    jobs: int | None,
+) -> None:
+    """Solve one point of CASE on a sequence of grids and print its mesh-independence table (change per
+    grid, observed order, Richardson extrapolation with its GCI uncertainty); writes HDF5 (/sweep) and CSV."""
+    case = load_case(case_file)
+    grid_list = parse_grids(grids, case)
+    check_tolerance(tolerance)
+    workers = worker_count(jobs)
+    model = case.solver.thermal if thermal is None else with_thermal(case, thermal).solver.thermal
+    points = contact_analysis(case).points
+    name = points[0].name if point is None else select_points(points, [point], key="--point")[0].name
+    target = _writable("--output", Path(output if output is not None else f"{case.name}_sweep_{name}.h5"))
+    if target.suffix.lower() == ".csv":
+        raise CaseError("--output", str(target), "an HDF5 file name (the CSV is written next to it)")
+    click.echo(
+        f"tehl sweep: {case.name}: {name} on grids {','.join(map(str, grid_list))}, thermal {model}"
+        + (f", {min(workers, len(grid_list))} worker processes" if workers > 1 else ""),
+        err=True,
+    )
+    swept = run_sweep(case, grid_list, point=name, thermal=thermal, tolerance=tolerance, jobs=workers,
+                      progress=_report_progress)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    write_result(swept.run, target)
+    result = read_result(target)
+    for warning in result.warnings:
+        click.echo(f"warning: {warning}", err=True)
+    csv = write_csv(result.sweep, target.with_suffix(".csv"))
+    click.echo("\n\n".join(format_table(headers, rows) for headers, rows in report_tables(result.sweep)))
+    click.echo("\n".join(["", *summary_lines(result.sweep, result.sweep_scalars)]))
+    click.echo(f"result: {target}, {csv} (status {result.status})")
+    _exit_on_status(ctx, result)
 
 
 @tehl.command()
@@ -262,6 +328,12 @@ def _output_path(case_file: Path, case: Case, option: str | None) -> Path:
         key, target = "output.file", case_file.parent / case.output.file
     else:
         key, target = "name", Path(f"{case.name}.h5")
+    return _writable(key, target)
+
+
+def _writable(key: str, target: Path) -> Path:
+    """`target`, checked before solving (CaseError under `key`): not a directory, and its nearest existing
+    folder is writable."""
     if target.is_dir():
         raise CaseError(key, str(target), "a file path, not a directory")
     folder = target.absolute().parent

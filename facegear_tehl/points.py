@@ -46,13 +46,13 @@ def contact_analysis(case: Case) -> ContactAnalysis:
     return ContactAnalysis(points=(point,))
 
 
-def select_points(available: Sequence[ContactPoint], names: Sequence[str]) -> list[ContactPoint]:
-    """The points named in `names`, in the case's order; CaseError (key `--points`) for an unknown name
-    or an empty selection."""
+def select_points(available: Sequence[ContactPoint], names: Sequence[str], key: str = "--points") -> list[ContactPoint]:
+    """The points named in `names`, in the case's order; CaseError (under `key`) for an unknown name or an
+    empty selection."""
     known = [p.name for p in available]
     for name in names:
         if name not in known:
-            raise CaseError("--points", name, "point names among: " + ", ".join(known))
+            raise CaseError(key, name, "point names among: " + ", ".join(known))
     if not names:
-        raise CaseError("--points", "", "at least one point name among: " + ", ".join(known))
+        raise CaseError(key, "", "at least one point name among: " + ", ".join(known))
     return [p for p in available if p.name in names]

@@ -11,10 +11,15 @@ Layout (format 1.x, ARCHITECTURE.md):
     /contact/           gear contact analysis, written if given: one dataset per path column (kind
                         'table'); attrs: scalar geometry (SI) and its units (JSON)
     /heat/              table over points, written if given
+    /sweep/             grid-convergence table of `tehl sweep` (sweep.py), written if given: one dataset
+                        per column (kind 'table'), one row per grid; its derived columns hold NaN where a
+                        value is not defined (e.g. the order on the two coarsest grids), never Inf;
+                        attrs: scalars and their units (JSON)
 
 Every dataset carries `units`, `description` and `kind` attributes. Files are written to a temporary
 file in the target directory and renamed onto the target only when complete, so a crash or an
-interruption leaves the previous file (or no file), never a partial one. NaN and Inf are refused.
+interruption leaves the previous file (or no file), never a partial one. NaN and Inf are refused
+(except the NaN that marks an undefined entry of the sweep table).
 """
 
 from __future__ import annotations
@@ -58,6 +63,7 @@ class RunResult:
     failed: names of the points whose solve raised an error.
     contact: path table (gear cases), name -> column; contact_scalars: name -> (value, units).
     heat: table over points, name -> column.
+    sweep: grid-convergence table (one row per grid), name -> column; sweep_scalars: name -> (value, units).
     warnings: remarks on the run that are not failures (e.g. from the contact analysis).
     overrides: command-line options that changed the case (e.g. grid, points).
     """
@@ -68,6 +74,8 @@ class RunResult:
     contact: Mapping[str, Field] = field(default_factory=dict)
     contact_scalars: Mapping[str, tuple[float, str]] = field(default_factory=dict)
     heat: Mapping[str, Field] = field(default_factory=dict)
+    sweep: Mapping[str, Field] = field(default_factory=dict)
+    sweep_scalars: Mapping[str, tuple[float, str]] = field(default_factory=dict)
     warnings: tuple[str, ...] = ()
     overrides: Mapping[str, Any] = field(default_factory=dict)
 
@@ -128,6 +136,9 @@ class Result:
     contact_scalars: Mapping[str, float | int]
     contact_units: Mapping[str, str]
     heat: Mapping[str, Field]
+    sweep: Mapping[str, Field] = field(default_factory=dict)
+    sweep_scalars: Mapping[str, float | int] = field(default_factory=dict)
+    sweep_units: Mapping[str, str] = field(default_factory=dict)
 
 
 # ----------------------------------------------------------------------------------------- writing
@@ -146,6 +157,7 @@ def write_result(run: RunResult, path: str | Path) -> Path:
                 _write_point(points, solution)
             _write_table(h5, "contact", run.contact, run.contact_scalars)
             _write_table(h5, "heat", run.heat, {})
+            _write_table(h5, "sweep", run.sweep, run.sweep_scalars)
             h5.flush()
         _fsync(temporary)
         os.replace(temporary, target)
@@ -226,9 +238,10 @@ def _check_run(run: RunResult) -> None:
     for solution in run.points:
         _check_point(solution)
     _check_scalars("/contact", run.contact_scalars)
-    for table_name, table in (("contact", run.contact), ("heat", run.heat)):
+    _check_scalars("/sweep", run.sweep_scalars)
+    for table_name, table in (("contact", run.contact), ("heat", run.heat), ("sweep", run.sweep)):
         for name, column in table.items():
-            _check_column(f"/{table_name}/{name}", name, column)
+            _check_column(f"/{table_name}/{name}", name, column, allow_nan=table_name == "sweep")
 
 
 def _check_point(solution: PointSolution) -> None:
@@ -265,7 +278,7 @@ def _check_scalars(where: str, scalars: Mapping[str, tuple[float, str]]) -> None
             raise NonFiniteError(f"{where}.{key} = {value}: refusing to write a non-finite scalar")
 
 
-def _check_column(where: str, name: str, column: Field) -> None:
+def _check_column(where: str, name: str, column: Field, allow_nan: bool = False) -> None:
     if not name or "/" in name:
         raise ValueError(f"{where}: expected a non-empty dataset name without '/'")
     if not isinstance(column.units, str):
@@ -275,7 +288,7 @@ def _check_column(where: str, name: str, column: Field) -> None:
         return
     if values.dtype.kind not in "biuf":
         raise ValueError(f"{where}: dtype {values.dtype} is not numeric or text")
-    bad = ~np.isfinite(values)
+    bad = np.isinf(values) if allow_nan else ~np.isfinite(values)
     if bad.any():
         raise NonFiniteError(
             f"{where}: refusing to write {int(np.isnan(values).sum())} NaN and {int(np.isinf(values).sum())} Inf values"
@@ -305,6 +318,8 @@ def read_result(path: str | Path) -> Result:
                 raise ValueError(f"status {status!r}, expected one of {', '.join(STATUSES)}")
             contact = h5.get("contact")
             contact_scalars, contact_units = _read_scalars(contact) if contact is not None else ({}, {})
+            sweep = h5.get("sweep")
+            sweep_scalars, sweep_units = _read_scalars(sweep) if sweep is not None else ({}, {})
             return Result(
                 path=path,
                 format_version=version,
@@ -322,6 +337,9 @@ def read_result(path: str | Path) -> Result:
                 contact_scalars=contact_scalars,
                 contact_units=contact_units,
                 heat=_read_table(h5.get("heat")),
+                sweep=_read_table(sweep),
+                sweep_scalars=sweep_scalars,
+                sweep_units=sweep_units,
             )
         except (KeyError, ValueError, TypeError) as exc:
             raise ResultFileError(f"{path}: damaged tehl result ({_reason(exc)})") from None

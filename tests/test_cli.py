@@ -126,6 +126,7 @@ def test_bad_case_exits_2_in_a_subprocess(tmp_path, kind):
         (["--grid", "100"], "--grid", "2^n + 1"),
         (["--grid", "9"], "--grid", "at least solver.coarsest_grid"),
         (["-o", "."], "--output", "not a directory"),
+        (["--jobs", "0"], "--jobs", ">= 1"),
     ],
 )
 def test_bad_options_exit_2(tmp_path, monkeypatch, options, key, expected):
@@ -236,7 +237,7 @@ def test_validate_a_face_gear_case():
 
 
 def test_face_gear_run_writes_points_and_the_contact_path(tmp_path, fake_solver):
-    result = _invoke("run", FACE_GEAR, "--points", "S3,S1", "-o", tmp_path / "g.h5")
+    result = _invoke("run", FACE_GEAR, "--points", "S3,S1", "-o", tmp_path / "g.h5", "--jobs", "1")
     assert result.exit_code == 0, result.output
     assert [call[0].name for call in fake_solver.calls] == ["S1", "S3"]  # in the order of the path
     assert "[2/2] S3: converged" in result.stderr

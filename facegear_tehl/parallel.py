@@ -1,0 +1,152 @@
+"""Independent EHL solves (the points of a case, the grids of a sweep) over worker processes.
+
+`solve_each` yields the solves in completion order, each with its index in the task list, so callers can
+show progress as solves finish and still store the results in their own order. A solve that raises is
+returned as a failed `PointSolution` (converged = False, the error as its message, no data); the other
+tasks still run. With one job, or one task, everything runs in this process (no pool).
+
+Workers are forked on Linux: they inherit the imported modules and the Numba kernels, which this process
+compiles (or loads from Numba's on-disk cache) first by solving the first task on its coarsest grid, so
+that no worker compiles and each solve's wall time is the solve alone. The solver starts no threads (no
+Numba `parallel`, single-threaded `scipy.fft`) and the workers open no HDF5 file, so forking is safe.
+Elsewhere workers are spawned and load the kernels from the on-disk cache (`cache=True`; its files are
+written by rename, so workers compiling at the same time do not corrupt it). Each solve is the same deterministic
+computation in whichever process it runs, so the results are bit-identical to a serial run.
+"""
+
+from __future__ import annotations
+
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from dataclasses import dataclass, replace
+import multiprocessing
+import os
+import signal
+import sys
+from typing import Callable, Iterator, Sequence
+
+from facegear_tehl.case import SolverSettings
+from facegear_tehl.contact import ContactPoint
+from facegear_tehl.lubricant import Lubricant
+from facegear_tehl.schema import check
+from facegear_tehl.solution import PointSolution
+
+Solver = Callable[[ContactPoint, Lubricant, SolverSettings], PointSolution]
+"""`ehl.solve.solve_point` or a stand-in with its signature (module-level, so that it can be pickled)."""
+
+
+@dataclass(frozen=True)
+class SolveTask:
+    """One independent solve."""
+
+    point: ContactPoint
+    lubricant: Lubricant
+    settings: SolverSettings
+
+
+@dataclass(frozen=True)
+class Solved:
+    """The outcome of one task: `failed` when the solve raised (the solution then holds only the error)."""
+
+    solution: PointSolution
+    failed: bool
+
+
+def available_cores() -> int:
+    """Cores this process may run on (its CPU affinity where the OS tells, else os.cpu_count())."""
+    if hasattr(os, "sched_getaffinity"):
+        return len(os.sched_getaffinity(0))
+    return os.cpu_count() or 1
+
+
+def worker_count(jobs: int | None, key: str = "--jobs") -> int:
+    """`jobs` checked (CaseError under `key` unless >= 1); None means all available cores."""
+    if jobs is None:
+        return available_cores()
+    check(isinstance(jobs, int) and jobs >= 1, key, jobs, "a number of worker processes >= 1")
+    return jobs
+
+
+def failed_solution(name: str, error: BaseException) -> PointSolution:
+    """The record of a solve that raised `error`: not converged, no data, the error as the message."""
+    return PointSolution(
+        name=name,
+        converged=False,
+        message=f"failed: {type(error).__name__}: {error}",
+        scalars={},
+        fields={},
+        axes={},
+    )
+
+
+def solve_each(tasks: Sequence[SolveTask], *, solve: Solver, jobs: int | None = None) -> Iterator[tuple[int, Solved]]:
+    """Run every task with `solve` on up to `jobs` worker processes (None: all cores); yield (task index,
+    outcome) as each solve finishes. Interrupting the caller (Ctrl-C, SIGTERM, an error in the loop body)
+    stops the workers at once."""
+    workers = min(worker_count(jobs), len(tasks))
+    if workers <= 1:
+        for index, task in enumerate(tasks):
+            yield index, _solve_task(solve, task)
+        return
+    context = _context()
+    if context.get_start_method() == "fork":
+        _warm_up(solve, tasks[0])
+    executor = ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=_init_worker)
+    try:
+        pending: dict[Future, int] = {executor.submit(_solve_task, solve, task): i for i, task in enumerate(tasks)}
+        while pending:
+            finished, _ = wait(pending, return_when=FIRST_COMPLETED)
+            for future in sorted(finished, key=pending.__getitem__):
+                index = pending.pop(future)
+                yield index, _outcome(future, tasks[index])
+    except BaseException:
+        _stop_workers(executor)
+        raise
+    executor.shutdown()
+
+
+def _solve_task(solve: Solver, task: SolveTask) -> Solved:
+    try:
+        return Solved(solve(task.point, task.lubricant, task.settings), failed=False)
+    except Exception as exc:  # one failing solve must not lose the others; the error is recorded
+        return Solved(failed_solution(task.point.name, exc), failed=True)
+
+
+def _warm_up(solve: Solver, task: SolveTask) -> None:
+    """Compile or load the solver's Numba kernels here, before forking: solve `task` on its coarsest grid."""
+    settings = replace(task.settings, grid=task.settings.coarsest_grid)
+    try:
+        solve(task.point, task.lubricant, settings)
+    except Exception:  # the task itself will meet and record the same error
+        pass
+
+
+def _outcome(future: Future, task: SolveTask) -> Solved:
+    """The worker's outcome, or a failed record if the worker could not deliver one (e.g. it was killed)."""
+    error = future.exception()
+    return future.result() if error is None else Solved(failed_solution(task.point.name, error), failed=True)
+
+
+def _context() -> multiprocessing.context.BaseContext:
+    return multiprocessing.get_context("fork" if sys.platform.startswith("linux") else "spawn")
+
+
+def _init_worker() -> None:
+    """Workers leave Ctrl-C to the parent (which stops them) and end on SIGTERM without cleanup handlers
+    inherited from the CLI."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+def _stop_workers(executor: ProcessPoolExecutor) -> None:
+    """Cancel the queued solves and end the running ones now, not when they finish."""
+    terminate = getattr(executor, "terminate_workers", None)  # Python >= 3.14
+    if terminate is not None:
+        terminate()
+        return
+    # Before 3.14 there is no public call for this: end the processes of the executor's table.
+    processes = list((getattr(executor, "_processes", None) or {}).values())
+    executor.shutdown(wait=False, cancel_futures=True)
+    for process in processes:
+        process.terminate()
+    for process in processes:
+        process.join()

@@ -1,0 +1,337 @@
+"""Mesh independence (`tehl sweep`): one contact point solved on a sequence of grids, the change from grid
+to grid, the observed order of convergence and a Richardson-extrapolated value with its uncertainty.
+
+The grids refine by 2 (n = 33, 65, 129, ...: node spacing 4h, 2h, h). From the values f_4h, f_2h, f_h of a
+quantity on three consecutive grids:
+
+    relative change      c   = (f_h - f_2h) / |f_h|
+    observed order       p   = log2(|f_2h - f_4h| / |f_h - f_2h|)
+    extrapolated value   f*  = f_h + (f_h - f_2h) / (2^p - 1)                      (Richardson)
+    uncertainty          U   = F_s |f_h - f_2h| / (2^p - 1),  F_s = 1.25
+
+U is Roache's (1994) grid convergence index of the fine grid, in the units of f, with the safety factor
+1.25 of a three-grid study. p is not defined when a difference is zero (f* = f_h, U = 0 when the last
+one is), f* and U not when p <= 0 (the values do not converge). The error of each grid is taken against
+f* of the three finest grids: e = (f - f*)/|f*|. A quantity is converged to a tolerance from the first
+grid whose change to the next grid, and every later change, is below it.
+
+Grids are independent solves (each with its own full-multigrid start); they run on worker processes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+import math
+import os
+from pathlib import Path
+import secrets
+from typing import Callable, Mapping, Sequence
+
+import numpy as np
+
+from facegear_tehl.case import THERMAL_MODELS, Case
+from facegear_tehl.parallel import SolveTask, solve_each
+from facegear_tehl.points import contact_analysis, select_points
+from facegear_tehl.results import RunResult
+from facegear_tehl.schema import CaseError, check
+from facegear_tehl.solution import Field, PointSolution
+
+SAFETY_FACTOR = 1.25  # Roache (1994), grid convergence index of a three-grid study
+QUANTITIES = ("p_max", "h_c", "h_min", "dT_max", "mu")
+"""Point scalars the sweep tabulates, when the solver gives them (dT_max and mu: thermal solver)."""
+# Display of a quantity: (units shown, factor from SI, decimals of its value).
+_DISPLAY = {"m": ("µm", 1e6, 4), "Pa": ("MPa", 1e-6, 1), "K": ("K", 1.0, 2), "1": ("-", 1.0, 5)}
+
+Progress = Callable[[PointSolution, int, int], None]
+"""Called as each grid finishes with (solution, grids done, grids in the sweep)."""
+
+
+@dataclass(frozen=True)
+class Convergence:
+    """One quantity over the grids of a sweep (SI; NaN where a value is not defined, see the module)."""
+
+    name: str
+    units: str
+    grids: tuple[int, ...]
+    values: np.ndarray
+    change: np.ndarray  # relative change from the previous grid; NaN on the first
+    order: np.ndarray  # observed order from this grid and the two coarser ones; NaN on the first two
+    extrapolated: np.ndarray  # Richardson value from the same three grids
+    uncertainty: np.ndarray  # its GCI uncertainty, units of the quantity
+    error: np.ndarray  # relative error against the extrapolated value of the three finest grids
+    converged_grid: int | None  # first grid from which every change to the next grid is below the tolerance
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """A finished sweep: `run` holds the point solved on every grid (named <point>@<grid>) and the /sweep
+    table, ready for `results.write_result`."""
+
+    point: str
+    grids: tuple[int, ...]
+    tolerance: float
+    quantities: tuple[Convergence, ...]
+    run: RunResult
+
+
+def convergence(name: str, units: str, grids: Sequence[int], values: Sequence[float], tolerance: float) -> Convergence:
+    """The convergence table of one quantity over grids that refine by 2 (see the module for the formulas)."""
+    f = np.asarray(values, dtype=float)
+    n = len(f)
+    change, order, extrapolated, uncertainty = (np.full(n, math.nan) for _ in range(4))
+    change[1:] = np.diff(f) / np.abs(f[1:])
+    for i in range(2, n):
+        coarse, fine = f[i - 1] - f[i - 2], f[i] - f[i - 1]
+        if fine == 0.0:
+            extrapolated[i], uncertainty[i] = f[i], 0.0
+            continue
+        if coarse == 0.0:
+            continue
+        order[i] = math.log2(abs(coarse) / abs(fine))
+        if order[i] > 0.0:
+            extrapolated[i] = f[i] + fine / (2.0 ** order[i] - 1.0)
+            uncertainty[i] = SAFETY_FACTOR * abs(fine) / (2.0 ** order[i] - 1.0)
+    error = (f - extrapolated[-1]) / abs(extrapolated[-1])
+    converged_grid = None
+    for i in range(n - 2, -1, -1):
+        if not abs(change[i + 1]) < tolerance:
+            break
+        converged_grid = int(grids[i])
+    return Convergence(name, units, tuple(int(g) for g in grids), f, change, order, extrapolated, uncertainty, error,
+                       converged_grid)
+
+
+def time_to_reach(times: Sequence[float], errors: Sequence[float], target: float) -> float:
+    """Wall time at which |error| falls to `target` and stays below it on every finer grid, interpolated
+    linearly in log(time) against log(|error|) between the two grids around the crossing; the coarsest
+    grid's time if it is already below; NaN if never reached (or the errors are not defined)."""
+    magnitude = np.abs(np.asarray(errors, dtype=float))
+    if not np.isfinite(magnitude).all():
+        return math.nan
+    below = magnitude <= target
+    if not below[-1]:
+        return math.nan
+    first = len(below) - int(np.argmin(below[::-1])) if not below.all() else 0
+    if first == 0:
+        return float(times[0])
+    e0, e1 = magnitude[first - 1], magnitude[first]
+    t0, t1 = times[first - 1], times[first]
+    if e1 == 0.0:
+        return float(t1)
+    weight = math.log(e0 / target) / math.log(e0 / e1)
+    return math.exp(math.log(t0) + weight * (math.log(t1) - math.log(t0)))
+
+
+def parse_grids(text: str, case: Case) -> tuple[int, ...]:
+    """'33,65,129' -> (33, 65, 129), checked by `check_grids`; CaseError under the key --grids."""
+    try:
+        grids = [int(item) for item in text.split(",")]
+    except ValueError:
+        raise CaseError("--grids", text, "comma-separated nodes per side, e.g. 33,65,129,257") from None
+    return check_grids(grids, case)
+
+
+def check_grids(grids: Sequence[int], case: Case) -> tuple[int, ...]:
+    """At least three grids of 2^n + 1 nodes (each validated like solver.grid), ascending, each refining
+    the previous by 2; CaseError under the key --grids otherwise."""
+    key = "--grids"
+    for grid in grids:
+        try:
+            case.with_grid(grid)
+        except CaseError as exc:
+            raise CaseError(key, grid, exc.expected) from None
+    shown = ",".join(str(grid) for grid in grids)
+    check(len(grids) >= 3, key, shown, "at least three grids (the observed order needs three)")
+    check(all(b - 1 == 2 * (a - 1) for a, b in zip(grids, grids[1:])), key, shown,
+          "ascending grids, each refining the previous by 2 (n - 1 doubles), e.g. 33,65,129")
+    return tuple(int(grid) for grid in grids)
+
+
+def check_tolerance(tolerance: float) -> None:
+    """CaseError under --tol unless 0 < tolerance < 1."""
+    check(0.0 < tolerance < 1.0, "--tol", tolerance, "a relative tolerance in (0, 1), e.g. 0.01")
+
+
+def with_thermal(case: Case, thermal: str) -> Case:
+    """The case with solver.thermal replaced (CaseError under --thermal for an unknown model)."""
+    check(thermal in THERMAL_MODELS, "--thermal", thermal, "one of " + ", ".join(THERMAL_MODELS))
+    return replace(case, solver=replace(case.solver, thermal=thermal))
+
+
+def run_sweep(
+    case: Case,
+    grids: Sequence[int],
+    *,
+    point: str | None = None,
+    thermal: str | None = None,
+    tolerance: float = 0.01,
+    jobs: int | None = None,
+    progress: Progress | None = None,
+) -> Sweep:
+    """Solve `point` (default: the case's first) of `case` on every grid of `grids` (see `check_grids`),
+    on up to `jobs` worker processes (None: all cores), the finest grid first; `thermal` overrides
+    solver.thermal. Bad input raises CaseError before any solve."""
+    grids = check_grids(grids, case)
+    check_tolerance(tolerance)
+    if thermal is not None:
+        case = with_thermal(case, thermal)
+    analysis = contact_analysis(case)
+    target = analysis.points[0] if point is None else select_points(analysis.points, [point], key="--point")[0]
+    # The finest grid, the longest solve, starts first so that the others fill the remaining workers.
+    finest_first = sorted(range(len(grids)), key=lambda i: -grids[i])
+    tasks = [
+        SolveTask(replace(target, name=f"{target.name}@{grids[i]}"), case.lubricant, case.with_grid(grids[i]).solver)
+        for i in finest_first
+    ]
+    # Imported here: the solver (Numba kernels) is only needed once the input is checked.
+    from facegear_tehl.ehl.solve import solve_point
+
+    solutions: list[PointSolution | None] = [None] * len(grids)
+    failed: set[int] = set()
+    for done, (task_index, outcome) in enumerate(solve_each(tasks, solve=solve_point, jobs=jobs), start=1):
+        index = finest_first[task_index]
+        solutions[index] = outcome.solution
+        if outcome.failed:
+            failed.add(index)
+        if progress is not None:
+            progress(outcome.solution, done, len(grids))
+    quantities = _quantities(grids, solutions, tolerance)
+    overrides: dict[str, object] = {"point": target.name, "grids": list(grids)}
+    if thermal is not None:
+        overrides["thermal"] = thermal
+    run = RunResult(
+        case=case,
+        points=tuple(solutions),
+        failed=tuple(solutions[i].name for i in sorted(failed)),
+        contact=analysis.path,
+        contact_scalars=analysis.scalars,
+        sweep=sweep_table(grids, solutions, quantities),
+        sweep_scalars=_sweep_scalars(tolerance, quantities),
+        warnings=analysis.warnings + _model_warnings(case, solutions),
+        overrides=overrides,
+    )
+    return Sweep(point=target.name, grids=grids, tolerance=tolerance, quantities=quantities, run=run)
+
+
+def _quantities(grids: Sequence[int], solutions: Sequence[PointSolution], tolerance: float) -> tuple[Convergence, ...]:
+    """Every quantity of QUANTITIES that all grids give, non-zero (a relative change needs it)."""
+    table = []
+    for name in QUANTITIES:
+        if all(name in s.scalars and s.scalar(name) != 0.0 for s in solutions):
+            units = solutions[0].scalars[name][1]
+            table.append(convergence(name, units, grids, [s.scalar(name) for s in solutions], tolerance))
+    return tuple(table)
+
+
+def _model_warnings(case: Case, solutions: Sequence[PointSolution]) -> tuple[str, ...]:
+    """A remark for each grid whose solver used another thermal model than the case asks for."""
+    wanted = case.solver.thermal
+    return tuple(
+        f"{s.name}: thermal model {wanted!r} asked for, the solver used {s.models['thermal']!r}"
+        for s in solutions
+        if "thermal" in s.models and not str(s.models["thermal"]).startswith(wanted)
+    )
+
+
+def sweep_table(
+    grids: Sequence[int], solutions: Sequence[PointSolution], quantities: Sequence[Convergence]
+) -> dict[str, Field]:
+    """The /sweep table (SI), one row per grid: the solve's convergence and cost, then for each quantity its
+    value, change, order, extrapolated value, uncertainty and error (NaN where not defined)."""
+
+    def scalar(key: str) -> np.ndarray:
+        return np.array([s.scalar(key) if key in s.scalars else math.nan for s in solutions])
+
+    table = {
+        "grid": Field(np.array(grids, dtype=float), "1", "nodes per side of the grid"),
+        "converged": Field(np.array([float(s.converged) for s in solutions]), "1", "1: the solve met its tolerances"),
+        "iterations": Field(scalar("iterations"), "1", "V-cycles on the finest grid"),
+        "work_units": Field(scalar("work_units"), "1", "work units of the solve"),
+        "wall_time": Field(scalar("wall_time"), "s", "wall time of the solve"),
+    }
+    for q in quantities:
+        table[q.name] = Field(q.values, q.units, f"{q.name} on this grid")
+        table[f"{q.name}_change"] = Field(q.change, "1", "relative change from the previous grid, (f_h - f_2h)/|f_h|")
+        table[f"{q.name}_order"] = Field(q.order, "1", "observed order, log2(|f_2h - f_4h| / |f_h - f_2h|)")
+        table[f"{q.name}_extrapolated"] = Field(q.extrapolated, q.units,
+                                                "Richardson value f_h + (f_h - f_2h)/(2^p - 1)")
+        table[f"{q.name}_uncertainty"] = Field(q.uncertainty, q.units,
+                                               f"GCI (Roache 1994), {SAFETY_FACTOR} |f_h - f_2h|/(2^p - 1)")
+        table[f"{q.name}_error"] = Field(q.error, "1", "relative error against the extrapolated value of the "
+                                                       "three finest grids")
+    return table
+
+
+def _sweep_scalars(tolerance: float, quantities: Sequence[Convergence]) -> dict[str, tuple[float, str]]:
+    scalars = {"tolerance": (tolerance, "1"), "safety_factor": (SAFETY_FACTOR, "1")}
+    for q in quantities:
+        if q.converged_grid is not None:
+            scalars[f"{q.name}_converged_grid"] = (float(q.converged_grid), "1")
+    return scalars
+
+
+def write_csv(table: Mapping[str, Field], path: str | Path) -> Path:
+    """The table as CSV (header `name [units]`, SI, an empty cell where a value is not defined), written
+    to a temporary file and renamed onto `path`."""
+    target = Path(path)
+    names = list(table)
+    lines = [",".join(f"{name} [{table[name].units}]" for name in names)]
+    for row in zip(*(np.asarray(table[name].values, dtype=float) for name in names)):
+        lines.append(",".join("" if math.isnan(v) else f"{v:.10g}" for v in row))
+    temporary = target.with_name(f".{target.name}.{secrets.token_hex(6)}.tmp")
+    try:
+        temporary.write_text("\n".join(lines) + "\n", encoding="utf-8")
+        os.replace(temporary, target)
+    except BaseException:
+        temporary.unlink(missing_ok=True)
+        raise
+    return target
+
+
+def report_tables(table: Mapping[str, Field]) -> list[tuple[list[str], list[list[str]]]]:
+    """(headers, rows) of the printed report of a /sweep table: the cost of each grid, then each
+    quantity's convergence, in display units."""
+    grids = [f"{g:.0f}" for g in table["grid"].values]
+    cost = [("cycles", "iterations", ".0f"), ("work units", "work_units", ".1f"), ("wall time s", "wall_time", ".2f")]
+    cost_rows = [
+        [grid, "yes" if table["converged"].values[i] else "no", *(_cell(table[key].values[i], fmt) for _, key, fmt in cost)]
+        for i, grid in enumerate(grids)
+    ]
+    tables = [(["grid", "converged", *(header for header, *_ in cost)], cost_rows)]
+    for name in tabulated(table):
+        units, factor, digits = _DISPLAY.get(table[name].units, (table[name].units, 1.0, 4))
+        columns = [(name, factor, f".{digits}f"), (f"{name}_change", 100.0, "+.2f"), (f"{name}_order", 1.0, ".2f"),
+                   (f"{name}_extrapolated", factor, f".{digits + 1}f"),
+                   (f"{name}_uncertainty", factor, f".{digits + 1}f"), (f"{name}_error", 100.0, "+.2f")]
+        rows = [[grid, *(_cell(table[key].values[i] * scale, fmt) for key, scale, fmt in columns)]
+                for i, grid in enumerate(grids)]
+        tables.append(([f"{name} [{units}]", "value", "change %", "order", "extrapolated", "± GCI", "error %"], rows))
+    return tables
+
+
+def summary_lines(table: Mapping[str, Field], scalars: Mapping[str, float]) -> list[str]:
+    """Per quantity of a /sweep table: the first grid within the tolerance, and the extrapolated value of
+    the three finest grids."""
+    tolerance = 100.0 * scalars["tolerance"]
+    lines = []
+    for name in tabulated(table):
+        units, factor, digits = _DISPLAY.get(table[name].units, (table[name].units, 1.0, 4))
+        grid = scalars.get(f"{name}_converged_grid")
+        within = f"within {tolerance:g} % from grid {grid:.0f} on" if grid else f"not within {tolerance:g} %"
+        best, spread = table[f"{name}_extrapolated"].values[-1], table[f"{name}_uncertainty"].values[-1]
+        if math.isnan(best):
+            extrapolated = "no extrapolated value (the three finest grids do not converge)"
+        else:
+            extrapolated = (f"extrapolated {best * factor:.{digits + 1}f} ± {spread * factor:.{digits + 1}f} {units} "
+                            f"(order {_cell(table[f'{name}_order'].values[-1], '.2f') or 'not defined'})")
+        lines.append(f"{name}: {within}; {extrapolated}")
+    return lines
+
+
+def tabulated(table: Mapping[str, Field]) -> list[str]:
+    """The quantities a /sweep table holds, in its order."""
+    return [name for name in table if f"{name}_order" in table]
+
+
+def _cell(value: float, fmt: str) -> str:
+    return "" if math.isnan(value) else f"{value:{fmt}}"

@@ -1,0 +1,154 @@
+"""Points solved on worker processes: identical to a serial run, failures recorded per point, progress in
+completion order with results in the case's order, bad --jobs, and an interrupted parallel run stops its
+workers at once."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+from click.testing import CliRunner
+import h5py
+import numpy as np
+import pytest
+
+from facegear_tehl.case import load_case
+from facegear_tehl.cli import tehl
+from facegear_tehl.parallel import available_cores, worker_count
+from facegear_tehl.run import run_case
+from facegear_tehl.schema import CaseError
+
+import synthetic
+
+FACE_GEAR = synthetic.CASES / "facegear_110.yaml"
+# Attributes and datasets that measure time, not the solution: the only ones allowed to differ.
+TIMING = {"wall_time", "created"}
+
+
+def assert_same_file(first: Path, second: Path) -> None:
+    """Every dataset of two result files equal (np.array_equal), and every attribute but the timings."""
+    with h5py.File(first, "r") as a, h5py.File(second, "r") as b:
+        names_a, names_b = [], []
+        a.visit(names_a.append)
+        b.visit(names_b.append)
+        assert names_a == names_b
+        for name in ["/", *names_a]:
+            attrs_a, attrs_b = dict(a[name].attrs), dict(b[name].attrs)
+            assert sorted(attrs_a) == sorted(attrs_b), name
+            for key in attrs_a:
+                if key not in TIMING:
+                    assert np.array_equal(attrs_a[key], attrs_b[key]), f"{name}.{key}"
+            if isinstance(a[name], h5py.Dataset) and name.rsplit("/", 1)[-1] not in TIMING:
+                assert np.array_equal(a[name][()], b[name][()], equal_nan=a[name].dtype.kind == "f"), name
+
+
+def test_jobs_2_gives_the_same_file_as_jobs_1(tmp_path):
+    files = []
+    for jobs in ("1", "2"):
+        target = tmp_path / f"jobs{jobs}.h5"
+        result = CliRunner().invoke(tehl, ["run", str(FACE_GEAR), "--grid", "33", "--points", "S1,S3,S5",
+                                           "--jobs", jobs, "-o", str(target)])
+        assert result.exit_code in (0, 3), result.output
+        files.append(target)
+    assert "2 worker processes" in result.stderr
+    assert_same_file(*files)
+
+
+def _slow_first(point, lubricant, settings):
+    """S1 takes longest (on its full grid; the coarsest-grid warm-up is quick)."""
+    if point.name == "S1" and settings.grid > settings.coarsest_grid:
+        time.sleep(0.5)
+    return synthetic.solution(point)
+
+
+def _fail_at_s2(point, lubricant, settings):
+    if point.name == "S2":
+        raise FloatingPointError("overflow in the elastic deflection")
+    return synthetic.solution(point)
+
+
+def test_progress_in_completion_order_results_in_case_order(monkeypatch):
+    monkeypatch.setattr("facegear_tehl.run.solve_point", _slow_first)
+    seen = []
+    run = run_case(load_case(FACE_GEAR), jobs=2, progress=lambda s, done, total: seen.append((s.name, done, total)))
+    assert [p.name for p in run.points] == ["S1", "S2", "S3", "S4", "S5"]
+    assert seen[-1] == ("S1", 5, 5)  # finished last, on its own worker
+    assert [done for _, done, _ in seen] == [1, 2, 3, 4, 5]
+    assert run.status == "ok"
+
+
+def test_a_failing_point_is_recorded_and_the_others_still_run(monkeypatch):
+    monkeypatch.setattr("facegear_tehl.run.solve_point", _fail_at_s2)
+    run = run_case(load_case(FACE_GEAR), jobs=2)
+    assert run.failed == ("S2",) and run.status == "failed"
+    by_name = {p.name: p for p in run.points}
+    assert by_name["S2"].message == "failed: FloatingPointError: overflow in the elastic deflection"
+    assert not by_name["S2"].converged and not by_name["S2"].fields
+    assert all(by_name[name].converged and by_name[name].fields for name in ("S1", "S3", "S4", "S5"))
+    assert "path_coordinate" in by_name["S2"].scalars  # like every point of a gear case
+
+
+def test_one_job_runs_in_this_process(monkeypatch):
+    calls = []
+
+    def recording(point, lubricant, settings):
+        calls.append(os.getpid())
+        return synthetic.solution(point)
+
+    monkeypatch.setattr("facegear_tehl.run.solve_point", recording)  # a closure: a pool could not pickle it
+    run = run_case(load_case(FACE_GEAR), jobs=1, points=["S1", "S2"])
+    assert calls == [os.getpid()] * 2 and run.status == "ok"
+
+
+def test_worker_count():
+    assert worker_count(None) == available_cores() >= 1
+    assert worker_count(3) == 3
+    for bad in (0, -2):
+        with pytest.raises(CaseError, match="--jobs"):
+            worker_count(bad)
+
+
+_STALLING_RUN = textwrap.dedent(
+    """
+    import os, sys, time
+    sys.path.insert(0, {tests!r})
+    import synthetic
+    from facegear_tehl import cli, run
+    def stall(point, lubricant, settings):
+        if settings.grid > settings.coarsest_grid:
+            with open(os.path.join({folder!r}, f"worker-{{os.getpid()}}"), "w"):
+                pass
+            time.sleep(60)
+        return synthetic.solution(point)
+    run.solve_point = stall
+    cli.main(sys.argv[1:])
+    """
+)
+
+
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
+def test_interrupted_parallel_run_stops_its_workers(tmp_path, signum):
+    script = _STALLING_RUN.format(tests=str(Path(__file__).parent), folder=str(tmp_path))
+    command = [sys.executable, "-c", script, "run", str(FACE_GEAR), "--jobs", "2", "-o", str(tmp_path / "r.h5")]
+    with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) as process:
+        deadline = time.monotonic() + 60
+        while len(list(tmp_path.glob("worker-*"))) < 2:
+            assert time.monotonic() < deadline and process.poll() is None, process.stderr.read()
+            time.sleep(0.05)
+        started = time.monotonic()
+        process.send_signal(signum)
+        code = process.wait(timeout=30)
+        assert time.monotonic() - started < 10  # not after the 60 s solves
+        stderr = process.stderr.read()
+    assert code == (128 + signum if signum == signal.SIGTERM else 1), stderr
+    assert "Traceback" not in stderr
+    assert not (tmp_path / "r.h5").exists()
+    for marker in tmp_path.glob("worker-*"):
+        pid = int(marker.name.split("-")[1])
+        with pytest.raises(ProcessLookupError):
+            os.kill(pid, 0)
