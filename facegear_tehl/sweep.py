@@ -224,12 +224,16 @@ def _quantities(grids: Sequence[int], solutions: Sequence[PointSolution], tolera
 
 
 def _model_warnings(case: Case, solutions: Sequence[PointSolution]) -> tuple[str, ...]:
-    """A remark for each grid whose solver used another thermal model than the case asks for."""
+    """A remark for each grid whose solver used another thermal model than the case asks for (`auto` picks
+    one per solve: a remark when the grids did not all get the same)."""
     wanted = case.solver.thermal
+    used = [str(s.models["thermal"]) for s in solutions if "thermal" in s.models]
+    if wanted == "auto":
+        return () if len(set(used)) <= 1 else (f"thermal model auto chose differently per grid: {', '.join(used)}",)
     return tuple(
         f"{s.name}: thermal model {wanted!r} asked for, the solver used {s.models['thermal']!r}"
         for s in solutions
-        if "thermal" in s.models and not str(s.models["thermal"]).startswith(wanted)
+        if "thermal" in s.models and s.models["thermal"] != wanted
     )
 
 

@@ -204,6 +204,15 @@ def test_sweep_jobs_2_gives_the_same_file_as_jobs_1(tmp_path):
     assert_same_file(tmp_path / "jobs1.h5", tmp_path / "jobs2.h5")
 
 
+def test_a_thermal_model_the_solver_did_not_run_is_reported(monkeypatch):
+    monkeypatch.setattr("facegear_tehl.ehl.solve.solve_point", lambda point, lub, settings: synthetic.solution(point))
+    sweep = run_sweep(synthetic.ball_on_disc(), (17, 33, 65), thermal="full", jobs=1)
+    assert sweep.run.warnings == tuple(f"contact@{n}: thermal model 'full' asked for, the solver used 'off'"
+                                       for n in (17, 33, 65))
+    assert sweep.run.case.solver.thermal == "full" and sweep.run.overrides["thermal"] == "full"
+    assert run_sweep(synthetic.ball_on_disc(), (17, 33, 65), thermal="off", jobs=1).run.warnings == ()
+
+
 # ------------------------------------------------------------------------------- grid convergence (CI)
 
 def _assert_converges(table, names, first, last):
