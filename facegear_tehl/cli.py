@@ -197,6 +197,33 @@ def info(result_file: str, as_json: bool) -> None:
     click.echo(json.dumps(info_json(result), indent=2) if as_json else info_text(result))
 
 
+@tehl.command()
+@click.argument("result_file", metavar="RESULT")
+@click.option("--what", default="all", show_default=True,
+              help="Figure types, comma-separated: all, fields, trends, friction, heat, contact, convergence.")
+@click.option("--point", "points", help="Points whose fields and convergence are drawn, comma-separated; default all.")
+@click.option("-o", "--output", help="Folder for the figures (default: <RESULT name>_plots next to RESULT).")
+@click.option("--format", "fmt", default="png", show_default=True, help="png | pdf | svg.")
+@click.option("--dpi", type=int, default=150, show_default=True, help="Resolution of raster figures.")
+def plot(result_file: str, what: str, points: str | None, output: str | None, fmt: str, dpi: int) -> None:
+    """Draw the figures of a result file (nothing is solved); figure types without data are skipped."""
+    # Imported here: only this command needs matplotlib.
+    from facegear_tehl.plots import figure_types, plot_result
+
+    result = read_result(result_file)
+    source = Path(result_file)
+    folder = Path(output) if output is not None else source.with_name(f"{source.stem}_plots")
+    report = plot_result(result, folder, what=figure_types(what), points=_point_names(points), fmt=fmt, dpi=dpi)
+    for line in report.skipped:
+        click.echo(line)
+    if not report.written:
+        click.echo("no figures written: the file has no data for the figure types asked for")
+        return
+    click.echo(f"wrote {len(report.written)} figure file(s) to {folder}:")
+    for path in report.written:
+        click.echo(f"  {path}")
+
+
 def info_json(result: Result) -> dict[str, Any]:
     """{'case', 'status', 'message', 'format_version', 'points': {name: {scalar: SI value, 'converged',
     'message'}}, 'units': {name: {scalar: unit}}}."""

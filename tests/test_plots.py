@@ -1,0 +1,246 @@
+"""`tehl plot`: every figure type renders from real result files (plain contact, face gear) and from a face
+gear file carrying thermal and heat-budget data, without a matplotlib warning; figure types without data
+are skipped with one line; files from failed or partial runs draw what is there."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+import math
+from pathlib import Path
+import warnings
+
+from click.testing import CliRunner
+import numpy as np
+from PIL import Image
+import pytest
+
+from facegear_tehl.case import Case, load_case
+from facegear_tehl.cli import tehl
+from facegear_tehl.plots import PlotReport, _map, _section, _section_directions, _style, plot_file
+from facegear_tehl.points import contact_analysis
+from facegear_tehl.results import RunResult, read_result, write_result
+from facegear_tehl.run import run_case
+from facegear_tehl.solution import Field, PointSolution
+from facegear_tehl.sweep import run_sweep
+
+import synthetic
+
+FACE_GEAR = synthetic.CASES / "facegear_110.yaml"
+FIELD_FIGURES = ("pressure_contour", "pressure_surface", "film_contour", "film_surface", "profiles")
+CONTACT_FIGURES = ("contact_path", "contact_curvatures", "contact_speeds", "contact_load")
+DPI = 80
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory) -> Path:
+    return tmp_path_factory.mktemp("plots")
+
+
+@pytest.fixture(scope="module")
+def ball_run() -> RunResult:
+    return run_case(load_case(synthetic.BALL_ON_DISC), grid=33, jobs=1)
+
+
+def _face_gear(thermal: str, rheology: str, eyring_stress: float) -> Case:
+    """The shipped face gear case with the thermal model and rheology set here, whatever the file says."""
+    case = load_case(FACE_GEAR)
+    lubricant = replace(case.lubricant, rheology=rheology, eyring_stress=eyring_stress)
+    return replace(case, solver=replace(case.solver, thermal=thermal), lubricant=lubricant)
+
+
+@pytest.fixture(scope="module")
+def gear_run() -> RunResult:
+    """Isothermal Newtonian face gear run at S1, S3, S5."""
+    return run_case(_face_gear("off", "newtonian", math.inf), grid=33, points=["S1", "S3", "S5"], jobs=1)
+
+
+@pytest.fixture(scope="module")
+def ball_file(ball_run, folder) -> Path:
+    return write_result(ball_run, folder / "ball.h5")
+
+
+@pytest.fixture(scope="module")
+def gear_file(gear_run, folder) -> Path:
+    return write_result(gear_run, folder / "gear.h5")
+
+
+@pytest.fixture(scope="module")
+def thermal_file(folder) -> Path:
+    """A thermal Ree-Eyring face gear run (S1, S3), with a heat-budget table added until `tehl run` writes one."""
+    run = run_case(_face_gear("full", "ree_eyring", 1.0e7), grid=33, points=["S1", "S3"], jobs=1)
+    power = np.array([120.0, 0.5])
+    heat = {
+        "point": Field(np.array(["S1", "S3"]), "", "meshing point"),
+        "friction_power_1": Field(0.6 * power, "W", "frictional heat power into the pinion"),
+        "friction_power_2": Field(0.4 * power, "W", "frictional heat power into the face gear"),
+        "steady_state_power_1": Field(0.006 * power, "W", "steady-state heat power, pinion"),
+        "steady_state_power_2": Field(0.004 * power, "W", "steady-state heat power, face gear"),
+        "frictional_heat": Field(1e-4 * power, "J", "total frictional heat of the meshing point"),
+        "oil_film_heat": Field(1e-6 * power, "J", "heat absorbed by the oil film"),
+        "mu_xu": Field(np.array([0.05, 0.004]), "1", "Xu et al. (2007)"),
+    }
+    return write_result(replace(run, heat=heat), folder / "thermal.h5")
+
+
+@pytest.fixture(scope="module")
+def sweep_file(folder) -> Path:
+    swept = run_sweep(load_case(synthetic.BALL_ON_DISC), (17, 33, 65), jobs=1)
+    return write_result(swept.run, folder / "sweep.h5")
+
+
+def _plot(path: Path, out: Path, **options) -> PlotReport:
+    """Plot with every warning turned into an error."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        return plot_file(path, out, dpi=DPI, **options)
+
+
+def _check_images(report: PlotReport, out: Path, stems: list[str]) -> None:
+    """Exactly the expected files, each a valid PNG of sensible size."""
+    assert sorted(p.name for p in report.written) == sorted(f"{stem}.png" for stem in stems)
+    for stem in stems:
+        path = out / f"{stem}.png"
+        assert path.stat().st_size > 10_000, path
+        with Image.open(path) as image:
+            image.verify()
+        with Image.open(path) as image:
+            assert image.format == "PNG" and min(image.size) > 300, (path, image.size)
+
+
+def _skipped(report: PlotReport, what: str) -> list[str]:
+    return [line for line in report.skipped if line.startswith(f"skipped {what}")]
+
+
+def test_plain_contact_draws_fields_and_convergence_and_skips_the_rest(ball_file, tmp_path):
+    report = _plot(ball_file, tmp_path)
+    _check_images(report, tmp_path, [f"contact_{f}" for f in FIELD_FIGURES] + ["convergence"])
+    for what in ("trends", "friction", "heat", "contact", "convergence sweep", "fields temperature"):
+        assert len(_skipped(report, what)) == 1, (what, report.skipped)
+
+
+def test_face_gear_draws_fields_per_point_trends_contact_and_convergence(gear_file, tmp_path):
+    report = _plot(gear_file, tmp_path)
+    fields = [f"{p}_{f}" for p in ("S1", "S3", "S5") for f in FIELD_FIGURES]
+    _check_images(report, tmp_path, fields + ["trends", *CONTACT_FIGURES, "convergence"])
+    assert _skipped(report, "trends ΔT_max") and _skipped(report, "friction") and _skipped(report, "heat")
+
+
+def test_thermal_face_gear_draws_temperature_heat_flux_friction_and_heat(thermal_file, tmp_path):
+    report = _plot(thermal_file, tmp_path, points=["S3"])
+    thermal = ("temperature_mid", "temperature_surface_1", "temperature_surface_2", "heat_flux_1", "heat_flux_2")
+    fields = [f"S3_{f}" for f in FIELD_FIGURES] + [f"S3_{t}_{k}" for t in thermal for k in ("contour", "surface")]
+    heat = ["friction", "heat_power", "heat_oil_film"]
+    _check_images(report, tmp_path, fields + ["trends", *CONTACT_FIGURES, "convergence", *heat])
+    assert report.skipped == ["skipped convergence sweep: no /sweep table in the file (written by tehl sweep)"]
+
+
+def test_sweep_file_draws_error_vs_grid_and_cost(sweep_file, tmp_path):
+    report = _plot(sweep_file, tmp_path, what=["trends", "friction", "convergence"])
+    _check_images(report, tmp_path, ["convergence", "sweep_error"])
+    assert len(_skipped(report, "trends")) == 1 and len(_skipped(report, "friction")) == 1
+
+
+def test_friction_from_the_heat_table_alone(gear_run, tmp_path):
+    heat = {"mu_xu": Field(np.array([0.05, 0.004, 0.04]), "1", "Xu et al. (2007)")}
+    path = write_result(replace(gear_run, heat=heat), tmp_path / "heat.h5")
+    report = _plot(path, tmp_path / "figures", what=["friction", "heat"])
+    _check_images(report, tmp_path / "figures", ["friction"])
+    for what in ("friction mu:", "heat power", "heat energy"):
+        assert len(_skipped(report, what)) == 1, (what, report.skipped)
+
+
+def test_partial_run_draws_what_is_there_and_says_what_is_missing(gear_run, tmp_path):
+    s1, s3, s5 = gear_run.points
+    failed = PointSolution(name="S3", converged=False, message="failed: RuntimeError: diverged", scalars={
+        "path_coordinate": s3.scalars["path_coordinate"]}, fields={}, axes={})
+    stalled = replace(s5, converged=False, message="residual above tolerance after 40 cycles")
+    path = write_result(replace(gear_run, points=(s1, failed, stalled), failed=("S3",)), tmp_path / "partial.h5")
+    assert read_result(path).status == "failed"
+    report = _plot(path, tmp_path / "figures", what=["fields", "trends", "convergence"])
+    fields = [f"{p}_{f}" for p in ("S1", "S5") for f in FIELD_FIGURES]
+    _check_images(report, tmp_path / "figures", fields + ["trends", "convergence"])
+    assert _skipped(report, "fields S3") == [
+        "skipped fields S3: no fields in the file (failed: RuntimeError: diverged)"]
+
+
+def test_a_single_point_with_results_skips_trends(gear_run, tmp_path):
+    s1, s3, s5 = gear_run.points
+    empty = [PointSolution(name=p.name, converged=False, message="failed: x", scalars={}, fields={}, axes={})
+             for p in (s3, s5)]
+    path = write_result(replace(gear_run, points=(s1, *empty), failed=("S3", "S5")), tmp_path / "one.h5")
+    report = _plot(path, tmp_path / "figures", what=["trends"])
+    assert report.written == [] and _skipped(report, "trends") == [
+        "skipped trends: results at 1 point(s); trends need two or more"]
+
+
+@pytest.mark.parametrize("fmt", ["pdf", "svg"])
+def test_vector_formats(gear_file, tmp_path, fmt):
+    report = _plot(gear_file, tmp_path, what=["trends"], fmt=fmt)
+    assert [p.name for p in report.written] == [f"trends.{fmt}"] and report.written[0].stat().st_size > 10_000
+
+
+@pytest.mark.parametrize("angle", [0.0, 30.0])
+def test_profiles_follow_the_hertz_pressure_along_and_across(tmp_path, angle):
+    """On the analytic Hertz field both sections are p_h sqrt(1 - t^2), t in Hertz radii, at any skew."""
+    case = synthetic.ball_on_disc()
+    solution = synthetic.solution(contact_analysis(case).points[0], nx=129, ny=129)
+    solution = replace(solution, scalars={**solution.scalars, "entrainment_angle": (angle, "deg")})
+    point = read_result(write_result(RunResult(case=case, points=(solution,)), tmp_path / "hertz.h5")).points["contact"]
+    m = _map(point, "pressure", point.fields["pressure"], _style("pressure"))
+    for direction in _section_directions(point):
+        t, values = _section(m, direction)
+        exact = point.scalars["p_hertz"] * 1e-6 * np.sqrt(np.clip(1.0 - t**2, 0.0, None))
+        inner, outer = np.abs(t) < 0.9, np.abs(t) > 1.1  # linear interpolation is poor where sqrt is steep
+        assert np.max(np.abs(values - exact)[inner]) < 0.01 * m.vmax
+        assert np.all(values[outer] == 0.0)
+        assert t.min() < -1.0 and t.max() > 1.0
+
+
+def _invoke(*args) -> object:
+    return CliRunner().invoke(tehl, ["plot", *map(str, args)])
+
+
+def test_cli_lists_the_files_written(gear_file, tmp_path):
+    result = _invoke(gear_file, "--what", "trends,contact", "-o", tmp_path, "--dpi", DPI)
+    assert result.exit_code == 0, result.output
+    written = [line.strip() for line in result.output.splitlines() if line.startswith("  ")]
+    assert sorted(Path(p).name for p in written) == sorted(f"{s}.png" for s in ("trends", *CONTACT_FIGURES))
+    assert all(Path(p).is_file() for p in written)
+
+
+def test_cli_skips_a_figure_type_without_data_with_one_line(ball_file, tmp_path):
+    result = _invoke(ball_file, "--what", "contact", "-o", tmp_path / "figures")
+    assert result.exit_code == 0, result.output
+    assert result.output.count("skipped contact:") == 1
+    assert not (tmp_path / "figures").exists()
+
+
+def test_cli_default_folder_is_next_to_the_result(gear_file, tmp_path):
+    copy = tmp_path / "copy.h5"
+    copy.write_bytes(gear_file.read_bytes())
+    result = _invoke(copy, "--what", "trends", "--dpi", DPI)
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "copy_plots" / "trends.png").is_file()
+
+
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--what", "pressure"], "error: --what: got 'pressure'; expected figure types among: all, fields"),
+        (["--point", "S2"], "error: --point: got 'S2'; expected point names of the file among: S1, S3, S5"),
+        (["--format", "jpg"], "error: --format: got 'jpg'; expected one of png, pdf, svg"),
+    ],
+)
+def test_cli_bad_options_exit_2_with_one_line(gear_file, tmp_path, args, message):
+    result = _invoke(gear_file, *args, "-o", tmp_path / "figures")
+    assert result.exit_code == 2
+    assert result.output.startswith(message) and result.output.count("\n") == 1
+    assert not (tmp_path / "figures").exists()
+
+
+def test_cli_missing_or_foreign_file_exits_2(tmp_path):
+    for path in (tmp_path / "absent.h5", synthetic.BALL_ON_DISC):
+        result = _invoke(path, "-o", tmp_path / "figures")
+        assert result.exit_code == 2
+        assert result.output.startswith(f"error: {path}:") and result.output.count("\n") == 1
+
