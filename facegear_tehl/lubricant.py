@@ -127,6 +127,16 @@ def viscosity_ratio_at(p, t, law):
 
 
 @njit(cache=True)
+def viscosity_temperature_coefficient_at(p, t, law):
+    """beta = -d ln(eta)/dT (1/K) at pressure p (Pa) and temperature t (K) of the viscosity law."""
+    p = max(p, 0.0)
+    if law[0] == ROELANDS:
+        temp_factor = ((t - ROELANDS_T_INF) / (law[6] - ROELANDS_T_INF)) ** (-law[4])
+        return law[3] * law[4] * (1.0 + p / ROELANDS_PRESSURE) ** law[2] * temp_factor / (t - ROELANDS_T_INF)
+    return law[5]
+
+
+@njit(cache=True)
 def density_ratio_at(p, t, law):
     """rho/rho_0 at one pressure p (Pa, clipped at 0) and temperature t (K)."""
     p = max(p, 0.0)

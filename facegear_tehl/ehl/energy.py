@@ -20,8 +20,8 @@ from numba import njit
 
 
 @njit(cache=True)
-def _column(temperature, j, i, velocity_x, velocity_y, source, expansivity_grad, rho_c, k_f, film, dx, dy, t_inlet,
-            lower, diag, upper, rhs):
+def _column(temperature, j, i, velocity_x, velocity_y, source, sensitivity, reference, expansivity_grad, rho_c, k_f,
+            film, dx, dy, t_inlet, lower, diag, upper, rhs):
     """Solve the interior layers of column (j, i) in place; returns the largest change (K)."""
     nz, ny, nx = temperature.shape
     n = nz - 2
@@ -43,8 +43,9 @@ def _column(temperature, j, i, velocity_x, velocity_y, source, expansivity_grad,
         ax = rc * abs(u) / dx
         ay = rc * abs(v) / dy
         comp = expansivity_grad[k, j, i]  # beta_T (u . grad p), W/(m^3 K) per K of T
-        d = ax + ay + 2.0 * kz
-        r = ax * t_x + ay * t_y + source[k, j, i]
+        sig = sensitivity[k, j, i]
+        d = ax + ay + 2.0 * kz + sig
+        r = ax * t_x + ay * t_y + source[k, j, i] + sig * reference[k, j, i]
         if comp < 0.0:
             d -= comp  # cooling by expansion: implicit
         else:
@@ -72,9 +73,13 @@ def _column(temperature, j, i, velocity_x, velocity_y, source, expansivity_grad,
 
 
 @njit(cache=True)
-def sweep_film_temperature(temperature, velocity_x, velocity_y, source, expansivity_grad, rho_c, k_f, film, dx, dy,
-                           t_inlet, sweeps, tolerance):
-    """Gauss-Seidel sweeps (forward, then backward in x) over all columns; returns (sweeps done, last change)."""
+def sweep_film_temperature(temperature, velocity_x, velocity_y, source, sensitivity, expansivity_grad, rho_c, k_f,
+                           film, dx, dy, t_inlet, sweeps, tolerance):
+    """Gauss-Seidel sweeps (forward, then backward in x) over all columns; returns (sweeps done, last change).
+
+    The heat source is linearised about the entry temperatures: source - sensitivity (T - T_entry), with
+    sensitivity = -d(source)/dT >= 0 (viscous heating falls as the oil thins), treated implicitly."""
+    reference = temperature.copy()
     nz, ny, nx = temperature.shape
     n = nz - 2
     lower = np.empty(n)
@@ -88,13 +93,13 @@ def sweep_film_temperature(temperature, velocity_x, velocity_y, source, expansiv
         for j in range(ny):
             if s % 2 == 0:
                 for i in range(nx):
-                    c = _column(temperature, j, i, velocity_x, velocity_y, source, expansivity_grad, rho_c, k_f,
-                                film, dx, dy, t_inlet, lower, diag, upper, rhs)
+                    c = _column(temperature, j, i, velocity_x, velocity_y, source, sensitivity, reference,
+                                expansivity_grad, rho_c, k_f, film, dx, dy, t_inlet, lower, diag, upper, rhs)
                     change = max(change, c)
             else:
                 for i in range(nx - 1, -1, -1):
-                    c = _column(temperature, j, i, velocity_x, velocity_y, source, expansivity_grad, rho_c, k_f,
-                                film, dx, dy, t_inlet, lower, diag, upper, rhs)
+                    c = _column(temperature, j, i, velocity_x, velocity_y, source, sensitivity, reference,
+                                expansivity_grad, rho_c, k_f, film, dx, dy, t_inlet, lower, diag, upper, rhs)
                     change = max(change, c)
         done = s + 1
         if change < tolerance:

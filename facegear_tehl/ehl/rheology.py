@@ -121,10 +121,12 @@ def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, 
 
 @njit(cache=True)
 def shear_state(pressure, film, grad_x, grad_y, eta_newtonian, u1, u2, tau0, warm,
-                viscosity_factor, dissipation, velocity_x, velocity_y, stress_1, stress_2):
+                viscosity_factor, dissipation, velocity_x, velocity_y, stress_1, stress_2, thinning):
     """Across-film shear state at every node (in place), shapes (nz, ny, nx) for layer fields.
 
     warm: stress_1 holds the previous solution, used as the Newton start (Ree-Eyring).
+    thinning: tanh(r)/r with r = |tau|/tau_0 (1 for a Newtonian film): d ln(dissipation)/d ln(eta) at fixed
+    shear rate, for the implicit treatment of viscous heating in energy.py.
 
     pressure (Pa), film (m), grad_x/grad_y (Pa/m), eta_newtonian (Pa s, per layer): inputs.
     Outputs: viscosity_factor eta*/eta, dissipation tau . gamma_dot (W/m^3), velocity_x/velocity_y (m/s),
@@ -157,6 +159,8 @@ def shear_state(pressure, film, grad_x, grad_y, eta_newtonian, u1, u2, tau0, war
                 te = math.hypot(sx, sy)
                 ge = math.hypot(gx, gy)
                 viscosity_factor[k, j, i] = te / (ge * eta[k]) if ge > 0.0 else 1.0
+                r = te / tau0 if math.isfinite(tau0) else 0.0
+                thinning[k, j, i] = math.tanh(r) / r if r > 1e-8 else 1.0
                 dissipation[k, j, i] = sx * gx + sy * gy
                 if k > 0:
                     dz = h / (nz - 1)

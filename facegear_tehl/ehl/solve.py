@@ -318,11 +318,14 @@ def _couple(solver, index, point, lubricant, scaling, settings, mode, history):
 
 
 def _friction(state: FilmState, pressure: np.ndarray, cell: float, load: float) -> tuple[float, float, float]:
-    """Traction coefficients |F|/W from the surface shear stresses over the pressurised film: (mean, 1, 2)."""
+    """Friction coefficients from the shear stresses over the pressurised film: mu_i = |F_i|/W with the traction
+    on body 1, F_1 = \\iint tau(z = 0) dA, and on body 2, F_2 = -\\iint tau(z = h) dA (Couette and Poiseuille
+    parts); returns (mean of mu_1 and mu_2, mu_1, mu_2)."""
     wet = pressure > 0.0
     f1 = np.array([state.stress_1[0][wet].sum(), state.stress_1[1][wet].sum()]) * cell
     f2 = np.array([state.stress_2[0][wet].sum(), state.stress_2[1][wet].sum()]) * cell
-    return float(np.hypot(*(0.5 * (f1 + f2))) / load), float(np.hypot(*f1) / load), float(np.hypot(*f2) / load)
+    mu_1, mu_2 = float(np.hypot(*f1) / load), float(np.hypot(*f2) / load)
+    return 0.5 * (mu_1 + mu_2), mu_1, mu_2
 
 
 def energy_budget(state: FilmState, film: np.ndarray, dx: float, dy: float, rho_c: np.ndarray,

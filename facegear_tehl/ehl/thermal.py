@@ -18,12 +18,24 @@ from dataclasses import dataclass
 import math
 
 import numpy as np
+from numba import njit
 
 from facegear_tehl.ehl import energy, jaeger, rheology
-from facegear_tehl.lubricant import Lubricant, density_ratio, viscosity_ratio
+from facegear_tehl.lubricant import Lubricant, density_ratio, viscosity_ratio, viscosity_temperature_coefficient_at
 from facegear_tehl.materials import Solid
 
 MAX_TEMPERATURE_STEP = 50.0  # K, largest temperature change of one update
+
+
+@njit(cache=True)
+def temperature_coefficient(pressure, temperature, law):
+    """beta = -d ln(eta)/dT (1/K) on arrays (flattened)."""
+    p_flat = pressure.ravel()
+    t_flat = temperature.ravel()
+    out = np.empty(p_flat.size)
+    for n in range(p_flat.size):
+        out[n] = viscosity_temperature_coefficient_at(p_flat[n], t_flat[n], law)
+    return out
 
 
 @dataclass(frozen=True)
@@ -102,13 +114,14 @@ class FilmThermalModel:
         warm = self._stress is not None
         stress_1 = self._stress.copy() if warm else np.zeros((2,) + p.shape)
         stress_2 = np.empty((2,) + p.shape)
+        thinning = np.empty(shape)
         p_layers = np.ascontiguousarray(np.broadcast_to(p, shape))
         change = 0.0
         for _ in range(self.inner if self.solve_energy else 1):
             eta = lub.viscosity * viscosity_ratio(p_layers, temperature, self.law).reshape(shape)
             rheology.shear_state(p, film, np.ascontiguousarray(grad_x), np.ascontiguousarray(grad_y), eta,
                                  self.velocity_1, self.velocity_2, self.tau0, warm, viscosity_factor, dissipation,
-                                 velocity_x, velocity_y, stress_1, stress_2)
+                                 velocity_x, velocity_y, stress_1, stress_2, thinning)
             warm = True
             expansivity = lub.thermal_expansion / (1.0 - lub.thermal_expansion * (temperature - self.t_inlet))
             compression_coefficient = expansivity * (velocity_x * grad_x + velocity_y * grad_y)
@@ -116,9 +129,11 @@ class FilmThermalModel:
                 break
             rho_c = lub.density * density_ratio(p_layers, temperature, self.law).reshape(shape) * lub.specific_heat
             before = temperature.copy()
-            energy.sweep_film_temperature(temperature, velocity_x, velocity_y, dissipation, compression_coefficient,
-                                          rho_c, lub.thermal_conductivity, film, self.dx, self.dy, self.t_inlet,
-                                          6, 1e-3)
+            beta = temperature_coefficient(p_layers, temperature, self.law).reshape(shape)
+            sensitivity = dissipation * beta * thinning  # -d(dissipation)/dT at fixed shear rate
+            energy.sweep_film_temperature(temperature, velocity_x, velocity_y, dissipation, sensitivity,
+                                          compression_coefficient, rho_c, lub.thermal_conductivity, film, self.dx,
+                                          self.dy, self.t_inlet, 30, 1e-3)
             q1, q2 = energy.wall_heat_flux(temperature, film, lub.thermal_conductivity)
             w = self.surface_relaxation
             temperature[0] += w * (self._surface(q1, 0, float(self.velocity_1[0])) - temperature[0])

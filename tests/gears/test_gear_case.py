@@ -65,7 +65,7 @@ def test_defaults_and_units():
 def test_shipped_case_reproduces_example_a():
     case = load_case(CASE_FILE)
     assert case.contact is None and case.gear is not None
-    assert case.solver.grid == 129 and case.solver.thermal == "off"
+    assert case.solver.grid == 129 and case.solver.thermal == "full"
     gear = case.gear
     assert gear.inner_radius > 0.4659 and gear.outer_radius < 0.5664  # inside [L1, L2] of example A at 110 deg
     result = analyse_gear_pair(gear, case.materials.body_1, case.materials.body_2)
