@@ -32,6 +32,7 @@ FIGURE_TYPES = ("fields", "trends", "friction", "heat", "contact", "convergence"
 FORMATS = ("png", "pdf", "svg")
 CONTOUR_LEVELS = 40
 FILM_COLOUR_LIMIT = 1.6  # film maps and surfaces show h up to this multiple of h_c (the inlet gap is much larger)
+SIGNED_CMAP = "RdBu_r"  # fields of both signs: blue below zero, white at zero, red above
 MANY_POINTS = 8  # above this many points, trend axes show the path coordinate without point names
 
 
@@ -200,6 +201,19 @@ class _Map:
         return self.vmax < float(self.values.max())
 
     @property
+    def signed(self) -> bool:
+        """Values of both signs (a heat flux that reverses): drawn with a diverging map centred on zero."""
+        return self.vmin < 0.0 < self.vmax
+
+    @property
+    def cmap(self) -> str:
+        return SIGNED_CMAP if self.signed else self.style.cmap
+
+    @property
+    def ink(self) -> str:
+        return "black" if self.signed else self.style.ink
+
+    @property
     def axis_label(self) -> str:
         return f"{self.style.quantity} ({self.units})"
 
@@ -212,6 +226,9 @@ def _map(point: PointResult, name: str, data: Field, style: _Style) -> _Map:
         vmin = 0.0
     if style.group == "film" and "h_c" in point.scalars:
         vmax = min(vmax, FILM_COLOUR_LIMIT * point.scalars["h_c"] * factor)
+    if vmin < 0.0 < vmax:
+        vmax = max(-vmin, vmax)
+        vmin = -vmax
     return _Map(
         label=data.description or name.replace("_", " "),
         X=point.axes["x"].values / point.scalars["b"],
@@ -277,17 +294,17 @@ def _contour_figure(result: Result, point: PointResult, m: _Map) -> Figure:
     """Filled contours with the Hertz ellipse, the entrainment direction and the profile sections."""
     fig = _figure(height=5.6)
     ax = fig.add_subplot()
-    filled = ax.contourf(m.X, m.Y, np.minimum(m.values, m.vmax), levels=_levels(m), cmap=m.style.cmap,
+    filled = ax.contourf(m.X, m.Y, np.minimum(m.values, m.vmax), levels=_levels(m), cmap=m.cmap,
                          extend="max" if m.clipped else "neither")
-    ax.contour(m.X, m.Y, m.values, levels=_levels(m)[::5][1:], colors=m.style.ink, linewidths=0.3, alpha=0.5)
+    ax.contour(m.X, m.Y, m.values, levels=_levels(m)[::5][1:], colors=m.ink, linewidths=0.3, alpha=0.5)
     colourbar = fig.colorbar(filled, ax=ax, shrink=0.9, label=m.axis_label)
     ticks = MaxNLocator(8).tick_values(m.vmin, m.vmax)
     colourbar.set_ticks(ticks[(ticks >= m.vmin) & (ticks <= m.vmax)])
     along, across = _section_directions(point)
-    _draw_ellipse(ax, m.style.ink)
+    _draw_ellipse(ax, m.ink)
     for direction, line_style in ((along, "--"), (across, ":")):
         t = np.array([-10.0, 10.0])
-        ax.plot(t * direction[0], t * direction[1], line_style, color=m.style.ink, linewidth=0.8, alpha=0.7)
+        ax.plot(t * direction[0], t * direction[1], line_style, color=m.ink, linewidth=0.8, alpha=0.7)
     _draw_entrainment(ax, point, along, m)
     _mark_extremum(ax, m)
     ax.set_xlim(m.X[0], m.X[-1])
@@ -315,10 +332,10 @@ def _draw_entrainment(ax: Axes, point: PointResult, along: np.ndarray, m: _Map) 
     length = 0.2 * (m.X[-1] - m.X[0])
     tail = np.array([m.X[0] + 0.08 * (m.X[-1] - m.X[0]), m.Y[0] + 0.1 * (m.Y[-1] - m.Y[0])])
     ax.annotate("", xy=tail + length * along, xytext=tail,
-                arrowprops={"arrowstyle": "-|>", "color": m.style.ink, "linewidth": 1.5})
+                arrowprops={"arrowstyle": "-|>", "color": m.ink, "linewidth": 1.5})
     angle = point.scalars.get("entrainment_angle", 0.0)
     ax.text(tail[0], tail[1] + 0.04 * (m.Y[-1] - m.Y[0]), f"entrainment (ψ = {angle:.1f}° to x at true scale)",
-            color=m.style.ink, fontsize="small")
+            color=m.ink, fontsize="small")
 
 
 def _mark_extremum(ax: Axes, m: _Map) -> None:
@@ -334,24 +351,26 @@ def _mark_extremum(ax: Axes, m: _Map) -> None:
 
 def _surface_figure(result: Result, point: PointResult, m: _Map) -> Figure:
     """3-D surface over the region where the field is in its colour range (pressure above 0.5 % of its
-    maximum, film clipped at FILM_COLOUR_LIMIT h_c), lit from above so the pressure spike stands out, over
-    its contour map on the floor of the box with the Hertz ellipse."""
+    maximum, film clipped at FILM_COLOUR_LIMIT h_c), lit so the pressure spike stands out, over its contour
+    map on the floor of the box with the Hertz ellipse."""
     fig = _figure(height=5.6)
     ax = fig.add_subplot(projection="3d", computed_zorder=False)
     rows, columns = _active_region(m)
     X, Y, values = m.X[columns], m.Y[rows], np.minimum(m.values[rows, columns], m.vmax)
     XX, YY = np.meshgrid(X, Y)
     floor = m.vmin - 0.6 * (m.vmax - m.vmin)
-    ax.contourf(XX, YY, values, levels=_levels(m), cmap=m.style.cmap, zdir="z", offset=floor, zorder=0)
+    ax.contourf(XX, YY, values, levels=_levels(m), cmap=m.cmap, zdir="z", offset=floor, zorder=0)
     angle = np.linspace(0.0, 2.0 * math.pi, 361)
     ax.plot(np.cos(angle), np.sin(angle), zs=floor, zdir="z", color="tab:cyan", linewidth=1.5,
             label="Hertz ellipse (on the floor map)", zorder=1)
-    colours = LightSource(azdeg=315, altdeg=50).shade(values, cmap=colormaps[m.style.cmap],
-                                                      norm=Normalize(m.vmin, m.vmax), blend_mode="soft")
-    # Where the field is at its floor value (no pressure, no heat) the surface is left out: the map shows.
-    empty = (values <= m.vmin + 0.01 * (m.vmax - m.vmin)) if m.style.group != "film" else np.zeros_like(XX, bool)
-    ax.plot_surface(XX, YY, np.where(empty, np.nan, values), facecolors=colours, rcount=min(len(Y), 160),
-                    ccount=min(len(X), 257), linewidth=0, antialiased=False, zorder=2)
+    norm, cmap = Normalize(m.vmin, m.vmax), colormaps[m.cmap]
+    # Lit from above to show the shape, except a signed field, whose white zero level lighting would grey.
+    colours = cmap(norm(values)) if m.signed else LightSource(azdeg=315, altdeg=50).shade(
+        values, cmap=cmap, norm=norm, blend_mode="soft")
+    if m.style.group == "pressure":  # left out where there is no pressure, so the floor map shows there
+        values = np.where(values <= 0.01 * m.vmax, np.nan, values)
+    ax.plot_surface(XX, YY, values, facecolors=colours, rcount=min(len(Y), 160),
+                    ccount=min(len(X), 257), linewidth=0, antialiased=False, shade=False, zorder=2)
     ax.set_zlim(floor, m.vmax)
     ticks = MaxNLocator(6).tick_values(m.vmin, m.vmax)
     ax.set_zticks(ticks[(ticks >= m.vmin) & (ticks <= m.vmax)])
@@ -374,7 +393,8 @@ def _active_region(m: _Map) -> tuple[slice, slice]:
     if m.style.group == "film":
         active = m.values <= m.vmax
     else:
-        active = np.abs(m.values - m.vmin) >= 0.005 * (m.vmax - m.vmin)
+        rest = 0.0 if m.signed else m.vmin
+        active = np.abs(m.values - rest) >= 0.005 * (m.vmax - m.vmin)
     active |= (np.abs(m.X)[None, :] <= 1.0) & (np.abs(m.Y)[:, None] <= 1.0)
     rows, columns = np.nonzero(active)
     return (slice(max(rows.min() - 2, 0), rows.max() + 3), slice(max(columns.min() - 2, 0), columns.max() + 3))
