@@ -267,6 +267,10 @@ def solve_point(point: ContactPoint, lubricant: Lubricant, settings: SolverSetti
         # report the best iterate, not the last (it may be running away)
         _, level.pressure, level.film, solver.h0 = best
         solver.update_film(level)
+    if level.film.min() <= 0.0:
+        converged = False
+        message = ("the film closes (h_min <= 0: solid contact, outside the EHL model)" + ("; " + message if message
+                                                                                           else ""))
     wall = time.perf_counter() - start
     return _point_solution(point, lubricant, scaling, solver, level, summaries, converged, message, wall, history,
                            state, mode, reason)

@@ -1,0 +1,97 @@
+"""Thermal, non-Newtonian EHL (issue 4): limits, conservation and the face gear trends."""
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+from facegear_tehl.case import load_case
+from facegear_tehl.contact import ContactPoint
+from facegear_tehl.ehl.solve import gupta_reduction, solve_point, thermal_choice
+from facegear_tehl.points import contact_analysis
+
+SLIDING = "cases/ball_on_disc_sliding.yaml"
+
+
+def plain(path, grid=65, **changes):
+    case = load_case(path)
+    c = dataclasses.replace(case.contact, **changes)
+    point = ContactPoint.from_rolling_sliding("contact", c.radius_x, c.radius_y, c.load, c.entrainment_speed,
+                                             c.slide_roll_ratio, c.entrainment_angle, case.materials.body_1,
+                                             case.materials.body_2)
+    return point, case.lubricant, dataclasses.replace(case.solver, grid=grid)
+
+
+def test_pure_rolling_at_low_speed_equals_isothermal():
+    # Heating is negligible in pure rolling at low speed (PHYSICS.md §3.4): full thermal h_c within 1 %.
+    point, lub, settings = plain(SLIDING, slide_roll_ratio=0.0, entrainment_speed=0.3)
+    newtonian = dataclasses.replace(lub, rheology="newtonian")
+    hot = solve_point(point, newtonian, dataclasses.replace(settings, thermal="full"))
+    cold = solve_point(point, newtonian, dataclasses.replace(settings, thermal="off"))
+    assert hot.converged and cold.converged
+    assert hot.scalar("h_c") == pytest.approx(cold.scalar("h_c"), rel=0.01)
+    assert hot.scalar("dT_max") < 1.0
+
+
+def test_energy_balance_on_a_sliding_case():
+    # Heat generated in the film = conducted into both solids + convected out of the domain, within 2 %.
+    point, lub, settings = plain(SLIDING)
+    sol = solve_point(point, lub, dataclasses.replace(settings, thermal="full"))
+    assert sol.converged
+    generated = sol.scalar("heat_generated")
+    assert generated > 0.0
+    assert abs(sol.scalar("heat_conducted") + sol.scalar("heat_convected") - generated) < 0.02 * generated
+
+
+def test_ree_eyring_tends_to_newtonian():
+    point, lub, settings = plain(SLIDING)
+    off = dataclasses.replace(settings, thermal="off")
+    newtonian = solve_point(point, dataclasses.replace(lub, rheology="newtonian"), off)
+    eyring = solve_point(point, dataclasses.replace(lub, eyring_stress=1e13), off)
+    for key in ("h_c", "h_min", "p_max"):
+        assert eyring.scalar(key) == pytest.approx(newtonian.scalar(key), rel=2e-3)
+    # and with a realistic tau_0 the film is shear-thinned: lower traction than the Newtonian film
+    thinned = solve_point(point, lub, off)
+    assert thinned.scalar("mu") < eyring.scalar("mu")
+
+
+def test_hard_thermal_case_converges_or_says_why_never_nan():
+    # Slide-to-roll ratio 2 (surface 2 at rest) at p_h ~ 2 GPa.
+    point, lub, settings = plain(SLIDING, slide_roll_ratio=2.0, load=551.0)
+    sol = solve_point(point, lub, dataclasses.replace(settings, thermal="full", max_thermal_iterations=10))
+    assert sol.scalar("p_hertz") == pytest.approx(2.0e9, rel=0.02)
+    for f in sol.fields.values():
+        assert np.isfinite(f.values).all()
+    assert all(math.isfinite(v) for v, _ in sol.scalars.values())
+    assert sol.converged or sol.message
+
+
+def test_auto_records_its_choice():
+    point, lub, _ = plain(SLIDING)
+    mode, reason = thermal_choice("auto", point, lub)
+    assert mode == "full" and "Gupta" in reason
+    cold_point, _, _ = plain(SLIDING, slide_roll_ratio=0.0, entrainment_speed=0.05)
+    assert thermal_choice("auto", cold_point, lub)[0] == "off"
+    assert 0.0 < gupta_reduction(point, lub) < 1.0
+
+
+@pytest.fixture(scope="module")
+def face_gear_points():
+    case = load_case("cases/facegear_110.yaml")
+    settings = dataclasses.replace(case.solver, grid=65)
+    return {p.name: solve_point(p, case.lubricant, settings) for p in contact_analysis(case).points}
+
+
+def test_face_gear_temperature_and_friction_are_smallest_at_the_pitch_point(face_gear_points):
+    sols = face_gear_points
+    assert all(s.converged for s in sols.values())
+    rise = {k: s.scalar("dT_max") for k, s in sols.items()}
+    mu = {k: s.scalar("mu") for k, s in sols.items()}
+    assert min(rise, key=rise.get) == "S3"
+    assert min(mu, key=mu.get) == "S3"
+    # the hottest point is the one with the most sliding (S1: SRR 0.57)
+    srr = {k: abs(s.scalar("slide_roll_ratio")) for k, s in sols.items()}
+    assert max(rise, key=rise.get) == max(srr, key=srr.get)
+    for name in ("S1", "S2", "S4"):  # sliding points under full or 2/3 load
+        assert 0.005 < mu[name] < 0.1
