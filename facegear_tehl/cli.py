@@ -280,6 +280,8 @@ _SUMMARY = (
     ("h_min µm", "h_min", 1e6, "{:.4g}"),
     ("p_max MPa", "p_max", 1e-6, "{:.1f}"),
     ("p_hertz MPa", "p_hertz", 1e-6, "{:.1f}"),
+    ("dT_max K", "dT_max", 1.0, "{:.1f}"),
+    ("mu", "mu", 1.0, "{:.4f}"),
     ("load error", "load_error", 1.0, "{:.1e}"),
     ("cycles", "iterations", 1.0, "{:.0f}"),
     ("work units", "work_units", 1.0, "{:.1f}"),
