@@ -11,7 +11,9 @@ quantity on three consecutive grids:
 
 U is Roache's (1994) grid convergence index of the fine grid, in the units of f, with the safety factor
 1.25 of a three-grid study. p is not defined when a difference is zero (f* = f_h, U = 0 when the last
-one is), f* and U not when p <= 0 (the values do not converge). The error of each grid is taken against
+one is); f* and U are not given when p < 0.5: the grids are then not in the asymptotic range (Eça &
+Hoekstra 2014 use the same bound), and the correction, more than 2.4 times the last change, would amplify
+noise (p <= 0: the values do not converge). The error of each grid is taken against
 f* of the three finest grids: e = (f - f*)/|f*|. A quantity is converged to a tolerance from the first
 grid whose change to the next grid, and every later change, is below it.
 
@@ -37,6 +39,7 @@ from facegear_tehl.schema import CaseError, check
 from facegear_tehl.solution import Field, PointSolution
 
 SAFETY_FACTOR = 1.25  # Roache (1994), grid convergence index of a three-grid study
+MIN_ORDER = 0.5  # below this observed order no extrapolation is given (Eça & Hoekstra 2014)
 QUANTITIES = ("p_max", "h_c", "h_min", "dT_max", "mu")
 """Point scalars the sweep tabulates, when the solver gives them (dT_max and mu: thermal solver)."""
 # Display of a quantity: (units shown, factor from SI, decimals of its value).
@@ -88,7 +91,7 @@ def convergence(name: str, units: str, grids: Sequence[int], values: Sequence[fl
         if coarse == 0.0:
             continue
         order[i] = math.log2(abs(coarse) / abs(fine))
-        if order[i] > 0.0:
+        if order[i] >= MIN_ORDER:
             extrapolated[i] = f[i] + fine / (2.0 ** order[i] - 1.0)
             uncertainty[i] = SAFETY_FACTOR * abs(fine) / (2.0 ** order[i] - 1.0)
     error = (f - extrapolated[-1]) / abs(extrapolated[-1])
@@ -323,11 +326,13 @@ def summary_lines(table: Mapping[str, Field], scalars: Mapping[str, float]) -> l
         grid = scalars.get(f"{name}_converged_grid")
         within = f"within {tolerance:g} % from grid {grid:.0f} on" if grid else f"not within {tolerance:g} %"
         best, spread = table[f"{name}_extrapolated"].values[-1], table[f"{name}_uncertainty"].values[-1]
+        order = table[f"{name}_order"].values[-1]
         if math.isnan(best):
-            extrapolated = "no extrapolated value (the three finest grids do not converge)"
+            reason = "no change between the two coarser" if math.isnan(order) else f"observed order {order:.2f}"
+            extrapolated = f"no extrapolated value from the three finest grids ({reason})"
         else:
             extrapolated = (f"extrapolated {best * factor:.{digits + 1}f} ± {spread * factor:.{digits + 1}f} {units} "
-                            f"(order {_cell(table[f'{name}_order'].values[-1], '.2f') or 'not defined'})")
+                            f"(order {_cell(order, '.2f') or 'not defined'})")
         lines.append(f"{name}: {within}; {extrapolated}")
     return lines
 
