@@ -345,8 +345,8 @@ def _mark_extremum(ax: Axes, m: _Map) -> None:
     index = np.argmax(m.values) if m.style.group == "pressure" else np.argmin(m.values)
     row, column = np.unravel_index(index, m.values.shape)
     name = "p_max" if m.style.group == "pressure" else "h_min"
-    ax.plot(m.X[column], m.Y[row], "o", markerfacecolor="none", markeredgecolor="tab:cyan", markersize=14,
-            markeredgewidth=1.5, label=f"{name} = {m.values[row, column]:.4g} {m.units}")
+    ax.plot(m.X[column], m.Y[row], "o", markerfacecolor="none", markeredgecolor="tab:cyan", markersize=20,
+            markeredgewidth=1.2, label=f"{name} = {m.values[row, column]:.4g} {m.units}")
 
 
 def _surface_figure(result: Result, point: PointResult, m: _Map) -> Figure:
@@ -902,7 +902,8 @@ def _levels_panel(ax: Axes, points: Sequence[PointResult]) -> None:
     ax.set_xticks(nodes, [f"{n:.0f}" for n in nodes])
     ax.xaxis.set_minor_locator(NullLocator())
     ax.axhline(0.0, color="black", linewidth=0.6)
-    ax.set_title("central film on the multigrid levels", fontsize="medium")
+    ax.set_title(points[0].history["level_h_c"].description or "central film on the multigrid levels",
+                 fontsize="medium", wrap=True)
     ax.set_xlabel("nodes per side")
     ax.set_ylabel("h_c / h_c(finest) − 1 (%)")
     ax.grid(alpha=0.3)
