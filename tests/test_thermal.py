@@ -67,13 +67,14 @@ def test_hard_thermal_case_converges_or_says_why_never_nan():
     assert sol.converged or sol.message
 
 
-def test_auto_records_its_choice():
-    point, lub, _ = plain(SLIDING)
-    mode, reason = thermal_choice("auto", point, lub)
-    assert mode == "full" and "Gupta" in reason
-    cold_point, _, _ = plain(SLIDING, slide_roll_ratio=0.0, entrainment_speed=0.05)
-    assert thermal_choice("auto", cold_point, lub)[0] == "off"
-    assert 0.0 < gupta_reduction(point, lub) < 1.0
+def test_auto_picks_the_cheapest_model_predicted_within_tolerance_and_says_why():
+    # Gupta et al. (1992) film reduction 1 - phi_T: ~0.5 % (cold), ~18 % (the sliding case), ~60 % (hot).
+    cold, lub, _ = plain(SLIDING, slide_roll_ratio=0.0, entrainment_speed=0.05)
+    moderate, _, _ = plain(SLIDING)
+    hot, _, _ = plain(SLIDING, entrainment_speed=10.0)
+    assert [thermal_choice("auto", p, lub)[0] for p in (cold, moderate, hot)] == ["off", "reduced", "full"]
+    assert "Gupta" in thermal_choice("auto", moderate, lub)[1]
+    assert 1.0 - gupta_reduction(cold, lub) < 0.01 < 1.0 - gupta_reduction(hot, lub)
 
 
 @pytest.fixture(scope="module")
