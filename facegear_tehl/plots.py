@@ -137,12 +137,9 @@ def _legend(ax: Axes, **options) -> None:
         ax.legend(**options)
 
 
-def _gear_case(result: Result) -> bool:
-    return bool(result.contact)
-
-
 def _body_names(result: Result) -> tuple[str, str]:
-    return ("pinion", "face gear") if _gear_case(result) else ("body 1", "body 2")
+    """Bodies 1 and 2: pinion and face gear in a gear case (one with a /contact path)."""
+    return ("pinion", "face gear") if result.contact else ("body 1", "body 2")
 
 
 # ----------------------------------------------------------------------------------------- fields
