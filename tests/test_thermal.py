@@ -96,3 +96,16 @@ def test_face_gear_temperature_and_friction_are_smallest_at_the_pitch_point(face
     assert max(rise, key=rise.get) == max(srr, key=srr.get)
     for name in ("S1", "S2", "S4"):  # sliding points under full or 2/3 load
         assert 0.005 < mu[name] < 0.1
+
+
+def test_thermal_film_reduction_and_heating_grow_with_sliding():
+    # Fixed load and entrainment speed; only the slide-to-roll ratio changes (PHYSICS.md §3.4 qualitative checks).
+    ratios, rises = [], []
+    for srr in (0.0, 0.5, 1.5):
+        point, lub, settings = plain(SLIDING, slide_roll_ratio=srr)
+        full = solve_point(point, lub, dataclasses.replace(settings, thermal="full"))
+        off = solve_point(point, lub, dataclasses.replace(settings, thermal="off"))
+        ratios.append(full.scalar("h_c") / off.scalar("h_c"))
+        rises.append(full.scalar("dT_max"))
+    assert ratios[2] < ratios[1] <= ratios[0] + 0.005
+    assert rises[0] < rises[1] < rises[2]
