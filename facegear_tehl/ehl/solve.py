@@ -36,6 +36,7 @@ DIVERGED_LOAD_ERROR = 0.5  # a relative load error above this after a full cycle
 EYRING_LAYERS = 9  # layers for an isothermal Ree-Eyring film
 CYCLES_PER_THERMAL_UPDATE = 2  # V-cycles on the pressure between two updates of the film state
 THERMAL_RELAXATION = 0.7  # under-relaxation of the layer temperatures between outer iterations
+VISCOSITY_RELAXATION = 0.4  # under-relaxation of ln(eta*/eta) between outer iterations
 
 
 @dataclass(frozen=True)
@@ -337,7 +338,8 @@ def _couple(solver, index, point, lubricant, scaling, settings, mode, history):
         new = temperature + w * (update.temperature - temperature)
         thermal_change = float(np.abs(new - temperature).max())
         temperature = new
-        factor = factor ** (1.0 - w) * update.viscosity_factor**w  # eta*/eta relaxed in log space
+        v = VISCOSITY_RELAXATION
+        factor = factor ** (1.0 - v) * update.viscosity_factor**v  # eta*/eta relaxed in log space
         candidate = FilmState(**{**update.__dict__, "temperature": temperature, "viscosity_factor": factor})
         if not (np.isfinite(temperature).all() and np.isfinite(factor).all()):
             message = f"diverged in the film temperature at outer iteration {outer + 1}"
