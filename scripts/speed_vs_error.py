@@ -3,13 +3,15 @@
 Models:
   circle       the isothermal circular case of BENCHMARKS.md (Moes M = 20, L = 10, Roelands viscosity,
                Dowson-Higginson density, domain X in [-4.5, 1.5], Y in [-3, 3]);
-  S1 <mode>    point S1 of cases/facegear_110.yaml with each thermal model of --thermal (off, reduced, full);
-               a model the solver does not offer is skipped with a message.
+  S1 newtonian point S1 of cases/facegear_110.yaml, isothermal, with a Newtonian lubricant;
+  S1 <mode>    the same point with the case's lubricant (rheology) and each thermal model of --thermal (off,
+               reduced, full); a model the solver does not offer is skipped with a message.
 
 For every model and grid: the median wall time of --repeat solves in this process (after a warm-up solve
 that loads the Numba kernels; the machine is shared, medians damp its noise), work units, h_c and h_min
 (and dT_max and mu where the solver gives them), and each one's relative error against the value
-extrapolated from the three finest grids (facegear_tehl.sweep.convergence: observed order, Richardson).
+extrapolated from the three finest grids (facegear_tehl.sweep.convergence: observed order, Richardson);
+a grid that does not converge ends a model's sequence there (it and the finer grids get no error).
 Writes the table as CSV and prints, per model and quantity, the wall time to reach 1 % and 0.1 % error
 (interpolated on the log-log curve of error against time; 'not reached' if the finest grid is not there).
 
@@ -21,7 +23,7 @@ from __future__ import annotations
 
 import argparse
 import csv
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 import math
 from pathlib import Path
 import statistics
@@ -53,12 +55,15 @@ class Model:
 
 
 def models(thermal_modes: Sequence[str]) -> list[Model]:
-    """The circular benchmark, then S1 of the face gear case with each thermal mode the solver offers."""
+    """The circular benchmark, S1 of the face gear case isothermal and Newtonian, then S1 with each thermal
+    mode the solver offers."""
     ball = load_case(CASES / "ball_on_disc.yaml")  # the same domain and solver settings as BENCHMARKS.md
     point, lubricant = contact_from_moes(20.0, 10.0, viscosity_model="roelands", density_model="dowson_higginson")
     found = [Model("circle M=20 L=10", point, lubricant, with_thermal(ball, "off"))]
     gear = load_case(CASES / "facegear_110.yaml")
     s1 = contact_analysis(gear).points[0]
+    newtonian = replace(gear.lubricant, rheology="newtonian", eyring_stress=math.inf)
+    found.append(Model("S1 newtonian off", s1, newtonian, with_thermal(gear, "off")))
     for mode in thermal_modes:
         if mode not in THERMAL_MODELS:
             print(f"skipped thermal model {mode!r}: not one of {', '.join(THERMAL_MODELS)}")
@@ -72,7 +77,7 @@ def models(thermal_modes: Sequence[str]) -> list[Model]:
         if used != mode:
             print(f"skipped thermal model {mode!r}: the solver ran {used!r} instead")
             continue
-        found.append(Model(f"S1 thermal {mode}", s1, gear.lubricant, case))
+        found.append(Model(f"S1 {gear.lubricant.rheology} {mode}", s1, gear.lubricant, case))
     return found
 
 
@@ -97,11 +102,16 @@ def measure(model: Model, grids: Sequence[int], repeat: int) -> list[dict[str, o
     rows = [{"model": model.name, "grid": grid, "wall_time_s": wall, "work_units": s.scalar("work_units"),
              "iterations": s.scalar("iterations"), "converged": int(s.converged)}
             for grid, wall, s in zip(grids, times, solutions)]
+    converged = next((i for i, s in enumerate(solutions) if not s.converged), len(solutions))
+    if converged < 3:
+        print(f"  {model.name}: {converged} converged grid(s) before the first that is not: no extrapolation")
+        return rows
+    grids, solutions = grids[:converged], solutions[:converged]
     for name in QUANTITIES:
         if name == "p_max" or not all(name in s.scalars and s.scalar(name) != 0.0 for s in solutions):
             continue
         q = convergence(name, solutions[0].scalars[name][1], grids, [s.scalar(name) for s in solutions], 0.01)
-        for i, row in enumerate(rows):
+        for i, row in enumerate(rows[:converged]):
             row[name] = q.values[i]
             row[f"{name}_error"] = q.error[i]
             row[f"{name}_order"] = q.order[i]
@@ -130,14 +140,16 @@ def report(rows: list[dict[str, object]]) -> None:
     print("|---|---|---|---|")
     for name in dict.fromkeys(row["model"] for row in rows):
         mine = [row for row in rows if row["model"] == name]
-        for q in (*FILM, "dT_max", "mu"):
-            if f"{q}_error" not in mine[0]:
-                continue
-            errors = [r[f"{q}_error"] for r in mine]
+        quantities = [q for q in (*FILM, "dT_max", "mu") if f"{q}_error" in mine[0]]
+        if not quantities:
+            print(f"| {name} | - | {' | '.join(['fewer than three converged grids'] * len(TARGETS))} |")
+        for q in quantities:
+            measured = [r for r in mine if f"{q}_error" in r]
+            errors = [r[f"{q}_error"] for r in measured]
             if any(math.isnan(e) for e in errors):
                 cells = ["no extrapolated value"] * len(TARGETS)
             else:
-                reach = [time_to_reach([r["wall_time_s"] for r in mine], errors, target) for target in TARGETS]
+                reach = [time_to_reach([r["wall_time_s"] for r in measured], errors, target) for target in TARGETS]
                 cells = ["not reached" if math.isnan(t) else f"{t:.3f}" for t in reach]
             print(f"| {name} | {q} | {' | '.join(cells)} |")
 
