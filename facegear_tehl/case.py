@@ -114,6 +114,7 @@ def _solid(block: Block) -> Solid:
         density=block.number("density", 7850.0, positive=True, unit="kg/m^3"),
         thermal_conductivity=block.number("thermal_conductivity", 46.0, positive=True, unit="W/(m K)"),
         specific_heat=block.number("specific_heat", 470.0, positive=True, unit="J/(kg K)"),
+        roughness=block.number("roughness", 0.0, nonnegative=True, high=1e-4, unit="m (RMS)"),
     )
     block.finish()
     return solid

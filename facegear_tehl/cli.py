@@ -90,6 +90,8 @@ def run(
     write_result(run_result, target)
     result = read_result(target)
     click.echo(summary_table(result.points.values()))
+    if result.heat and "point" in result.heat:
+        click.echo(heat_budget_table(result))
     click.echo(f"result: {target} (status {result.status})")
     _exit_on_status(ctx, result)
 
@@ -264,6 +266,8 @@ def info_text(result: Result) -> str:
         units = next(p.units[key] for p in points if key in p.units)
         rows.append([key, units, *(f"{p.scalars[key]:.6g}" if key in p.scalars else "-" for p in points)])
     lines += ["", format_table(["scalar", "units", *(p.name for p in points)], rows)]
+    if result.heat and "point" in result.heat:
+        lines += ["", "heat budget:", heat_budget_table(result)]
     if result.contact_scalars:
         contact_rows = [[key, result.contact_units[key], f"{value:.6g}"] for key, value in result.contact_scalars.items()]
         lines += ["", format_table(["contact", "units", "value"], contact_rows)]
@@ -289,6 +293,34 @@ _SUMMARY = (
 )
 # Error-estimate columns: header, scalar key, the quantity it estimates the error of.
 _ERROR_ESTIMATES = (("err h_c %", "error_estimate_h_c", "h_c"), ("err h_min %", "error_estimate_h_min", "h_min"))
+
+
+# Heat-budget columns: header, /heat column, factor from SI, format.
+_HEAT = (
+    ("mu", "mu", 1.0, "{:.4f}"),
+    ("mu Xu", "mu_xu", 1.0, "{:.4f}"),
+    ("P W", "friction_power", 1.0, "{:.1f}"),
+    ("gamma_1", "partition_1", 1.0, "{:.3f}"),
+    ("P_ss,1 W", "steady_power_1", 1.0, "{:.3g}"),
+    ("P_ss,2 W", "steady_power_2", 1.0, "{:.3g}"),
+    ("flash K", "flash_temperature", 1.0, "{:.1f}"),
+    ("surface dT K", "surface_rise_max", 1.0, "{:.1f}"),
+    ("Q_f mJ", "frictional_heat", 1e3, "{:.3g}"),
+    ("Q_oil mJ", "oil_film_heat", 1e3, "{:.3g}"),
+    ("Q_oil/Q_f %", "oil_to_friction_ratio", 100.0, "{:.2f}"),
+)
+
+
+def heat_budget_table(result: Result) -> str:
+    """One row per point of the /heat table: friction, heat power and its partition, steady-state power per
+    gear, flash temperature, frictional and oil-film heat; '-' where a column is missing."""
+    heat = result.heat
+    rows = []
+    for i, name in enumerate(heat["point"].values):
+        row = [str(name)]
+        row += [fmt.format(heat[key].values[i] * factor) if key in heat else "-" for _, key, factor, fmt in _HEAT]
+        rows.append(row)
+    return format_table(["point", *(h for h, *_ in _HEAT)], rows)
 
 
 def summary_table(points: Iterable[PointResult]) -> str:

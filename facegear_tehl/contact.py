@@ -26,6 +26,8 @@ class ContactPoint:
     velocity_1, velocity_2: surface velocities (u_x, u_y) of bodies 1 and 2 relative to the contact, m/s.
     body_1, body_2: the solids.
     path_coordinate: signed position s along the line of action, m (gear cases; NaN otherwise).
+    rotation_radius_1, rotation_radius_2: distance of the contact point from the rotation axis of body 1 and
+        body 2, m (gear cases: pinion and face gear; NaN otherwise), for the duty ratio of the heat budget.
     """
 
     name: str
@@ -37,6 +39,8 @@ class ContactPoint:
     body_1: Solid
     body_2: Solid
     path_coordinate: float = math.nan
+    rotation_radius_1: float = math.nan
+    rotation_radius_2: float = math.nan
 
     @classmethod
     def from_rolling_sliding(

@@ -15,6 +15,7 @@ class Solid:
     density: rho, kg/m^3.
     thermal_conductivity: k, W/(m K).
     specific_heat: c, J/(kg K).
+    roughness: RMS surface roughness R_q, m (for the empirical friction of heat.py).
     """
 
     elastic_modulus: float
@@ -22,6 +23,7 @@ class Solid:
     density: float = 7850.0
     thermal_conductivity: float = 46.0
     specific_heat: float = 470.0
+    roughness: float = 0.0
 
     @property
     def thermal_diffusivity(self) -> float:

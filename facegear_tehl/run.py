@@ -9,6 +9,7 @@ from typing import Callable, Sequence
 
 from facegear_tehl.case import Case
 from facegear_tehl.ehl.solve import solve_point
+from facegear_tehl.heat_budget import heat_budget
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.parallel import SolveTask, solve_each
 from facegear_tehl.points import contact_analysis, select_points
@@ -55,9 +56,11 @@ def run_case(
             failed.add(index)
         if progress is not None:
             progress(solution, done, len(tasks))
+    solutions, heat_table = heat_budget(selected, solutions, case.lubricant)
     return RunResult(
         case=case,
         points=tuple(solutions),
+        heat=heat_table,
         failed=tuple(selected[index].name for index in sorted(failed)),
         contact=analysis.path,
         contact_scalars=analysis.scalars,

@@ -66,20 +66,10 @@ def gear_file(gear_run, folder) -> Path:
 
 @pytest.fixture(scope="module")
 def thermal_file(folder) -> Path:
-    """A thermal Ree-Eyring face gear run (S1, S3), with a heat-budget table added until `tehl run` writes one."""
+    """A thermal Ree-Eyring face gear run (S1, S3) with its heat-budget table."""
     run = run_case(_face_gear("full", "ree_eyring", 1.0e7), grid=33, points=["S1", "S3"], jobs=1)
-    power = np.array([120.0, 0.5])
-    heat = {
-        "point": Field(np.array(["S1", "S3"]), "", "meshing point"),
-        "friction_power_1": Field(0.6 * power, "W", "frictional heat power into the pinion"),
-        "friction_power_2": Field(0.4 * power, "W", "frictional heat power into the face gear"),
-        "steady_state_power_1": Field(0.006 * power, "W", "steady-state heat power, pinion"),
-        "steady_state_power_2": Field(0.004 * power, "W", "steady-state heat power, face gear"),
-        "frictional_heat": Field(1e-4 * power, "J", "total frictional heat of the meshing point"),
-        "oil_film_heat": Field(1e-6 * power, "J", "heat absorbed by the oil film"),
-        "mu_xu": Field(np.array([0.05, 0.004]), "1", "Xu et al. (2007)"),
-    }
-    return write_result(replace(run, heat=heat), folder / "thermal.h5")
+    assert run.heat, "tehl run writes the /heat table of a thermal run"
+    return write_result(run, folder / "thermal.h5")
 
 
 @pytest.fixture(scope="module")
@@ -127,7 +117,8 @@ def test_face_gear_draws_fields_per_point_trends_contact_and_convergence(gear_fi
 
 def test_thermal_face_gear_draws_temperature_heat_flux_friction_and_heat(thermal_file, tmp_path):
     report = _plot(thermal_file, tmp_path, points=["S3"])
-    thermal = ("temperature_mid", "temperature_surface_1", "temperature_surface_2", "heat_flux_1", "heat_flux_2")
+    thermal = ("temperature_mean", "temperature_mid", "temperature_surface_1", "temperature_surface_2",
+               "heat_flux_1", "heat_flux_2", "heat_flux_by_pressure", "heat_flux_by_shear")
     fields = [f"S3_{f}" for f in FIELD_FIGURES] + [f"S3_{t}_{k}" for t in thermal for k in ("contour", "surface")]
     heat = ["friction", "heat_power", "heat_oil_film"]
     _check_images(report, tmp_path, fields + ["trends", *CONTACT_FIGURES, "convergence", *heat])

@@ -378,16 +378,21 @@ def _friction(state: FilmState, pressure: np.ndarray, cell: float, load: float) 
     return 0.5 * (mu_1 + mu_2), mu_1, mu_2
 
 
-def energy_budget(state: FilmState, film: np.ndarray, dx: float, dy: float, rho_c: np.ndarray,
-                  t_inlet: float) -> dict[str, float]:
-    """Heat generated in the film (dissipation + compression), conducted into the solids and convected out of
-    the domain by the oil (enthalpy flux through its boundary), W; and the relative imbalance."""
-    nz = state.temperature.shape[0]
+def _simpson(nz: int) -> np.ndarray:
+    """Simpson weights of nz (odd) equally spaced nodes on [0, 1]."""
     w = np.full(nz, 2.0)
     w[1::2] = 4.0
     w[0] = w[-1] = 1.0
-    w /= 3.0 * (nz - 1)  # Simpson weights on [0, 1]
-    depth = w[:, None, None] * film[None, :, :]
+    return w / (3.0 * (nz - 1))
+
+
+def energy_budget(state: FilmState, film: np.ndarray, dx: float, dy: float, rho_c: np.ndarray,
+                  t_inlet: float) -> dict[str, float]:
+    """Power dissipated by shear in the film, heat generated in it (dissipation + compression), conducted into
+    the solids and convected out of the domain by the oil (enthalpy flux through its boundary), W; and the
+    relative imbalance."""
+    depth = _simpson(state.temperature.shape[0])[:, None, None] * film[None, :, :]
+    dissipated = float((state.dissipation * depth).sum() * dx * dy)
     generated = float(((state.dissipation + state.compression) * depth).sum() * dx * dy)
     conducted = float((state.heat_flux_1 + state.heat_flux_2).sum() * dx * dy)
     excess = rho_c * (state.temperature - t_inlet) * depth
@@ -396,8 +401,8 @@ def energy_budget(state: FilmState, film: np.ndarray, dx: float, dy: float, rho_
                       - (excess[:, 0, :] * state.velocity_y[:, 0, :]).sum()) * dx
     convected = float(out)
     imbalance = (generated - conducted - convected) / generated if generated > 0.0 else 0.0
-    return {"heat_generated": generated, "heat_conducted": conducted, "heat_convected": convected,
-            "energy_balance_error": imbalance}
+    return {"dissipated_power": dissipated, "heat_generated": generated, "heat_conducted": conducted,
+            "heat_convected": convected, "energy_balance_error": imbalance}
 
 
 def _point_solution(point, lubricant, scaling, solver, level, summaries, converged, message, wall, history,
@@ -462,6 +467,9 @@ def _point_solution(point, lubricant, scaling, solver, level, summaries, converg
             "thermal_iterations": (float(len(history.thermal_changes)), "1"),
             "thermal_layers": (float(temperature.shape[0]), "1"),
         })
+        weights = _simpson(temperature.shape[0])
+        fields["temperature_mean"] = Field(np.tensordot(weights, temperature, axes=1), "K",
+                                           "film-averaged temperature (Simpson across the layers)")
         fields["temperature_mid"] = Field(temperature[temperature.shape[0] // 2], "K", "mid-film temperature")
         fields["temperature_surface_1"] = Field(temperature[0], "K", "surface temperature of body 1")
         fields["temperature_surface_2"] = Field(temperature[-1], "K", "surface temperature of body 2")
@@ -474,8 +482,10 @@ def _point_solution(point, lubricant, scaling, solver, level, summaries, converg
             scalars.update({k: (v, units.get(k, "W")) for k, v in budget.items()})
             fields["heat_flux_1"] = Field(state.heat_flux_1, "W/m^2", "heat flux from the film into body 1")
             fields["heat_flux_2"] = Field(state.heat_flux_2, "W/m^2", "heat flux from the film into body 2")
-        fields["shear_stress_1_x"] = Field(state.stress_1[0], "Pa", "shear stress at surface 1, x component")
-        fields["shear_stress_1_y"] = Field(state.stress_1[1], "Pa", "shear stress at surface 1, y component")
+        for body, stress in ((1, state.stress_1), (2, state.stress_2)):
+            for axis, component in (("x", 0), ("y", 1)):
+                fields[f"shear_stress_{body}_{axis}"] = Field(
+                    stress[component], "Pa", f"shear stress eta* du/dz at surface {body}, {axis} component")
     scalars = {k: v for k, v in scalars.items() if math.isfinite(v[0])}
     hist = {
         "pressure_change_history": Field(np.nan_to_num(np.array(history.changes), nan=0.0), "1",

@@ -134,6 +134,8 @@ def analyse_gear_pair(spec: GearSpec, body_1: Solid, body_2: Solid, n_path: int 
             body_1=body_1,
             body_2=body_2,
             path_coordinate=float(point_s[i]),
+            rotation_radius_1=math.hypot(geo.r_b1, float(values["pinion_profile_radius"][i])),
+            rotation_radius_2=float(values["face_gear_radius"][i]),
         )
         for i, name in enumerate(names)
     )
