@@ -8,7 +8,8 @@ import pytest
 
 from facegear_tehl.case import load_case
 from facegear_tehl.contact import ContactPoint
-from facegear_tehl.ehl.solve import gupta_reduction, solve_point, thermal_choice
+from facegear_tehl.ehl.solve import solve_point
+from facegear_tehl.ehl.thermal import gupta_reduction, thermal_choice
 from facegear_tehl.points import contact_analysis
 
 SLIDING = "cases/ball_on_disc_sliding.yaml"

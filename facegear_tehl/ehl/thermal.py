@@ -10,6 +10,9 @@ equation needs (temperature and eta*/eta per layer, flow.py):
    (face gear surfaces move within 2 deg of x). A surface nearly at rest (Pe < 1) is given the effusivity
    of Pe = 1, where the high-Péclet kernel would otherwise diverge: a bounded, conservative estimate.
 The film's interior layers and the surfaces are iterated `inner` times with under-relaxed surfaces.
+
+`thermal_choice` picks the thermal model of `solver.thermal: auto` from the thermal loading number and the
+slide-to-roll ratio (Gupta et al. 1992), and says why.
 """
 
 from __future__ import annotations
@@ -22,6 +25,7 @@ from numba import njit
 
 from facegear_tehl.ehl import energy, jaeger, rheology
 from facegear_tehl.lubricant import Lubricant, density_ratio, viscosity_ratio, viscosity_temperature_coefficient_at
+from facegear_tehl.contact import ContactPoint
 from facegear_tehl.materials import Solid
 
 MAX_TEMPERATURE_STEP = 50.0  # K, largest temperature change of one update
@@ -100,7 +104,6 @@ class FilmThermalModel:
         The temperature moves by at most MAX_TEMPERATURE_STEP per update (a continuation in temperature:
         a Newtonian film under heavy sliding would otherwise overshoot by thousands of kelvin before the
         viscosity has dropped)."""
-        nz = self.layers
         start = temperature
         p = np.ascontiguousarray(np.maximum(pressure, 0.0))
         grad_y, grad_x = np.gradient(p, self.dy, self.dx)
@@ -155,3 +158,39 @@ class FilmThermalModel:
             compression=compression_coefficient * temperature,
             change=change,
         )
+
+
+def thermal_loading(point: ContactPoint, lubricant: Lubricant) -> float:
+    """Thermal loading number L_th = beta eta_0 u_e^2/k_f (Gupta et al. 1992)."""
+    return lubricant.temperature_viscosity * lubricant.viscosity * point.entrainment_speed**2 / lubricant.thermal_conductivity
+
+
+def gupta_reduction(point: ContactPoint, lubricant: Lubricant) -> float:
+    """Thermal reduction factor of the central film, phi_T = [1 + 0.1 (1 + 14.8 SRR^0.83) L_th^0.64]^-1
+    (Gupta, Cheng, Zhu & Wang 1992, with SRR the slide-to-roll ratio)."""
+    srr = abs(point.slide_roll_ratio)
+    return 1.0 / (1.0 + 0.1 * (1.0 + 14.8 * srr**0.83) * thermal_loading(point, lubricant) ** 0.64)
+
+
+# `auto`: predicted error of each model relative to `full`, as a share of the Gupta film reduction 1 - phi_T
+# (`off` neglects all of it; `reduced` came within 0.1-0.4 % of `full` in h_c and h_min on the face gear
+# points where the thermal reduction is 11-18 %, i.e. ~2 % of it: 5 % is taken, scripts/bench_thermal.py).
+AUTO_ERROR_SHARE = {"off": 1.0, "reduced": 0.05}
+AUTO_TOLERANCE = 0.01  # accept a model whose predicted h_c error is below 1 %
+
+
+def thermal_choice(mode: str, point: ContactPoint, lubricant: Lubricant) -> tuple[str, str]:
+    """The thermal model to run and why (for `auto`: the cheapest one predicted within 1 % of `full`)."""
+    if mode != "auto":
+        return mode, f"solver.thermal: {mode}"
+    reduction = 1.0 - gupta_reduction(point, lubricant)
+    for candidate in ("off", "reduced"):
+        predicted = AUTO_ERROR_SHARE[candidate] * reduction
+        if predicted < AUTO_TOLERANCE:
+            return candidate, (f"auto: Gupta thermal reduction {100 * reduction:.2f} % (L_th = "
+                               f"{thermal_loading(point, lubricant):.3g}, SRR = {point.slide_roll_ratio:.3f}); "
+                               f"predicted error of {candidate} {100 * predicted:.2f} % < {100 * AUTO_TOLERANCE:g} %")
+    return "full", (f"auto: Gupta thermal reduction {100 * reduction:.2f} % (L_th = "
+                    f"{thermal_loading(point, lubricant):.3g}, SRR = {point.slide_roll_ratio:.3f}); "
+                    f"reduced predicted {100 * AUTO_ERROR_SHARE['reduced'] * reduction:.2f} % >= "
+                    f"{100 * AUTO_TOLERANCE:g} %")
