@@ -4,6 +4,7 @@ workers at once."""
 
 from __future__ import annotations
 
+from dataclasses import replace
 import os
 from pathlib import Path
 import signal
@@ -19,7 +20,8 @@ import pytest
 
 from facegear_tehl.case import load_case
 from facegear_tehl.cli import tehl
-from facegear_tehl.parallel import available_cores, worker_count
+from facegear_tehl.parallel import SolveTask, available_cores, solve_each, worker_count
+from facegear_tehl.points import contact_analysis
 from facegear_tehl.run import run_case
 from facegear_tehl.schema import CaseError
 
@@ -103,6 +105,24 @@ def test_one_job_runs_in_this_process(monkeypatch):
     monkeypatch.setattr("facegear_tehl.run.solve_point", recording)  # a closure: a pool could not pickle it
     run = run_case(load_case(FACE_GEAR), jobs=1, points=["S1", "S2"])
     assert calls == [os.getpid()] * 2 and run.status == "ok"
+
+
+def _blas_threads(point, lubricant, settings):
+    """A synthetic solution that records how many BLAS threads the solve could use."""
+    from threadpoolctl import threadpool_info
+
+    solution = synthetic.solution(point)
+    threads = max(pool["num_threads"] for pool in threadpool_info() if pool["user_api"] == "blas")
+    return replace(solution, scalars={**solution.scalars, "blas_threads": (float(threads), "1")})
+
+
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_every_solve_has_one_blas_thread(jobs):
+    """OpenBLAS sums in another order with more threads: one everywhere keeps --jobs N bit-identical."""
+    case = load_case(FACE_GEAR)
+    tasks = [SolveTask(p, case.lubricant, case.solver) for p in contact_analysis(case).points[:3]]
+    outcomes = [solved for _, solved in solve_each(tasks, solve=_blas_threads, jobs=jobs)]
+    assert [s.solution.scalar("blas_threads") for s in outcomes] == [1.0] * 3
 
 
 def test_worker_count():
