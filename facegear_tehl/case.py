@@ -21,6 +21,10 @@ from facegear_tehl.materials import Solid
 from facegear_tehl.schema import Block, CaseError, check
 
 THERMAL_MODELS = ("off", "reduced", "full", "auto")
+MAX_GRID = 4097  # nodes per side: 16.8 million nodes, beyond what one machine solves
+# Physical numbers are checked against broad ranges (moduli from rubber to beyond diamond, loads 1e-6..1e9 N,
+# speeds 1e-6..1e3 m/s, ...): far wider than any lubricated contact, they keep the contact analysis and the
+# solver clear of overflow to Inf and underflow to 0.
 
 
 class _Loader(yaml.SafeLoader):
@@ -104,16 +108,18 @@ class Case:
 
 def _check_grid(n: int, key: str) -> None:
     m = n - 1
-    check(n >= 5 and m & (m - 1) == 0, key, n, "2^n + 1 nodes per side (e.g. 65, 129, 257, 513)")
+    check(5 <= n <= MAX_GRID and m & (m - 1) == 0, key, n,
+          f"2^n + 1 nodes per side, at most {MAX_GRID} (e.g. 65, 129, 257, 513)")
 
 
 def _solid(block: Block) -> Solid:
     solid = Solid(
-        elastic_modulus=block.number("elastic_modulus", positive=True, unit="Pa"),
+        elastic_modulus=block.number("elastic_modulus", positive=True, low=1e5, high=1e13, unit="Pa"),
         poisson_ratio=block.number("poisson_ratio", low=0.0, high=0.5, open_low=True, open_high=True),
-        density=block.number("density", 7850.0, positive=True, unit="kg/m^3"),
-        thermal_conductivity=block.number("thermal_conductivity", 46.0, positive=True, unit="W/(m K)"),
-        specific_heat=block.number("specific_heat", 470.0, positive=True, unit="J/(kg K)"),
+        density=block.number("density", 7850.0, positive=True, low=1.0, high=1e5, unit="kg/m^3"),
+        thermal_conductivity=block.number("thermal_conductivity", 46.0, positive=True, low=1e-3, high=1e4,
+                                          unit="W/(m K)"),
+        specific_heat=block.number("specific_heat", 470.0, positive=True, low=1.0, high=1e5, unit="J/(kg K)"),
         roughness=block.number("roughness", 0.0, nonnegative=True, high=1e-4, unit="m (RMS)"),
     )
     block.finish()
@@ -129,25 +135,26 @@ def _materials(block: Block) -> Materials:
 def _lubricant(block: Block) -> Lubricant:
     rheology = block.choice("rheology", RHEOLOGY_MODELS, "newtonian")
     if rheology == "ree_eyring":
-        eyring = block.number("eyring_stress", positive=True, unit="Pa")
+        eyring = block.number("eyring_stress", positive=True, low=1e4, unit="Pa")
     else:
-        eyring = block.number("eyring_stress", math.inf, positive=True, unit="Pa")
+        eyring = block.number("eyring_stress", math.inf, positive=True, low=1e4, unit="Pa")
     temperature_c = block.number("inlet_temperature", 40.0, low=-100.0, high=400.0, unit="degC")
     z = block.number("roelands_z", None, low=0.0, high=2.0, open_low=True) if block.has("roelands_z") else None
     lubricant = Lubricant(
-        viscosity=block.number("viscosity", positive=True, unit="Pa s"),
+        viscosity=block.number("viscosity", positive=True, low=1e-6, high=1e6, unit="Pa s"),
         inlet_temperature=temperature_c + KELVIN,
-        pressure_viscosity=block.number("pressure_viscosity", positive=True, unit="1/Pa"),
-        density=block.number("density", 870.0, positive=True, unit="kg/m^3"),
+        pressure_viscosity=block.number("pressure_viscosity", positive=True, high=1e-6, unit="1/Pa"),
+        density=block.number("density", 870.0, positive=True, low=1.0, high=1e5, unit="kg/m^3"),
         viscosity_model=block.choice("viscosity_model", VISCOSITY_MODELS, "roelands"),
         density_model=block.choice("density_model", DENSITY_MODELS, "dowson_higginson"),
         rheology=rheology,
         eyring_stress=eyring,
         roelands_z=z,
-        temperature_viscosity=block.number("temperature_viscosity", 0.0, nonnegative=True, unit="1/K"),
+        temperature_viscosity=block.number("temperature_viscosity", 0.0, nonnegative=True, high=1.0, unit="1/K"),
         thermal_expansion=block.number("thermal_expansion", 0.0, nonnegative=True, high=0.01, unit="1/K"),
-        thermal_conductivity=block.number("thermal_conductivity", 0.13, positive=True, unit="W/(m K)"),
-        specific_heat=block.number("specific_heat", 2000.0, positive=True, unit="J/(kg K)"),
+        thermal_conductivity=block.number("thermal_conductivity", 0.13, positive=True, low=1e-3, high=100.0,
+                                          unit="W/(m K)"),
+        specific_heat=block.number("specific_heat", 2000.0, positive=True, low=1.0, high=1e5, unit="J/(kg K)"),
     )
     check(
         lubricant.roelands_log_term > 0.0 or lubricant.viscosity_model != "roelands",
@@ -161,11 +168,13 @@ def _lubricant(block: Block) -> Lubricant:
 
 def _plain_contact(block: Block) -> PlainContact:
     contact = PlainContact(
-        radius_x=block.number("radius_x", positive=True, unit="m"),
-        radius_y=block.number("radius_y", positive=True, unit="m"),
-        load=block.number("load", positive=True, unit="N"),
-        entrainment_speed=block.number("entrainment_speed", positive=True, unit="m/s"),
-        slide_roll_ratio=block.number("slide_roll_ratio", 0.0, low=-2.0, high=2.0),
+        radius_x=block.number("radius_x", positive=True, low=1e-6, high=1e4, unit="m"),
+        radius_y=block.number("radius_y", positive=True, low=1e-6, high=1e4, unit="m"),
+        load=block.number("load", positive=True, low=1e-6, high=1e9, unit="N"),
+        entrainment_speed=block.number("entrainment_speed", positive=True, low=1e-6, high=1e3, unit="m/s"),
+        # |SRR| > 2: the surfaces move in opposite directions (u_2 = u_e (1 - SRR/2) < 0); at |SRR| = 4 the
+        # slower one moves backward at the entrainment speed.
+        slide_roll_ratio=block.number("slide_roll_ratio", 0.0, low=-4.0, high=4.0),
         entrainment_angle=block.number("entrainment_angle", 0.0, low=-90.0, high=90.0, unit="deg"),
     )
     check(
@@ -227,6 +236,8 @@ def _solver(block: Block) -> SolverSettings:
 
 def _output(block: Block) -> OutputSettings:
     settings = OutputSettings(file=block.string("file", None) if block.has("file") else None)
+    check(settings.file is None or (settings.file.strip() != "" and "\0" not in settings.file),
+          block.key_path("file"), settings.file, "a file path (not empty, no NUL character)")
     block.finish()
     return settings
 
@@ -237,10 +248,19 @@ def parse_case(text: str, name: str = "case") -> Case:
         raw: Any = yaml.load(text, Loader=_Loader)
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
-        where = f"line {mark.line + 1}, column {mark.column + 1}" if mark else "unknown position"
+        position = getattr(exc, "position", None)  # a character YAML does not accept (yaml.reader.ReaderError)
+        where = (f"line {mark.line + 1}, column {mark.column + 1}" if mark
+                 else f"character {position + 1}" if position is not None else "unknown position")
         raise CaseError("(file)", f"YAML syntax error at {where}", "valid YAML") from None
+    except (ValueError, RecursionError) as exc:  # an impossible date, an int of > 4300 digits; deep nesting
+        reason = "nesting too deep" if isinstance(exc, RecursionError) else str(exc)
+        raise CaseError("(file)", "a value YAML cannot read", f"valid YAML ({reason})") from None
+    if raw is None:
+        raise CaseError("(file)", "an empty document", "a case: contact: or gear:, materials:, lubricant:, ...")
     top = Block(raw, "")
     case_name = top.string("name", name)
+    check(case_name.strip() != "" and case_name.isprintable() and not {"/", "\\"} & set(case_name), "name",
+          case_name, "a non-empty name on one line without '/' or '\\' (it names the default result file)")
     description = top.string("description", "")
     has_contact, has_gear = top.has("contact"), top.has("gear")
     check(has_contact != has_gear, "contact/gear", "both blocks" if has_contact else None,

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import reprlib
 from typing import Any, Callable, Iterable, Mapping
 
 
@@ -19,31 +20,40 @@ class CaseError(ValueError):
         self.key = key
         self.value = value
         self.expected = expected
-        shown = repr(value)
+        shown = _SHORT.repr(value)  # bounded: a YAML alias can make a value too large to print in full
         if len(shown) > 60:
             shown = shown[:57] + "..."
+        key = key if key.isprintable() else repr(key)  # one line: a key from the file may hold a newline
         super().__init__(f"{key}: got {shown}; expected {expected}")
 
 
+_SHORT = reprlib.Repr()
+_SHORT.maxlevel, _SHORT.maxlist, _SHORT.maxdict, _SHORT.maxstring, _SHORT.maxother = 3, 4, 4, 60, 60
 _MISSING = object()
 
 
-def _is_number(value: Any) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool)
+def _is_finite_number(value: Any) -> bool:
+    """An int or float (not a bool) that is finite as a float (an int beyond 1.8e308 is not)."""
+    if not isinstance(value, (int, float)) or isinstance(value, bool):
+        return False
+    try:
+        return math.isfinite(value)
+    except OverflowError:
+        return False
 
 
 class Block:
-    """A mapping from the case file at `path`, read key by key.
+    """A mapping from the case file at `path` ('' for the file's top level), read key by key.
 
     Call `finish()` after reading to reject keys that were not read (unknown keys).
     """
 
     def __init__(self, raw: Any, path: str):
         if not isinstance(raw, Mapping):
-            raise CaseError(path, raw, "a mapping of keys to values")
+            raise CaseError(path or "(file)", raw, "a mapping of keys to values")
         for key in raw:
             if not isinstance(key, str):
-                raise CaseError(f"{path}.{key}", key, "string keys")
+                raise CaseError(f"{path}.{key}" if path else str(key), key, "string keys")
         self.raw = raw
         self.path = path
         self._known: set[str] = set()
@@ -81,7 +91,7 @@ class Block:
         if value is default and default is not _MISSING:
             return value
         suffix = f" in {unit}" if unit else ""
-        if not _is_number(value) or not math.isfinite(float(value)):
+        if not _is_finite_number(value):
             raise CaseError(self.key_path(key), value, f"a finite number{suffix}")
         value = float(value)
         if positive and not value > 0.0:
@@ -138,7 +148,7 @@ class Block:
         if (
             not isinstance(value, (list, tuple))
             or len(value) != 2
-            or not all(_is_number(v) and math.isfinite(float(v)) for v in value)
+            or not all(_is_finite_number(v) for v in value)
         ):
             raise CaseError(self.key_path(key), value, "a list of two finite numbers [low, high]")
         low, high = float(value[0]), float(value[1])

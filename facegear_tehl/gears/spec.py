@@ -76,10 +76,10 @@ class GearSpec:
 
 def parse_gear_block(block: Block) -> GearSpec:
     """Read and validate the `gear:` block (see the module docstring)."""
-    n1 = block.integer("pinion_teeth", low=8)
+    n1 = block.integer("pinion_teeth", low=8, high=1000)
     ns = block.integer("shaper_teeth", low=1)
     check(1 <= ns - n1 <= 3, block.key_path("shaper_teeth"), ns, "shaper_teeth - pinion_teeth in 1..3")
-    n2 = block.integer("face_gear_teeth", low=1)
+    n2 = block.integer("face_gear_teeth", low=1, high=10000)
     check(n2 > ns, block.key_path("face_gear_teeth"), n2, f"more teeth than the shaper ({ns})")
     module = block.number("module", positive=True, high=0.1, unit="m")
     pressure_angle = block.number("pressure_angle", low=10.0, high=35.0, unit="deg")
@@ -89,8 +89,8 @@ def parse_gear_block(block: Block) -> GearSpec:
     inner = block.number("inner_radius", positive=True, unit="m")
     outer = block.number("outer_radius", positive=True, unit="m")
     check(outer > inner, block.key_path("outer_radius"), outer, f"more than inner_radius = {inner:g} m")
-    speed = block.number("pinion_speed", positive=True, unit="rpm")
-    torque = block.number("pinion_torque", positive=True, unit="N m")
+    speed = block.number("pinion_speed", positive=True, low=1e-3, high=1e6, unit="rpm")
+    torque = block.number("pinion_torque", positive=True, low=1e-3, high=1e7, unit="N m")
     points = _points(block)
     count = points if isinstance(points, int) else len(points)
     spec = GearSpec(
@@ -165,8 +165,9 @@ def _check_feasible(spec: GearSpec, block: Block) -> None:
     """Cross-key checks that need the geometry: L1, L2, path limits, contact ratio, face width."""
     geo = spec.geometry
     try:
-        l1, l2 = undercut_limit(geo), pointing_limit(geo)
-    except ValueError:
+        with np.errstate(over="raise", invalid="raise"):  # a shaft angle near 0 overflows the geometry
+            l1, l2 = undercut_limit(geo), pointing_limit(geo)
+    except (ValueError, FloatingPointError):
         raise CaseError(block.key_path("shaft_angle"), math.degrees(spec.shaft_angle),
                         "a shaft angle for which the face gear has an undercut and a pointing limit") from None
     check(l2 > l1, block.key_path("face_gear_teeth"), spec.face_gear_teeth,
