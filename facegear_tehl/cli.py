@@ -251,7 +251,8 @@ def info_text(result: Result) -> str:
     ]
     if result.overrides:
         header.append(("overrides", ", ".join(f"{k} {_listed(v)}" for k, v in result.overrides.items())))
-    for table_name, table in (("contact path", result.contact), ("heat table", result.heat)):
+    for table_name, table in (("contact path", result.contact), ("heat table", result.heat),
+                              ("sweep table", result.sweep)):
         if table:
             header.append((table_name, f"{len(table)} columns: {', '.join(table)}"))
     if result.message:

@@ -185,6 +185,8 @@ def test_sweep_ball_on_disc_writes_hdf5_and_csv(tmp_path):
     assert [row["grid [1]"] for row in rows] == ["17", "33", "65"]
     assert rows[0]["h_c_order [1]"] == "" and float(rows[2]["h_c [m]"]) == pytest.approx(table["h_c"].values[2])
     assert "h_c [µm]" in result.stdout and "extrapolated" in result.stdout and "h_c: " in result.stdout
+    info = CliRunner().invoke(tehl, ["info", str(target)])
+    assert info.exit_code == 0 and "sweep table" in info.stdout and "contact@65" in info.stdout
 
 
 def test_sweep_a_face_gear_point(tmp_path):
