@@ -188,6 +188,33 @@ def test_every_deleted_key_is_accepted_or_named(folder):
     assert count > 90
 
 
+OPTIONAL_KEYS = {  # keys a block may have that the two cases leave out
+    ("lubricant",): ["roelands_z", "eyring_stress", "temperature_viscosity", "thermal_expansion",
+                     "thermal_conductivity", "specific_heat"],
+    ("materials", "body_1"): ["roughness", "density", "thermal_conductivity", "specific_heat"],
+    ("solver",): ["domain", "coarsest_grid", "cycles_per_level", "max_cycles", "tolerance", "load_tolerance",
+                  "thermal_layers", "max_thermal_iterations", "thermal_tolerance"],
+    ("gear",): ["shaft_angle_error", "offset", "pinion_axial_shift", "face_gear_axial_shift"],
+    ("output",): ["file"],
+}
+PLAUSIBLE = st.one_of(st.floats(-1e3, 1e3), st.floats(-1e-2, 1e-2), st.integers(-100, 5000),
+                      st.lists(st.floats(-10, 10), min_size=2, max_size=2),
+                      st.fixed_dictionaries({"x": st.lists(st.floats(-10, 10), min_size=2, max_size=2),
+                                             "y": st.lists(st.floats(-10, 10), min_size=2, max_size=2)}))
+
+
+@settings(FUZZ, max_examples=150)
+@given(kind=st.sampled_from(sorted(BASES)), data=st.data(), value=st.one_of(PLAUSIBLE, NUMBERS, WRONG_TYPES))
+def test_an_optional_key_is_accepted_or_named(folder, kind, data, value):
+    case = _load(BASES[kind])
+    absent = {b: [k for k in keys if k not in _entry(case, b)] for b, keys in OPTIONAL_KEYS.items() if b[0] in case}
+    block = data.draw(st.sampled_from([b for b, keys in absent.items() if keys]), label="block")
+    key = data.draw(st.sampled_from(absent[block]), label="key")
+    _entry(case, block)[key] = value
+    named = _check_answer(*_validate(folder, _dump(case)))
+    assert named is None or named.split(".")[0] == block[0], (block, key, value, named)
+
+
 UNKNOWN_KEYS = st.one_of(
     st.text(min_size=1, max_size=12).filter(lambda k: k not in KNOWN_KEYS),
     st.sampled_from(sorted(KNOWN_KEYS)).map(lambda k: k + "_"),  # a near miss: "did you mean"
@@ -307,6 +334,8 @@ REGRESSIONS = {
     "output file with NUL": (_replace("contact", "file: results/ball.h5", 'file: "a\\0b"'), "output.file"),
     # exit 2 after a numpy overflow warning on stderr (two lines in a subprocess)
     "shaft angle 1e-300": (_replace("gear", "shaft_angle: 110.0", "shaft_angle: 1.0e-300"), "gear.shaft_angle"),
+    # exit 1 (ZeroDivisionError: the angle underflows to 0 rad)
+    "shaft angle 5e-324": (_replace("gear", "shaft_angle: 110.0", "shaft_angle: 5.0e-324"), "gear.shaft_angle"),
 }
 
 

@@ -165,9 +165,9 @@ def _check_feasible(spec: GearSpec, block: Block) -> None:
     """Cross-key checks that need the geometry: L1, L2, path limits, contact ratio, face width."""
     geo = spec.geometry
     try:
-        with np.errstate(over="raise", invalid="raise"):  # a shaft angle near 0 overflows the geometry
+        with np.errstate(over="raise", invalid="raise"):  # a shaft angle near 0 overflows or divides by 0
             l1, l2 = undercut_limit(geo), pointing_limit(geo)
-    except (ValueError, FloatingPointError):
+    except (ValueError, ArithmeticError):
         raise CaseError(block.key_path("shaft_angle"), math.degrees(spec.shaft_angle),
                         "a shaft angle for which the face gear has an undercut and a pointing limit") from None
     check(l2 > l1, block.key_path("face_gear_teeth"), spec.face_gear_teeth,
