@@ -21,6 +21,9 @@ from facegear_tehl.ehl import flow, grid, reynolds
 from facegear_tehl.ehl.elastic import DeflectionOperator
 
 
+CIRCLE_SELF_COEFFICIENT = 8.0 * math.asinh(1.0) / math.pi**2  # C_d K_00/h for a circle on square cells
+
+
 @dataclass(frozen=True)
 class Problem:
     """The dimensionless problem on a rectangular domain (see scaling.py)."""
@@ -45,7 +48,7 @@ class Problem:
 class Relaxation:
     """Parameters of the relaxation and the cycle (defaults: Venner & Lubrecht 2000)."""
 
-    xi_switch: float = 0.3  # eps/h^2 above which a node is relaxed Gauss-Seidel
+    xi_switch: float = 0.3  # eps/h^2 above which a node is relaxed Gauss-Seidel (circular contact; see Level)
     under_gs: float = 0.3  # under-relaxation of Gauss-Seidel changes (Venner & Lubrecht: 0.4; 0.3 keeps ellipses with k > 40 stable)
     under_jd: float = 0.15  # under-relaxation of Jacobi-distributive changes (Venner & Lubrecht: 0.2)
     pre_sweeps: int = 2
@@ -70,6 +73,7 @@ class Level:
     pattern_jd_t: np.ndarray
     weight_x: float
     weight_y: float
+    xi_switch: float  # the Gauss-Seidel / Jacobi-distributive switch of this grid
     pressure: np.ndarray
     film_rhs: np.ndarray
     reynolds_rhs: np.ndarray
@@ -132,6 +136,12 @@ class MultigridSolver:
         wx, wy = 0.5 * cx / (cx + cy), 0.5 * cy / (cx + cy)
         e_gs, e_jd = reynolds.pattern_kernels(deflection.coefficients, pb.deflection_coefficient, wx, wy)
         e_gs_t, e_jd_t = reynolds.pattern_kernels(deflection.coefficients.T, pb.deflection_coefficient, wy, wx)
+        # Venner's switch eps/h^2 > 0.3 is set for a circle, where the elastic self-coefficient C_d K_00/h_x is
+        # (2/pi^2) 4 asinh(1); a long ellipse has a larger one (2.3-2.6x for the face gear contacts) and its line
+        # Gauss-Seidel goes unstable where the circle's would not (seen at 513^2): the switch is scaled by the
+        # fourth power of that ratio (1 for a circle; 30-45 for the face gear points, where 3 still diverged at
+        # 513^2 and 10 converged: an empirical calibration).
+        elastic_ratio = pb.deflection_coefficient * deflection.coefficients[0, 0] / hx / CIRCLE_SELF_COEFFICIENT
         xx, yy = np.meshgrid(x, y)
         return Level(
             x=x,
@@ -143,6 +153,7 @@ class MultigridSolver:
             pattern_jd_t=e_jd_t,
             weight_x=wx,
             weight_y=wy,
+            xi_switch=self.relaxation.xi_switch * elastic_ratio**4,
             pressure=np.zeros((n, n)),
             film_rhs=0.5 * xx**2 + 0.5 * pb.geometry_y * yy**2,
             reynolds_rhs=np.zeros((n, n)),
@@ -191,7 +202,7 @@ class MultigridSolver:
             level.pressure, qx, qy, level.flux_x, level.flux_y, level.eps, level.reynolds_rhs,
             hx, hy, px, py, sx, sy,
             level.pattern_gs, level.pattern_jd, level.weight_x, level.weight_y,
-            rx.xi_switch, rx.under_gs, rx.under_jd,
+            level.xi_switch, rx.under_gs, rx.under_jd,
         )
         self.work_units += level.nodes / self.finest_nodes
         self.update_film(level)
@@ -204,7 +215,7 @@ class MultigridSolver:
                 pressure_t, t(qy.T), t(qx.T), t(level.flux_y.T), t(level.flux_x.T), t(level.eps.T),
                 t(level.reynolds_rhs.T), hy, hx, py, px, sy, sx,
                 level.pattern_gs_t, level.pattern_jd_t, level.weight_y, level.weight_x,
-                rx.xi_switch, rx.under_gs, rx.under_jd,
+                level.xi_switch, rx.under_gs, rx.under_jd,
             )
             level.pressure = t(pressure_t.T)
             self.work_units += level.nodes / self.finest_nodes
