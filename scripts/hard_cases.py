@@ -3,7 +3,8 @@ result file and check that it holds no NaN or Inf; print a markdown table (READM
 
 Per point: converged, cycles (V-cycles on the finest grid), thermal outer iterations, solve wall time, h_min,
 p_max (and p_h), the file check, and below the table the solver's message for every point that did not
-converge. Exit code 1 if a point failed with an error, ended without a message, or a file holds NaN/Inf.
+converge. Exit code 1 if a point failed with an error or ended without a message, or if a file holds NaN/Inf
+or the writer refused to write one.
 
     python scripts/hard_cases.py [--cases heavy_m1000_l10,skew_60] [--grid N] [--jobs N] [-o DIR]
 """
@@ -46,9 +47,9 @@ def run_suite(paths: list[Path], folder: Path, grid: int | None, jobs: int) -> t
         try:
             target = write_result(run, folder / f"{case.name}.h5")
             bad = non_finite_entries(target)
-            file_check = "clean" if not bad else "NaN/Inf: " + "; ".join(bad)
-        except NonFiniteError as exc:
-            file_check = f"refused: {exc}"
+            file_check = "clean" if not bad else "NaN/Inf in the file: " + "; ".join(bad)
+        except NonFiniteError as exc:  # the writer refuses the run: no file (tehl run exits 1)
+            file_check = f"not written: {exc}"
         rows += [Row(case.name, p, p.name in run.failed, file_check) for p in run.points]
     return rows, time.perf_counter() - start
 
@@ -76,7 +77,7 @@ def markdown_table(rows: list[Row]) -> str:
             _value(s, "h_min", 1e9, "{:.4g}"),
             _value(s, "p_max", 1e-9, "{:.3f}"),
             _value(s, "p_hertz", 1e-9, "{:.3f}"),
-            "clean" if row.file_check == "clean" else "**" + row.file_check + "**",
+            "**" + row.file_check.split(":")[0] + "**" if row.file_check != "clean" else "clean",
         ]
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)
