@@ -19,7 +19,7 @@ import numpy as np
 from numba import njit
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _column(temperature, j, i, velocity_x, velocity_y, source, sensitivity, reference, expansivity_grad, rho_c, k_f,
             film, dx, dy, t_inlet, lower, diag, upper, rhs):
     """Solve the interior layers of column (j, i) in place; returns the largest change (K)."""
@@ -72,7 +72,7 @@ def _column(temperature, j, i, velocity_x, velocity_y, source, sensitivity, refe
     return change
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def sweep_film_temperature(temperature, velocity_x, velocity_y, source, sensitivity, expansivity_grad, rho_c, k_f,
                            film, dx, dy, t_inlet, sweeps, tolerance):
     """Gauss-Seidel sweeps (forward, then backward in x) over all columns; returns (sweeps done, last change).

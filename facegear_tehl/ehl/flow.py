@@ -25,7 +25,7 @@ from numba import njit
 from facegear_tehl.lubricant import density_ratio_at, viscosity_ratio_at
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def isothermal_coefficients(pressure_pa, film, law, temperature, lam, cx, cy, eps, fx, fy):
     """Newtonian film at one temperature: eps = rho H^3/(eta lambda), f = s rho c (in place)."""
     ny, nx = film.shape
@@ -39,7 +39,7 @@ def isothermal_coefficients(pressure_pa, film, law, temperature, lam, cx, cy, ep
             fy[j, i] = rho * abs(cy)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def layer_integrals(eta, rho):
     """(F0, F1, R0, R1, R2) for viscosity and density ratios on an odd number of equally spaced layer nodes.
 
@@ -73,7 +73,7 @@ def layer_integrals(eta, rho):
     return f0, f1, r0, r1, r2
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def layered_coefficients(pressure_pa, film, temperature, viscosity_factor, law, lam, kappa, sx, sy, u1, u2,
                          eps, fx, fy):
     """eps, f_x, f_y for a film with layer temperatures (K) and viscosity factors eta*/eta, shape (nz, ny, nx).
@@ -88,11 +88,15 @@ def layered_coefficients(pressure_pa, film, temperature, viscosity_factor, law, 
             p = pressure_pa[j, i]
             for k in range(nz):
                 t = temperature[k, j, i]
-                eta[k] = viscosity_ratio_at(p, t, law) * viscosity_factor[k, j, i]
+                eta[k] = max(viscosity_ratio_at(p, t, law) * viscosity_factor[k, j, i], 1e-300)
                 rho[k] = density_ratio_at(p, t, law)
             f0, f1, r0, r1, r2 = layer_integrals(eta, rho)
             h = max(film[j, i], 0.0)
-            eps[j, i] = 12.0 * (f1 * r2 / f0 - r1) * h * h * h / lam
-            couette = r2 / f0
+            if f0 > 0.0:
+                eps[j, i] = 12.0 * (f1 * r2 / f0 - r1) * h * h * h / lam
+                couette = r2 / f0
+            else:  # infinitely viscous film (overflowing viscosity of a running-away iterate): no Poiseuille flow
+                eps[j, i] = 0.0
+                couette = 0.5 * r0
             fx[j, i] = sx * (u1[0] * r0 + (u2[0] - u1[0]) * couette)
             fy[j, i] = sy * kappa * (u1[1] * r0 + (u2[1] - u1[1]) * couette)

@@ -12,6 +12,9 @@ The surface stress tau_s is fixed by the velocities of the surfaces, \\int_0^h g
 solved by Newton's method with backtracking (Newtonian: in closed form). Integrals across the film use
 Simpson's rule on an odd number of equally spaced layer nodes; the velocity profile u(z) = u_1 + \\int_0^z
 gamma_dot dz' uses the trapezoidal rule. Dissipation per unit volume: tau . gamma_dot (W/m^3).
+
+The kernels here, in flow.py and energy.py are compiled with NumPy's floating-point error model: an iterate
+running away (infinite viscosity) gives inf/NaN, which the solver detects and reports, not an exception.
 """
 
 from __future__ import annotations
@@ -22,9 +25,10 @@ import numpy as np
 from numba import njit
 
 MAX_STRESS_RATIO = 600.0  # |tau|/tau_0 cap inside sinh (overflow guard, far beyond physical values ~10)
+MIN_VISCOSITY_FACTOR = 1e-12  # floor of eta*/eta (r/sinh r underflows to 0 near the cap)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _simpson_weights(nz: int) -> np.ndarray:
     w = np.empty(nz)
     dz = 1.0 / (nz - 1)
@@ -38,7 +42,7 @@ def _simpson_weights(nz: int) -> np.ndarray:
     return w
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _shear_rate(tx, ty, eta, tau0):
     """(gamma_dot_x, gamma_dot_y, d gamma/d tau as (a, b, c) of the symmetric 2x2 Jacobian)."""
     te = math.sqrt(tx * tx + ty * ty)
@@ -53,7 +57,7 @@ def _shear_rate(tx, ty, eta, tau0):
     return gx, gy, d_amp * nx * nx + ratio * (1.0 - nx * nx), (d_amp - ratio) * nx * ny, d_amp * ny * ny + ratio * (1.0 - ny * ny)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, warm, speed):
     """Stress (tau_x, tau_y) at surface 1 such that \\int gamma_dot dz = (dux, duy); eta per layer (Pa s).
 
@@ -119,7 +123,7 @@ def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, 
     return tx, ty
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def shear_state(pressure, film, grad_x, grad_y, eta_newtonian, u1, u2, tau0, warm,
                 viscosity_factor, dissipation, velocity_x, velocity_y, stress_1, stress_2, thinning):
     """Across-film shear state at every node (in place), shapes (nz, ny, nx) for layer fields.
@@ -158,7 +162,7 @@ def shear_state(pressure, film, grad_x, grad_y, eta_newtonian, u1, u2, tau0, war
                 gx, gy, _, _, _ = _shear_rate(sx, sy, eta[k], tau0)
                 te = math.hypot(sx, sy)
                 ge = math.hypot(gx, gy)
-                viscosity_factor[k, j, i] = te / (ge * eta[k]) if ge > 0.0 else 1.0
+                viscosity_factor[k, j, i] = max(te / (ge * eta[k]), MIN_VISCOSITY_FACTOR) if ge > 0.0 else 1.0
                 r = te / tau0 if math.isfinite(tau0) else 0.0
                 thinning[k, j, i] = math.tanh(r) / r if r > 1e-8 else 1.0
                 dissipation[k, j, i] = sx * gx + sy * gy

@@ -37,6 +37,7 @@ EYRING_LAYERS = 9  # layers for an isothermal Ree-Eyring film
 CYCLES_PER_THERMAL_UPDATE = 2  # V-cycles on the pressure between two updates of the film state
 THERMAL_RELAXATION = 0.7  # under-relaxation of the layer temperatures between outer iterations
 VISCOSITY_RELAXATION = 0.4  # under-relaxation of ln(eta*/eta) between outer iterations
+MIN_COARSE_THERMAL_GRID = 65  # the coupled problem is solved one grid coarser first only from this grid up
 
 
 @dataclass
@@ -206,24 +207,45 @@ def solve_point(point: ContactPoint, lubricant: Lubricant, settings: SolverSetti
     history = _History(cycles=settings.cycles_per_level)
     state = None
     converged = False
-    if mode == "reduced" and top > 0:
-        # the coupled problem one grid coarser, its film state interpolated and frozen on the finest grid
+    if mode != "off" and top > 0 and solver.levels[top - 1].nx >= MIN_COARSE_THERMAL_GRID:
+        # thermal full multigrid: the coupled problem one grid coarser first, its film state interpolated and
+        # frozen on the finest grid; `reduced` stops there (one film-state evaluation for the outputs), `full`
+        # goes on coupling on the finest grid from that state (below 65^2 both couple on the finest grid)
         finest, message = _full_multigrid(solver, scaling, settings, summaries, 0, top - 1)
         if not message:
             converged, message = _cycle(solver, finest, settings, history, settings.max_cycles, None)
             coarse_state, converged, message = _couple(solver, finest, point, lubricant, scaling, settings, mode,
                                                        history)
             if coarse_state is not None and not message.startswith("diverged"):
-                summaries[-1] = summarise(solver.levels[finest])  # the coarse level, now with its film state
-                state, converged, message = _finish_on_fine_grid(solver, top, coarse_state, point, lubricant,
-                                                                 scaling, settings, history)
+                coarse = solver.levels[finest]
+                summaries[-1] = summarise(coarse)  # the coarse level, now with its film state
+                snapshot = (coarse.pressure.copy(), solver.h0)
+                frozen, converged, message = _start_fine_grid(solver, top, coarse_state, settings, history)
+                if message.startswith("diverged"):
+                    # the finest grid ran away: report the converged coarse-grid solution, flagged
+                    solver.reset_rhs(coarse)
+                    coarse.pressure, solver.h0 = snapshot
+                    _freeze_film_state(solver, finest, coarse_state)
+                    state = coarse_state
+                    message = f"finest grid: {message}; the result is the {coarse.nx}^2 solution"
+                    converged = False
+            if coarse_state is not None and not message.startswith(("diverged", "finest grid")):
                 finest = top
+                if mode == "reduced":
+                    fine = solver.levels[top]
+                    model = _film_model(fine, point, lubricant, scaling, settings, mode)
+                    state = model.update(fine.pressure * scaling.p_h, fine.film * scaling.film_scale,
+                                         frozen.temperature)
+                else:
+                    state, converged, message = _couple(solver, top, point, lubricant, scaling, settings, mode,
+                                                        history, frozen)
                 summaries.append(summarise(solver.levels[top]))
+            else:
+                state = coarse_state
         level = solver.levels[finest]
     else:
         finest, message = _full_multigrid(solver, scaling, settings, summaries, 0, top)
         level = solver.levels[finest]
-        converged = False
         best: list = [math.inf, level.pressure.copy(), level.film.copy(), solver.h0]
         if not message:
             converged, message = _cycle(solver, finest, settings, history, settings.max_cycles,
@@ -250,33 +272,32 @@ def _film_model(level: Level, point, lubricant, scaling, settings, mode) -> Film
                             solve_energy=mode != "off")
 
 
-def _finish_on_fine_grid(solver, index, coarse_state, point, lubricant, scaling, settings, history):
-    """`reduced`: freeze the interpolated coarse film state on every grid, converge the finest pressure, then
-    evaluate the film state once on the finest grid for the outputs. Returns (state, converged, message)."""
+def _start_fine_grid(solver, index, coarse_state, settings, history):
+    """Interpolate the coarse solution and film state to the finest grid, freeze the state on every grid and
+    converge the pressure against it. Returns (frozen state, converged, message)."""
     solver.interpolate_up(index)
     frozen = FilmState(**{**coarse_state.__dict__,
                           "temperature": _prolong_layers(coarse_state.temperature),
                           "viscosity_factor": np.exp(_prolong_layers(np.log(coarse_state.viscosity_factor)))})
     _freeze_film_state(solver, index, frozen)
     converged, message = _cycle(solver, index, settings, history, settings.max_cycles, None)
-    level = solver.levels[index]
-    model = _film_model(level, point, lubricant, scaling, settings, "reduced")
-    state = model.update(level.pressure * scaling.p_h, level.film * scaling.film_scale, frozen.temperature)
-    return state, converged, message
+    return frozen, converged, message
 
 
 def _prolong_layers(field: np.ndarray) -> np.ndarray:
     return np.stack([grid.prolong_bilinear(layer) for layer in field])
 
 
-def _couple(solver, index, point, lubricant, scaling, settings, mode, history):
-    """Outer loop of the film state and the pressure; returns (film state, converged, message)."""
+def _couple(solver, index, point, lubricant, scaling, settings, mode, history, initial: FilmState | None = None):
+    """Outer loop of the film state and the pressure on level `index`, from `initial` (default: the inlet
+    temperature and a Newtonian film); returns (film state, converged, message). If the iteration runs away,
+    the last finite iterate (at worst the entry state) is restored and reported with the reason."""
     level = solver.levels[index]
     model = _film_model(level, point, lubricant, scaling, settings, mode)
-    temperature = model.initial_temperature()
-    factor = np.ones_like(temperature)
-    state = None
-    last_finite = None
+    temperature = model.initial_temperature() if initial is None else initial.temperature
+    factor = np.ones_like(temperature) if initial is None else initial.viscosity_factor
+    state = initial
+    last_finite = (level.pressure.copy(), level.film.copy(), solver.h0, initial)
     for outer in range(settings.max_thermal_iterations):
         update = model.update(level.pressure * scaling.p_h, level.film * scaling.film_scale, temperature)
         w = THERMAL_RELAXATION
@@ -301,9 +322,15 @@ def _couple(solver, index, point, lubricant, scaling, settings, mode, history):
         if outer > 0 and met and thermal_change < settings.thermal_tolerance * max(rise, 1.0):
             return state, True, ""
     if message.startswith("diverged"):
-        if last_finite is None:
-            return None, False, message
         level.pressure, level.film, solver.h0, state = last_finite  # report the last finite iterate
+        if state is not None:
+            _freeze_film_state(solver, index, state)
+            if state is initial:  # an interpolated state: evaluate it on this grid for the outputs
+                state = model.update(level.pressure * scaling.p_h, level.film * scaling.film_scale,
+                                     initial.temperature)
+        else:
+            level.temperature = level.viscosity_factor = None
+            solver.update_film(level)
         return state, False, message
     return state, False, (
         f"thermal loop not converged after {settings.max_thermal_iterations} outer iterations: temperature change "
