@@ -58,6 +58,7 @@ class Relaxation:
     force_updates: int = 4  # H_0 updates per coarsest-grid solve
     force_damping: float = 1.0  # fraction of the secant step taken
     alternate_above: float = 0.25  # add Y-line sweeps when |c_y| > this * |c_x| (entrainment skewed > 14 deg)
+    scale_switch: bool = True  # scale xi_switch for long ellipses (see Level); False: Venner's value as is
 
 
 @dataclass
@@ -153,7 +154,7 @@ class MultigridSolver:
             pattern_jd_t=e_jd_t,
             weight_x=wx,
             weight_y=wy,
-            xi_switch=self.relaxation.xi_switch * elastic_ratio**4,
+            xi_switch=self.relaxation.xi_switch * (elastic_ratio**4 if self.relaxation.scale_switch else 1.0),
             pressure=np.zeros((n, n)),
             film_rhs=0.5 * xx**2 + 0.5 * pb.geometry_y * yy**2,
             reynolds_rhs=np.zeros((n, n)),

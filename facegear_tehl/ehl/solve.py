@@ -112,13 +112,22 @@ def _full_multigrid(solver: MultigridSolver, scaling: Scaling, settings: SolverS
             solver.cycle(0)
         summaries.append(summarise(solver.levels[0]))
         first = 1
+    snapshot = (solver.levels[first - 1].pressure.copy(), solver.h0)
     for index in range(first, last + 1):
         solver.interpolate_up(index)
         for _ in range(settings.cycles_per_level):
             solver.cycle(index)
-        if not _finite(solver.levels[index]):
-            return index - 1, f"diverged during the full-multigrid start on the {solver.levels[index].nx}^2 grid"
-        summaries.append(summarise(solver.levels[index]))
+        level = solver.levels[index]
+        diverged = not _finite(level) or abs(solver.force_error(level)) > DIVERGED_LOAD_ERROR * solver.problem.load_integral
+        if diverged:
+            # the coarser level was overwritten by the FAS cycles of this one: restore its own solution
+            coarser = solver.levels[index - 1]
+            solver.reset_rhs(coarser)
+            coarser.pressure, solver.h0 = snapshot
+            solver.update_film(coarser)
+            return index - 1, f"diverged during the full-multigrid start on the {level.nx}^2 grid"
+        snapshot = (level.pressure.copy(), solver.h0)
+        summaries.append(summarise(level))
     return last, ""
 
 
@@ -177,8 +186,25 @@ def _freeze_film_state(solver: MultigridSolver, index: int, state: FilmState) ->
 
 
 def solve_point(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
-    """Solve the EHL problem of one contact point (thermal model and rheology as the settings say)."""
+    """Solve the EHL problem of one contact point (thermal model and rheology as the settings say).
+
+    Convergence policy: a solve that runs away is repeated once with the other Gauss-Seidel / Jacobi switch
+    (the ellipse-scaled one first, then Venner's circle value; multigrid.Level), and the retry is reported.
+    """
     start = time.perf_counter()
+    solution = _solve(point, lubricant, settings, Relaxation(), start)
+    if solution.converged or "diverged" not in solution.message:
+        return solution
+    retry = _solve(point, lubricant, settings, Relaxation(scale_switch=False), start)
+    if retry.converged or "diverged" not in retry.message:
+        note = f"converged after a retry with Venner's switch (first attempt: {solution.message})"
+        return PointSolution(**{**retry.__dict__, "message": retry.message or "", "models": {
+            **retry.models, "solver": retry.models["solver"] + "; " + note}})
+    return solution
+
+
+def _solve(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, relaxation: Relaxation,
+           start: float) -> PointSolution:
     scaling = scaling_for(point, lubricant)
     if settings.domain_x is None or settings.domain_y is None:
         domain_x, domain_y = default_domain(scaling)
@@ -199,7 +225,7 @@ def solve_point(point: ContactPoint, lubricant: Lubricant, settings: SolverSetti
         domain_x=domain_x,
         domain_y=domain_y,
     )
-    solver = MultigridSolver(problem, grid.hierarchy_sizes(settings.grid, settings.coarsest_grid), Relaxation())
+    solver = MultigridSolver(problem, grid.hierarchy_sizes(settings.grid, settings.coarsest_grid), relaxation)
     mode, reason = thermal_choice(settings.thermal, point, lubricant)
     coupled = mode != "off" or lubricant.rheology == "ree_eyring"
     top = len(solver.levels) - 1
