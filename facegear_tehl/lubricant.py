@@ -166,3 +166,14 @@ def density_ratio(pressure, temperature, law):
     for n in range(p_flat.size):
         out[n] = density_ratio_at(p_flat[n], t_flat[n], law)
     return out
+
+
+@njit(cache=True)
+def temperature_coefficient(pressure, temperature, law):
+    """beta = -d ln(eta)/dT (1/K) on arrays of pressure (Pa) and temperature (K), flattened."""
+    p_flat = pressure.ravel()
+    t_flat = temperature.ravel()
+    out = np.empty(p_flat.size)
+    for n in range(p_flat.size):
+        out[n] = viscosity_temperature_coefficient_at(p_flat[n], t_flat[n], law)
+    return out

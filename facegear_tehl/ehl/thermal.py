@@ -21,25 +21,13 @@ from dataclasses import dataclass
 import math
 
 import numpy as np
-from numba import njit
 
 from facegear_tehl.ehl import energy, jaeger, rheology
-from facegear_tehl.lubricant import Lubricant, density_ratio, viscosity_ratio, viscosity_temperature_coefficient_at
+from facegear_tehl.lubricant import Lubricant, density_ratio, temperature_coefficient, viscosity_ratio
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.materials import Solid
 
 MAX_TEMPERATURE_STEP = 50.0  # K, largest temperature change of one update
-
-
-@njit(cache=True)
-def temperature_coefficient(pressure, temperature, law):
-    """beta = -d ln(eta)/dT (1/K) on arrays (flattened)."""
-    p_flat = pressure.ravel()
-    t_flat = temperature.ravel()
-    out = np.empty(p_flat.size)
-    for n in range(p_flat.size):
-        out[n] = viscosity_temperature_coefficient_at(p_flat[n], t_flat[n], law)
-    return out
 
 
 @dataclass(frozen=True)
