@@ -5,6 +5,7 @@ of a face gear point (the full 33-513 sweep is `slow`)."""
 from __future__ import annotations
 
 import csv
+from dataclasses import replace
 import math
 
 from click.testing import CliRunner
@@ -215,6 +216,23 @@ def test_a_thermal_model_the_solver_did_not_run_is_reported(monkeypatch):
                                        for n in (17, 33, 65))
     assert sweep.run.case.solver.thermal == "full" and sweep.run.overrides["thermal"] == "full"
     assert run_sweep(synthetic.ball_on_disc(), (17, 33, 65), thermal="off", jobs=1).run.warnings == ()
+
+
+def test_a_grid_that_did_not_converge_enters_no_order_or_extrapolation(monkeypatch):
+    """The finest grid's solve fails (as the thermal 513^2 face gear does: the 257^2 solution is returned):
+    its value must not be read as a converged one (it would fake an order of 8 from a zero change)."""
+    def solve(point, lub, settings):
+        value = 1.0 + 0.3 / (settings.grid - 1) ** 2
+        solved = synthetic.solution(point, converged=settings.grid < 129)
+        return replace(solved, scalars={**solved.scalars, "h_c": (value, "m")})
+
+    monkeypatch.setattr("facegear_tehl.ehl.solve.solve_point", solve)
+    sweep = run_sweep(synthetic.ball_on_disc(), (17, 33, 65, 129), jobs=1)
+    h_c = next(q for q in sweep.quantities if q.name == "h_c")
+    assert math.isnan(h_c.values[-1]) and math.isnan(h_c.change[-1]) and math.isnan(h_c.order[-1])
+    assert h_c.order[2] == pytest.approx(2.0, rel=1e-9) and h_c.extrapolated[2] == pytest.approx(1.0, rel=1e-12)
+    assert h_c.error[0] == pytest.approx(0.3 / 16**2, rel=1e-9)  # against the f* of 17, 33, 65
+    assert h_c.converged_grid is None
 
 
 # ------------------------------------------------------------------------------- grid convergence (CI)

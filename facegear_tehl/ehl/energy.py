@@ -9,14 +9,46 @@ with the thermal expansivity beta_T = -(1/rho) d rho/dT = eps_T/(1 - eps_T (T - 
 (lubricant.py). Layer nodes zeta_k = k/(nz - 1) across the film; the surface nodes k = 0 and nz - 1 carry
 the solid surface temperatures (Dirichlet, from the moving heat source of each solid). Each column (x, y)
 is a tridiagonal system in k; convection is upwinded per layer by the sign of the local velocity (reversed
-flow in the inlet), with the inlet temperature outside the domain, and the columns are swept Gauss-Seidel
-forwards and backwards. Compression cooling is implicit.
+flow in the inlet), with the inlet temperature outside the domain: second-order upwind, limited (van Leer)
+so that extrema are not overshot; the first-order part is implicit, the limited correction is taken from the
+current iterate. The columns are swept Gauss-Seidel forwards and backwards. Compression cooling is implicit.
+(First-order upwinding alone made the largest temperature rise converge at order 0.6 with the grid on the
+face gear case, S1; with the limited correction the order is 1.0 and h_min converges at order 2.)
 """
 
 from __future__ import annotations
 
 import numpy as np
 from numba import njit
+
+
+@njit(cache=True)
+def _van_leer(rise: float, upstream_rise: float) -> float:
+    """psi(r) (T_i - T_up) of van Leer's limiter, r = rise/upstream_rise: the limited slope of a face value."""
+    if rise * upstream_rise <= 0.0:
+        return 0.0
+    return 2.0 * rise * upstream_rise / (rise + upstream_rise)
+
+
+@njit(cache=True)
+def _upwind(line, i, step, t_inlet):
+    """Upstream value T_up of node i along `line` (flow in the direction of `step`, +1 or -1; the inlet
+    temperature beyond the domain) and the limited second-order correction c of the upwind difference:
+    u dT/ds = |u| (T_i - T_up + c)/ds with c = (T_i+1/2 - T_i) - (T_i-1/2 - T_up), face values extrapolated
+    from upstream with van Leer's limiter (MUSCL, van Leer 1979). Without limiting this is the second-order
+    upwind difference (3 T_i - 4 T_i-1 + T_i-2)/(2 ds); at extrema it falls back to first order."""
+    n = line.shape[0]
+    up = i - step
+    down = i + step
+    t_i = line[i]
+    t_up = line[up] if 0 <= up < n else t_inlet
+    t_up2 = line[up - step] if 0 <= up - step < n else t_inlet
+    corr = 0.0
+    if 0 <= down < n:
+        corr += 0.5 * _van_leer(line[down] - t_i, t_i - t_up)
+    if 0 <= up < n:
+        corr -= 0.5 * _van_leer(t_i - t_up, t_up - t_up2)
+    return t_up, corr
 
 
 @njit(cache=True, error_model="numpy")
@@ -32,20 +64,16 @@ def _column(temperature, j, i, velocity_x, velocity_y, source, sensitivity, refe
         u = velocity_x[k, j, i]
         v = velocity_y[k, j, i]
         rc = rho_c[k, j, i]
-        if u >= 0.0:
-            t_x = temperature[k, j, i - 1] if i > 0 else t_inlet
-        else:
-            t_x = temperature[k, j, i + 1] if i < nx - 1 else t_inlet
-        if v >= 0.0:
-            t_y = temperature[k, j - 1, i] if j > 0 else t_inlet
-        else:
-            t_y = temperature[k, j + 1, i] if j < ny - 1 else t_inlet
+        step_x = 1 if u >= 0.0 else -1
+        step_y = 1 if v >= 0.0 else -1
+        t_x, corr_x = _upwind(temperature[k, j, :], i, step_x, t_inlet)
+        t_y, corr_y = _upwind(temperature[k, :, i], j, step_y, t_inlet)
         ax = rc * abs(u) / dx
         ay = rc * abs(v) / dy
         comp = expansivity_grad[k, j, i]  # beta_T (u . grad p), W/(m^3 K) per K of T
         sig = sensitivity[k, j, i]
         d = ax + ay + 2.0 * kz + sig
-        r = ax * t_x + ay * t_y + source[k, j, i] + sig * reference[k, j, i]
+        r = ax * (t_x - corr_x) + ay * (t_y - corr_y) + source[k, j, i] + sig * reference[k, j, i]
         if comp < 0.0:
             d -= comp  # cooling by expansion: implicit
         else:
