@@ -114,8 +114,8 @@ def analyse_gear_pair(spec: GearSpec, body_1: Solid, body_2: Solid, n_path: int 
         point_s = np.array([s_of[name] for name in names])
     path_s = np.linspace(s_min, s_max, n_path)
     if isinstance(spec.load_sharing, str):
-        path_share = load_share(spec.load_sharing, path_s, s_min, s_max, p_b)
-        point_share = load_share(spec.load_sharing, point_s, s_min, s_max, p_b)
+        path_share = load_share(spec.load_sharing, path_s, s_min, s_max, p_b, spec.transition_side)
+        point_share = load_share(spec.load_sharing, point_s, s_min, s_max, p_b, spec.transition_side)
     else:
         path_share = interpolated_share(path_s, point_s, spec.load_sharing)
         point_share = np.array(spec.load_sharing)

@@ -6,6 +6,7 @@ g = 110 deg gives delta_2 = 101.2 deg for 25/160 teeth, a face gear whose pitch 
 pinion; a paper's "110 deg" meaning the supplementary drive is our 70 deg), pinion_addendum and
 face_gear_addendum (m, default = module), inner_radius and outer_radius of the face gear (m),
 pinion_speed (rpm), pinion_torque (N m), load_sharing (iso_linear | equal | one coefficient per point),
+transition_side (single | double: K of a point exactly at S2 or S4 with a sharing model, loads.load_share),
 points ([S1, ..., S5] by default, any subset of these names, or a count of evenly spaced points over the
 whole path), and the optional misalignment shaft_angle_error (deg), offset (m), pinion_axial_shift (m),
 face_gear_axial_shift (m).
@@ -23,7 +24,7 @@ import math
 import numpy as np
 
 from facegear_tehl.gears.geometry import PairGeometry, axial_section, pointing_limit, undercut_limit
-from facegear_tehl.gears.loads import LOAD_SHARING_MODELS, contact_ratio
+from facegear_tehl.gears.loads import LOAD_SHARING_MODELS, TRANSITION_SIDES, contact_ratio
 from facegear_tehl.gears.tca import MESHING_POINTS, ContactError, ContactPath, Misalignment
 from facegear_tehl.schema import Block, CaseError, check
 
@@ -50,6 +51,7 @@ class GearSpec:
     pinion_torque: float  # N m
     load_sharing: str | tuple[float, ...]  # a model of loads.LOAD_SHARING_MODELS, or one coefficient per point
     points: tuple[str, ...] | int  # names among S1..S5, or a count of evenly spaced points
+    transition_side: str = "single"  # of loads.TRANSITION_SIDES: K exactly at S2 and S4 under a sharing model
     misalignment: Misalignment = Misalignment()
 
     @property
@@ -93,6 +95,7 @@ def parse_gear_block(block: Block) -> GearSpec:
     torque = block.number("pinion_torque", positive=True, low=1e-3, high=1e7, unit="N m")
     points = _points(block)
     count = points if isinstance(points, int) else len(points)
+    load_sharing = _load_sharing(block, count)
     spec = GearSpec(
         pinion_teeth=n1,
         shaper_teeth=ns,
@@ -106,8 +109,9 @@ def parse_gear_block(block: Block) -> GearSpec:
         outer_radius=outer,
         pinion_speed=speed * RPM,
         pinion_torque=torque,
-        load_sharing=_load_sharing(block, count),
+        load_sharing=load_sharing,
         points=points,
+        transition_side=_transition_side(block, load_sharing),
         misalignment=Misalignment(
             shaft_angle_error=math.radians(block.number("shaft_angle_error", 0.0, low=-1.0, high=1.0, unit="deg")),
             offset=block.number("offset", 0.0, low=-module, high=module, unit="m"),
@@ -151,6 +155,15 @@ def _load_sharing(block: Block, count: int) -> str | tuple[float, ...]:
     )
     check(len(value) == count, key, value, f"one coefficient per point ({count})")
     return tuple(float(v) for v in value)
+
+
+def _transition_side(block: Block, load_sharing: str | tuple[float, ...]) -> str:
+    """single (default) or double; only with a sharing model: a list of coefficients fixes K at every point."""
+    if not isinstance(load_sharing, str) and block.has("transition_side"):
+        raise CaseError(block.key_path("transition_side"), block.get("transition_side"),
+                        "no transition_side when load_sharing is a list of coefficients (the list sets K at "
+                        "every point; transition_side applies to " + ", ".join(LOAD_SHARING_MODELS) + ")")
+    return block.choice("transition_side", TRANSITION_SIDES, "single")
 
 
 def _misalignment_key(spec: GearSpec, block: Block) -> str:

@@ -8,6 +8,8 @@ digit when the printing is coarser than that (e.g. p0 = 355 MPa, psi_e = 2.14 de
 from __future__ import annotations
 
 import math
+from pathlib import Path
+import re
 from typing import Any
 
 from facegear_tehl.gears.analysis import GearContactAnalysis, analyse_gear_pair
@@ -16,6 +18,7 @@ from facegear_tehl.gears.spec import GearSpec, parse_gear_block
 from facegear_tehl.materials import Solid
 from facegear_tehl.schema import Block
 
+CASE_FILE = Path(__file__).resolve().parents[2] / "cases" / "facegear_110.yaml"
 STEEL = Solid(elastic_modulus=206e9, poisson_ratio=0.3)  # FACEGEAR.md §8: E = 206 GPa, nu = 0.3
 MM = 1e-3
 
@@ -39,6 +42,20 @@ def spec(base: dict[str, Any] = EXAMPLE_A, **overrides: Any) -> GearSpec:
 def analysis(base: dict[str, Any] = EXAMPLE_A, n_path: int = 41, **overrides: Any) -> GearContactAnalysis:
     overrides.setdefault("load_sharing", TABLE_LOADS)
     return analyse_gear_pair(spec(base, **overrides), STEEL, STEEL, n_path=n_path)
+
+
+def case_variant(folder: Path, **gear_keys: Any) -> Path:
+    """cases/facegear_110.yaml with `gear_keys` set in its gear: block (YAML flow text of each value),
+    written to folder/variant.yaml."""
+    text = CASE_FILE.read_text()
+    for key, value in gear_keys.items():
+        line = f"  {key}: {value}\n"
+        text, found = re.subn(rf"^  {key}:.*\n", lambda _: line, text, count=1, flags=re.MULTILINE)
+        if not found:
+            text = text.replace("\ngear:\n", "\ngear:\n" + line, 1)
+    path = folder / "variant.yaml"
+    path.write_text(text)
+    return path
 
 
 def pair(base: dict[str, Any] = EXAMPLE_A, **overrides: Any) -> PairGeometry:

@@ -3,18 +3,16 @@
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-from gear_examples import EXAMPLE_A, MM, STEEL, analysis, assert_reference, spec
+from gear_examples import CASE_FILE, EXAMPLE_A, MM, STEEL, analysis, assert_reference, case_variant, spec
 from facegear_tehl.case import load_case, parse_case
 from facegear_tehl.gears.analysis import PATH_UNITS, analyse_gear_pair
 from facegear_tehl.gears.report import contact_table
+from facegear_tehl.points import contact_analysis
 from facegear_tehl.schema import CaseError
-
-CASE_FILE = Path(__file__).resolve().parents[2] / "cases" / "facegear_110.yaml"
 
 
 @pytest.mark.parametrize(
@@ -40,6 +38,12 @@ CASE_FILE = Path(__file__).resolve().parents[2] / "cases" / "facegear_110.yaml"
         ({"load_sharing": "linear"}, "gear.load_sharing", "iso_linear"),
         ({"load_sharing": [0.5, 1.0]}, "gear.load_sharing", "one coefficient per point (5)"),
         ({"load_sharing": [0.3, 1, 1, 1, 1.2]}, "gear.load_sharing", "(0, 1]"),
+        ({"transition_side": "both"}, "gear.transition_side", "one of single, double"),
+        ({"transition_side": 2}, "gear.transition_side", "one of single, double"),
+        ({"load_sharing": [0.5, 1, 1, 1, 0.5], "transition_side": "double"}, "gear.transition_side",
+         "no transition_side when load_sharing is a list of coefficients"),
+        ({"load_sharing": [0.5, 1, 1, 1, 0.5], "transition_side": "single"}, "gear.transition_side",
+         "list of coefficients"),
         ({"shaft_angle_error": -0.05, "outer_radius": 0.520}, "gear.outer_radius", "covering the contact path"),
         ({"shaft_angle_error": 2.0}, "gear.shaft_angle_error", "<= 1"),
         ({"pinion_teth": 25}, "gear.pinion_teth", "did you mean 'pinion_teeth'"),
@@ -57,6 +61,7 @@ def test_defaults_and_units():
     gear = spec(EXAMPLE_A)
     assert gear.pinion_addendum == gear.face_gear_addendum == gear.module == 6.35e-3
     assert gear.points == ("S1", "S2", "S3", "S4", "S5") and gear.load_sharing == "iso_linear"
+    assert gear.transition_side == "single"
     assert gear.pressure_angle == pytest.approx(math.radians(25.0)) and gear.shaft_angle == pytest.approx(math.radians(110))
     assert gear.pinion_speed == pytest.approx(3000 * 2 * math.pi / 60)
     assert gear.misalignment.is_zero
@@ -77,6 +82,19 @@ def test_shipped_case_reproduces_example_a():
         assert_reference(point.radius_y / MM, ry, f"{point.name} R_y")
         assert_reference(point.hertz.p_max / 1e6, p0, f"{point.name} p_h")
         assert_reference(point.load, load, f"{point.name} load")
+
+
+def test_transition_side_double_reaches_the_contact_points(tmp_path):
+    """contact_analysis gives `tehl run` its ContactPoints (solved, written to /points) and the path table
+    (/contact): with transition_side double, S2 and S4 carry 2/3 F_n at the Hertz pressure of that load,
+    and the path, which has no sample at S2 or S4, keeps its zones."""
+    single = contact_analysis(load_case(CASE_FILE))
+    double = contact_analysis(load_case(case_variant(tmp_path, transition_side="double")))
+    f_n = double.scalars["normal_load"][0]
+    np.testing.assert_allclose([p.load / f_n for p in double.points], [1 / 3, 2 / 3, 1, 2 / 3, 1 / 3], rtol=1e-12)
+    for one, two in zip(single.points, double.points):
+        assert two.hertz.p_max == pytest.approx(one.hertz.p_max * (two.load / one.load) ** (1 / 3), rel=1e-9)
+    np.testing.assert_array_equal(double.path["load_share"].values, single.path["load_share"].values)
 
 
 def test_case_needs_exactly_one_of_contact_and_gear():
