@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 import math
 
 import numpy as np
@@ -73,7 +74,11 @@ def test_shipped_case_reproduces_example_a():
     assert case.solver.grid == 129 and case.solver.thermal == "full"
     gear = case.gear
     assert gear.inner_radius > 0.4659 and gear.outer_radius < 0.5664  # inside [L1, L2] of example A at 110 deg
-    result = analyse_gear_pair(gear, case.materials.body_1, case.materials.body_2)
+    # the case takes S2 and S4 at the double-tooth side (2/3 of F_n); FACEGEAR.md §8 at the single side (1)
+    assert gear.transition_side == "double"
+    double = analyse_gear_pair(gear, case.materials.body_1, case.materials.body_2)
+    assert [p.load / double.points[2].load for p in double.points] == pytest.approx([1 / 3, 2 / 3, 1, 2 / 3, 1 / 3])
+    result = analyse_gear_pair(replace(gear, transition_side="single"), case.materials.body_1, case.materials.body_2)
     assert [p.name for p in result.points] == ["S1", "S2", "S3", "S4", "S5"]
     for point, rx, ry, p0, load in zip(result.points, ["18.914", "29.562", "34.751", "37.734", "47.941"],
                                        ["14147", "14255", "14327", "14374", "14574"], ["556", "647", "598", "575", "355"],

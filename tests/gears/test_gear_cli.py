@@ -45,9 +45,10 @@ def _rows(output: str) -> dict[str, dict[str, float]]:
 
 
 def test_contact_transition_side_double(tmp_path):
-    """S2 and S4 carry 2/3 F_n (iso_linear, double side), with p_h scaled by (2/3)^(1/3); S1, S3, S5 unchanged."""
-    single = CliRunner().invoke(tehl, ["contact", str(CASES / "facegear_110.yaml")])
-    double = CliRunner().invoke(tehl, ["contact", str(case_variant(tmp_path, transition_side="double"))])
+    """S2 and S4 carry 2/3 F_n (iso_linear, double side: the shipped case), with p_h scaled by (2/3)^(1/3) from
+    the single side; S1, S3, S5 unchanged."""
+    single = CliRunner().invoke(tehl, ["contact", str(case_variant(tmp_path, transition_side="single"))])
+    double = CliRunner().invoke(tehl, ["contact", str(CASES / "facegear_110.yaml")])  # the shipped case: double
     assert single.exit_code == double.exit_code == 0, double.output
     before, after = _rows(single.output), _rows(double.output)
     f_n = before["S3"]["load"]
