@@ -26,6 +26,7 @@ import multiprocessing
 import os
 import signal
 import sys
+import threading
 from typing import Callable, Iterator, Sequence
 
 from threadpoolctl import threadpool_limits
@@ -99,9 +100,14 @@ def solve_each(tasks: Sequence[SolveTask], *, solve: Solver, jobs: int | None = 
         _warm_up(solve, tasks[0])
     executor = ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=_init_worker)
     try:
-        pending: dict[Future, int] = {executor.submit(_solve_task, solve, task): i for i, task in enumerate(tasks)}
+        with _DeferredSignals():
+            pending: dict[Future, int] = {executor.submit(_solve_task, solve, task): i
+                                          for i, task in enumerate(tasks)}
         while pending:
-            finished, _ = wait(pending, return_when=FIRST_COMPLETED)
+            with _DeferredSignals() as signals:
+                finished: set[Future] = set()
+                while not finished and not signals.received:
+                    finished, _ = wait(pending, timeout=0.2, return_when=FIRST_COMPLETED)
             for future in sorted(finished, key=pending.__getitem__):
                 index = pending.pop(future)
                 yield index, _outcome(future, tasks[index])
@@ -109,6 +115,36 @@ def solve_each(tasks: Sequence[SolveTask], *, solve: Solver, jobs: int | None = 
         _stop_workers(executor)
         raise
     executor.shutdown()
+
+
+class _DeferredSignals:
+    """Within the block, SIGINT and SIGTERM are only recorded; at its end a recorded signal is raised again
+    with the handlers restored (Ctrl-C becomes KeyboardInterrupt there). This keeps the exception out of
+    `concurrent.futures`' internals: raised inside `wait`, it can leave the futures' locks held, which the
+    pool's manager thread then waits on at the interpreter's exit (an interrupted two-worker run once hung
+    there, in the test suite on a loaded machine). Only in the main thread (the only one that receives
+    signals); elsewhere it does nothing."""
+
+    SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+    def __init__(self) -> None:
+        self.received: list[int] = []
+        self._previous: dict[int, object] = {}
+
+    def __enter__(self) -> "_DeferredSignals":
+        if threading.current_thread() is threading.main_thread():
+            for signum in self.SIGNALS:
+                self._previous[signum] = signal.signal(signum, self._record)
+        return self
+
+    def _record(self, signum: int, frame: object) -> None:
+        self.received.append(signum)
+
+    def __exit__(self, *exc: object) -> None:
+        for signum, handler in self._previous.items():
+            signal.signal(signum, handler)
+        if self.received:
+            signal.raise_signal(self.received[0])
 
 
 def _solve_task(solve: Solver, task: SolveTask) -> Solved:

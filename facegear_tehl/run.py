@@ -3,6 +3,7 @@ behind `tehl run`, for notebooks and scripts)."""
 
 from __future__ import annotations
 
+from contextlib import closing
 from dataclasses import replace
 import math
 from typing import Callable, Sequence
@@ -49,13 +50,16 @@ def run_case(
     solutions: list[PointSolution | None] = [None] * len(tasks)
     failed: set[int] = set()
     # solve_point is looked up here, at call time, so that tests can stand in for the solver.
-    for done, (index, outcome) in enumerate(solve_each(tasks, solve=solve_point, jobs=jobs), start=1):
-        solution = _with_path_coordinate(outcome.solution, selected[index])
-        solutions[index] = solution
-        if outcome.failed:
-            failed.add(index)
-        if progress is not None:
-            progress(solution, done, len(tasks))
+    # closing: an exception in this loop (Ctrl-C while reporting progress) stops the workers now, not when
+    # the generator is collected (the traceback keeps it alive until the interpreter exits)
+    with closing(solve_each(tasks, solve=solve_point, jobs=jobs)) as outcomes:
+        for done, (index, outcome) in enumerate(outcomes, start=1):
+            solution = _with_path_coordinate(outcome.solution, selected[index])
+            solutions[index] = solution
+            if outcome.failed:
+                failed.add(index)
+            if progress is not None:
+                progress(solution, done, len(tasks))
     solutions, heat_table = heat_budget(selected, solutions, case.lubricant)
     return RunResult(
         case=case,

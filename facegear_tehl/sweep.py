@@ -23,6 +23,7 @@ Grids are independent solves (each with its own full-multigrid start); they run 
 
 from __future__ import annotations
 
+from contextlib import closing
 from dataclasses import dataclass, replace
 import math
 import os
@@ -193,13 +194,14 @@ def run_sweep(
 
     solutions: list[PointSolution | None] = [None] * len(grids)
     failed: set[int] = set()
-    for done, (task_index, outcome) in enumerate(solve_each(tasks, solve=solve_point, jobs=jobs), start=1):
-        index = finest_first[task_index]
-        solutions[index] = outcome.solution
-        if outcome.failed:
-            failed.add(index)
-        if progress is not None:
-            progress(outcome.solution, done, len(grids))
+    with closing(solve_each(tasks, solve=solve_point, jobs=jobs)) as outcomes:  # see run.run_case
+        for done, (task_index, outcome) in enumerate(outcomes, start=1):
+            index = finest_first[task_index]
+            solutions[index] = outcome.solution
+            if outcome.failed:
+                failed.add(index)
+            if progress is not None:
+                progress(outcome.solution, done, len(grids))
     quantities = _quantities(grids, solutions, tolerance)
     overrides: dict[str, object] = {"point": target.name, "grids": list(grids)}
     if thermal is not None:
