@@ -14,8 +14,8 @@ U is Roache's (1994) grid convergence index of the fine grid, in the units of f,
 one is); f* and U are not given when p < 0.5: the grids are then not in the asymptotic range (Eça &
 Hoekstra 2014 use the same bound), and the correction, more than 2.4 times the last change, would amplify
 noise (p <= 0: the values do not converge). The error of each grid is taken against
-f* of the three finest grids (the finest three with an f*): e = (f - f*)/|f*|. A grid whose solve did not
-converge gives no value: it enters no change, order or extrapolation. A quantity is converged to a tolerance from the first
+f* of the three finest grids: e = (f - f*)/|f*|. A grid whose solve did not converge gives no value: it
+enters no change, order or extrapolation (the errors are then against the three finest grids that converged). A quantity is converged to a tolerance from the first
 grid whose change to the next grid, and every later change, is below it.
 
 Grids are independent solves (each with its own full-multigrid start); they run on worker processes.
@@ -96,8 +96,9 @@ def convergence(name: str, units: str, grids: Sequence[int], values: Sequence[fl
         if order[i] >= MIN_ORDER:
             extrapolated[i] = f[i] + fine / (2.0 ** order[i] - 1.0)
             uncertainty[i] = SAFETY_FACTOR * abs(fine) / (2.0 ** order[i] - 1.0)
-    finest = extrapolated[np.isfinite(extrapolated)]
-    error = (f - finest[-1]) / abs(finest[-1]) if finest.size else np.full(n, math.nan)
+    solved = np.flatnonzero(np.isfinite(f))
+    reference = extrapolated[solved[-1]] if solved.size else math.nan  # f* of the three finest solved grids
+    error = (f - reference) / abs(reference)
     converged_grid = None
     for i in range(n - 2, -1, -1):
         if not abs(change[i + 1]) < tolerance:
