@@ -154,6 +154,12 @@ def _lubricant(block: Block) -> Lubricant:
         thermal_expansion=block.number("thermal_expansion", 0.0, nonnegative=True, high=0.01, unit="1/K"),
         thermal_conductivity=block.number("thermal_conductivity", 0.13, positive=True, low=1e-3, high=100.0,
                                           unit="W/(m K)"),
+        # k(p) = k_0 [1 + a p/(1 + b p)], p in GPa (Larsson et al. 2000; PAOB a = 1.40, b = 0.34); the broad
+        # bound 100/GPa (70 times PAOB's a) keeps k/k_0 <= 1 + 100 p/GPa
+        conductivity_pressure_coefficient=block.number("conductivity_pressure_coefficient", 0.0, nonnegative=True,
+                                                       high=100.0, unit="1/GPa"),
+        conductivity_pressure_saturation=block.number("conductivity_pressure_saturation", 0.0, nonnegative=True,
+                                                      high=100.0, unit="1/GPa"),
         specific_heat=block.number("specific_heat", 2000.0, positive=True, low=1.0, high=1e5, unit="J/(kg K)"),
     )
     check(

@@ -9,6 +9,9 @@ Density (ratio to rho_0 at p = 0, T = T_0):
   Dowson & Higginson (1966), in the form of the Venner & Lubrecht (2000) code, multiplied by a linear
   thermal expansion term:  rho/rho_0 = (5.9e8 + 1.34 p)/(5.9e8 + p) * (1 - eps_T (T - T_0))
   incompressible: rho/rho_0 = 1 - eps_T (T - T_0)
+Thermal conductivity (ratio to k_0 at p = 0):
+  Larsson, Larsson, Eriksson, Sjoberg & Hoglund (2000):  k/k_0 = 1 + a p/(1 + b p),  p in GPa, a and b in 1/GPa
+  (a = b = 0: constant k_0)
 """
 
 from __future__ import annotations
@@ -40,7 +43,8 @@ DOWSON_HIGGINSON, INCOMPRESSIBLE = 0, 1
 
 @dataclass(frozen=True)
 class Lubricant:
-    """Lubricant properties; all values SI (temperatures in K)."""
+    """Lubricant properties; all values SI (temperatures in K), except the two conductivity coefficients,
+    in 1/GPa as in the source (Larsson et al. 2000) and the case file."""
 
     viscosity: float  # eta_0, Pa s at p = 0 and the inlet temperature
     inlet_temperature: float  # T_0, K
@@ -53,7 +57,9 @@ class Lubricant:
     roelands_z: float | None = None  # Roelands pressure index; derived from alpha if None
     temperature_viscosity: float = 0.0  # beta = -d ln(eta)/dT at T_0, 1/K
     thermal_expansion: float = 0.0  # eps_T, 1/K
-    thermal_conductivity: float = 0.13  # k_f, W/(m K)
+    thermal_conductivity: float = 0.13  # k_f = k_0, W/(m K) at p = 0
+    conductivity_pressure_coefficient: float = 0.0  # a of k/k_0 = 1 + a p/(1 + b p), 1/GPa (0: constant k)
+    conductivity_pressure_saturation: float = 0.0  # b, 1/GPa
     specific_heat: float = 2000.0  # c_f, J/(kg K)
 
     @property
@@ -107,6 +113,13 @@ class Lubricant:
         p, t = _broadcast(pressure, temperature, self.inlet_temperature)
         return self.density * density_ratio(p, t, self.law_parameters()).reshape(np.shape(p))
 
+    def conductivity_at(self, pressure) -> np.ndarray:
+        """k(p), W/(m K) (Larsson et al. 2000; exactly k_0 everywhere when a = b = 0)."""
+        p = np.asarray(pressure, dtype=np.float64)
+        ratio = conductivity_ratio(np.ascontiguousarray(p), self.conductivity_pressure_coefficient,
+                                   self.conductivity_pressure_saturation)
+        return self.thermal_conductivity * ratio.reshape(p.shape)
+
 
 def _broadcast(pressure, temperature, default_t):
     p = np.asarray(pressure, dtype=np.float64)
@@ -144,6 +157,29 @@ def density_ratio_at(p, t, law):
     if law[7] == DOWSON_HIGGINSON:
         return (DH_P1 + DH_RATIO * p) / (DH_P1 + p) * thermal
     return thermal
+
+
+@njit(cache=True)
+def conductivity_ratio_at(p, a, b):
+    """k/k_0 at one pressure p (Pa, clipped at 0) of the pressure-dependent thermal conductivity of
+    Larsson, Larsson, Eriksson, Sjoberg & Hoglund (2000), Proc. IMechE J 214:17-27 (PHYSICS.md §4.6):
+
+        k/k_0 = 1 + a p/(1 + b p),   p in GPa, a and b in 1/GPa
+
+    (PAOB: a = 1.40, b = 0.34, k_0 = 0.154 W/(m K); fitted up to 1.1 GPa, beyond which it is extrapolated,
+    saturating towards 1 + a/b). a = b = 0 gives exactly 1."""
+    p_gpa = max(p, 0.0) * 1e-9
+    return 1.0 + a * p_gpa / (1.0 + b * p_gpa)
+
+
+@njit(cache=True)
+def conductivity_ratio(pressure, a, b):
+    """k/k_0 on an array of pressure (Pa), flattened; a, b in 1/GPa (`conductivity_ratio_at`)."""
+    p_flat = pressure.ravel()
+    out = np.empty(p_flat.size)
+    for n in range(p_flat.size):
+        out[n] = conductivity_ratio_at(p_flat[n], a, b)
+    return out
 
 
 @njit(cache=True)

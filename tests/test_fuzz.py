@@ -34,7 +34,8 @@ KNOWN_KEYS = set(TOP_LEVEL) | {
     "radius_x", "radius_y", "load", "entrainment_speed", "slide_roll_ratio", "entrainment_angle", "body_1",
     "body_2", "elastic_modulus", "poisson_ratio", "density", "thermal_conductivity", "specific_heat", "roughness",
     "viscosity", "inlet_temperature", "viscosity_model", "pressure_viscosity", "roelands_z", "density_model",
-    "rheology", "eyring_stress", "temperature_viscosity", "thermal_expansion", "grid", "domain", "x", "y",
+    "rheology", "eyring_stress", "temperature_viscosity", "thermal_expansion", "conductivity_pressure_coefficient",
+    "conductivity_pressure_saturation", "grid", "domain", "x", "y",
     "thermal", "thermal_layers", "max_thermal_iterations", "thermal_tolerance", "coarsest_grid", "cycles_per_level",
     "max_cycles", "tolerance", "load_tolerance", "file", "pinion_teeth", "shaper_teeth", "face_gear_teeth",
     "module", "pressure_angle", "shaft_angle", "pinion_addendum", "face_gear_addendum", "inner_radius",
@@ -190,7 +191,8 @@ def test_every_deleted_key_is_accepted_or_named(folder):
 
 OPTIONAL_KEYS = {  # keys a block may have that the two cases leave out
     ("lubricant",): ["roelands_z", "eyring_stress", "temperature_viscosity", "thermal_expansion",
-                     "thermal_conductivity", "specific_heat"],
+                     "thermal_conductivity", "conductivity_pressure_coefficient", "conductivity_pressure_saturation",
+                     "specific_heat"],
     ("materials", "body_1"): ["roughness", "density", "thermal_conductivity", "specific_heat"],
     ("solver",): ["domain", "coarsest_grid", "cycles_per_level", "max_cycles", "tolerance", "load_tolerance",
                   "thermal_layers", "max_thermal_iterations", "thermal_tolerance"],
