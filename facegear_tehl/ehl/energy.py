@@ -14,6 +14,8 @@ so that extrema are not overshot; the first-order part is implicit, the limited 
 current iterate. The columns are swept Gauss-Seidel forwards and backwards. Compression cooling is implicit.
 (First-order upwinding alone made the largest temperature rise converge at order 0.6 with the grid on the
 face gear case, S1; with the limited correction the order is 1.0 and h_min converges at order 2.)
+k = k(p) is the film's conductivity, one value per column since the pressure is constant across the film
+(lubricant.py: the constant k_0, or Larsson et al. 2000).
 """
 
 from __future__ import annotations
@@ -57,13 +59,14 @@ def _upwind(temperature, k, j, i, dj, di, t_inlet):
 
 
 @njit(cache=True, error_model="numpy")
-def _column(temperature, j, i, velocity_x, velocity_y, source, sensitivity, reference, expansivity_grad, rho_c, k_f,
-            film, dx, dy, t_inlet, lower, diag, upper, rhs):
-    """Solve the interior layers of column (j, i) in place; returns the largest change (K)."""
+def _column(temperature, j, i, velocity_x, velocity_y, source, sensitivity, reference, expansivity_grad, rho_c,
+            conductivity, film, dx, dy, t_inlet, lower, diag, upper, rhs):
+    """Solve the interior layers of column (j, i) in place (conductivity: (ny, nx), W/(m K), one value per
+    column); returns the largest change (K)."""
     nz, ny, nx = temperature.shape
     n = nz - 2
     h = max(film[j, i], 1e-12)
-    kz = k_f / (h / (nz - 1)) ** 2
+    kz = conductivity[j, i] / (h / (nz - 1)) ** 2
     for m in range(n):
         k = m + 1
         u = velocity_x[k, j, i]
@@ -104,9 +107,10 @@ def _column(temperature, j, i, velocity_x, velocity_y, source, sensitivity, refe
 
 
 @njit(cache=True, error_model="numpy")
-def sweep_film_temperature(temperature, velocity_x, velocity_y, source, sensitivity, expansivity_grad, rho_c, k_f,
-                           film, dx, dy, t_inlet, sweeps, tolerance):
+def sweep_film_temperature(temperature, velocity_x, velocity_y, source, sensitivity, expansivity_grad, rho_c,
+                           conductivity, film, dx, dy, t_inlet, sweeps, tolerance):
     """Gauss-Seidel sweeps (forward, then backward in x) over all columns; returns (sweeps done, last change).
+    conductivity: k of the film per column, (ny, nx), W/(m K).
 
     The heat source is linearised about the entry temperatures: source - sensitivity (T - T_entry), with
     sensitivity = -d(source)/dT >= 0 (viscous heating falls as the oil thins), treated implicitly."""
@@ -125,12 +129,12 @@ def sweep_film_temperature(temperature, velocity_x, velocity_y, source, sensitiv
             if s % 2 == 0:
                 for i in range(nx):
                     c = _column(temperature, j, i, velocity_x, velocity_y, source, sensitivity, reference,
-                                expansivity_grad, rho_c, k_f, film, dx, dy, t_inlet, lower, diag, upper, rhs)
+                                expansivity_grad, rho_c, conductivity, film, dx, dy, t_inlet, lower, diag, upper, rhs)
                     change = max(change, c)
             else:
                 for i in range(nx - 1, -1, -1):
                     c = _column(temperature, j, i, velocity_x, velocity_y, source, sensitivity, reference,
-                                expansivity_grad, rho_c, k_f, film, dx, dy, t_inlet, lower, diag, upper, rhs)
+                                expansivity_grad, rho_c, conductivity, film, dx, dy, t_inlet, lower, diag, upper, rhs)
                     change = max(change, c)
         done = s + 1
         if change < tolerance:
@@ -138,11 +142,13 @@ def sweep_film_temperature(temperature, velocity_x, velocity_y, source, sensitiv
     return done, change
 
 
-def wall_heat_flux(temperature: np.ndarray, film: np.ndarray, k_f: float) -> tuple[np.ndarray, np.ndarray]:
+def wall_heat_flux(temperature: np.ndarray, film: np.ndarray,
+                   conductivity: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
     """Heat flux from the film into solid 1 (at z = 0) and solid 2 (at z = h), W/m^2, by second-order
-    one-sided differences: q_1 = k dT/dz|_0, q_2 = -k dT/dz|_h."""
+    one-sided differences: q_1 = k dT/dz|_0, q_2 = -k dT/dz|_h, with k per column ((ny, nx), or a scalar;
+    W/(m K))."""
     nz = temperature.shape[0]
     dz = np.maximum(film, 1e-12) / (nz - 1)
-    q1 = k_f * (-3.0 * temperature[0] + 4.0 * temperature[1] - temperature[2]) / (2.0 * dz)
-    q2 = k_f * (-3.0 * temperature[-1] + 4.0 * temperature[-2] - temperature[-3]) / (2.0 * dz)
+    q1 = conductivity * (-3.0 * temperature[0] + 4.0 * temperature[1] - temperature[2]) / (2.0 * dz)
+    q2 = conductivity * (-3.0 * temperature[-1] + 4.0 * temperature[-2] - temperature[-3]) / (2.0 * dz)
     return q1, q2

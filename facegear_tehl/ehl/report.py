@@ -186,6 +186,9 @@ def point_solution(point, lubricant, scaling, solver, level, summaries, converge
     }
     if mode != "off":
         models["thermal_solids"] = "Jaeger (1942) high-Peclet moving heat source per surface"
+        a, b = lubricant.conductivity_pressure_coefficient, lubricant.conductivity_pressure_saturation
+        models["conductivity"] = (f"larsson (Larsson et al. 2000): k_0 [1 + a p/(1 + b p)], a = {a:g}/GPa, "
+                                  f"b = {b:g}/GPa" if a > 0.0 else "constant")
     return PointSolution(name=point.name, converged=converged, message=message, scalars=scalars, fields=fields,
                          axes={"x": Field(level.x * scaling.b, "m", "node coordinates along the minor axis (x = X b)"),
                                "y": Field(level.y * scaling.a, "m", "node coordinates along the major axis (y = Y a)")},

@@ -4,11 +4,12 @@ One `update` maps the current pressure and film to the across-film state that th
 equation needs (temperature and eta*/eta per layer, flow.py):
 1. Newtonian viscosity per layer, eta(p, T_k) (lubricant.py);
 2. shear stress, shear rate, velocity and dissipation across the film (rheology.py);
-3. (thermal models) the energy equation in the film (energy.py), coupled to the two solids by the
-   high-Péclet moving heat source (jaeger.py): T_i = T_0 + (1/(sqrt(pi) B_i)) \\int q_i (x - s)^(-1/2) ds,
-   B_i = sqrt(k_i rho_i c_i |u_ix|), applied along x with the x component of each surface's velocity
-   (face gear surfaces move within 2 deg of x). A surface nearly at rest (Pe < 1) is given the effusivity
-   of Pe = 1, where the high-Péclet kernel would otherwise diverge: a bounded, conservative estimate.
+3. (thermal models) the energy equation in the film (energy.py; conductivity k(p) of lubricant.py, one value
+   per column), coupled to the two solids by the high-Péclet moving heat source (jaeger.py):
+   T_i = T_0 + (1/(sqrt(pi) B_i)) \\int q_i (x - s)^(-1/2) ds, B_i = sqrt(k_i rho_i c_i |u_ix|), applied along
+   x with the x component of each surface's velocity (face gear surfaces move within 2 deg of x). A surface
+   nearly at rest (Pe < 1) is given the effusivity of Pe = 1, where the high-Péclet kernel would otherwise
+   diverge: a bounded, conservative estimate.
 The film's interior layers and the surfaces are iterated `inner` times with under-relaxed surfaces.
 
 `thermal_choice` picks the thermal model of `solver.thermal: auto` from the thermal loading number and the
@@ -107,6 +108,7 @@ class FilmThermalModel:
         stress_2 = np.empty((2,) + p.shape)
         thinning = np.empty(shape)
         p_layers = np.ascontiguousarray(np.broadcast_to(p, shape))
+        conductivity = lub.conductivity_at(p)  # (ny, nx): one k per column (p is constant across the film)
         change = 0.0
         for _ in range(self.inner if self.solve_energy else 1):
             eta = lub.viscosity * viscosity_ratio(p_layers, temperature, self.law).reshape(shape)
@@ -125,16 +127,16 @@ class FilmThermalModel:
             # at most 8 sweeps: the outer loop re-solves the temperature anyway (30 gave the same S1 of the face
             # gear case to 1e-4 in h_c and dT_max, in 10 % more time)
             energy.sweep_film_temperature(temperature, velocity_x, velocity_y, dissipation, sensitivity,
-                                          compression_coefficient, rho_c, lub.thermal_conductivity, film, self.dx,
+                                          compression_coefficient, rho_c, conductivity, film, self.dx,
                                           self.dy, self.t_inlet, 8, 1e-3)
-            q1, q2 = energy.wall_heat_flux(temperature, film, lub.thermal_conductivity)
+            q1, q2 = energy.wall_heat_flux(temperature, film, conductivity)
             w = self.surface_relaxation
             temperature[0] += w * (self._surface(q1, 0, float(self.velocity_1[0])) - temperature[0])
             temperature[-1] += w * (self._surface(q2, 1, float(self.velocity_2[0])) - temperature[-1])
             np.clip(temperature, start - MAX_TEMPERATURE_STEP, start + MAX_TEMPERATURE_STEP, out=temperature)
             change = float(np.abs(temperature - before).max())
         self._stress = stress_1
-        q1, q2 = energy.wall_heat_flux(temperature, film, lub.thermal_conductivity)
+        q1, q2 = energy.wall_heat_flux(temperature, film, conductivity)
         return FilmState(
             temperature=temperature,
             viscosity_factor=viscosity_factor,
@@ -151,7 +153,7 @@ class FilmThermalModel:
 
 
 def thermal_loading(point: ContactPoint, lubricant: Lubricant) -> float:
-    """Thermal loading number L_th = beta eta_0 u_e^2/k_f (Gupta et al. 1992)."""
+    """Thermal loading number L_th = beta eta_0 u_e^2/k_f (Gupta et al. 1992), with k_f = k_0 at p = 0."""
     return lubricant.temperature_viscosity * lubricant.viscosity * point.entrainment_speed**2 / lubricant.thermal_conductivity
 
 
