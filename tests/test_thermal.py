@@ -110,3 +110,20 @@ def test_thermal_film_reduction_and_heating_grow_with_sliding():
         rises.append(full.scalar("dT_max"))
     assert ratios[2] < ratios[1] <= ratios[0] + 0.005
     assert rises[0] < rises[1] < rises[2]
+
+
+def test_thermal_floor_is_a_stalled_small_change_with_a_steady_film():
+    """The outer loop's algebraic floor (solve._at_thermal_floor): a period-2 flicker that stopped falling,
+    below 1 % of the rise, with h_c steady to 1e-4, is accepted; a change still falling, a large flicker or a
+    drifting film is not (cases/hard/opposite_sliding drifts 0.2 % per iteration: it stays not converged)."""
+    from facegear_tehl.ehl.solve import _at_thermal_floor
+
+    flicker = [0.45, 0.42, 0.45, 0.42, 0.44, 0.43, 0.45, 0.42]
+    steady = [1.2669e-6] * 8
+    assert _at_thermal_floor(flicker, steady, rise=98.0)
+    assert not _at_thermal_floor(flicker[:7], steady[:7], rise=98.0)  # too few iterations to judge
+    falling = [0.45 * 0.5**k for k in range(8)]
+    assert not _at_thermal_floor(falling, steady, rise=98.0)
+    assert not _at_thermal_floor([10 * c for c in flicker], steady, rise=98.0)  # 4.5 K of a 98 K rise: too large
+    drifting = [1.9887e-7 * (1 + 0.002 * k) for k in range(8)]
+    assert not _at_thermal_floor(flicker, drifting, rise=142.0)

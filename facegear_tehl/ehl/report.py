@@ -135,6 +135,7 @@ def point_solution(point, lubricant, scaling, solver, level, summaries, converge
             "dT_surface_1_max": (float(temperature[0].max() - t_in), "K"),
             "dT_surface_2_max": (float(temperature[-1].max() - t_in), "K"),
             "thermal_iterations": (float(len(history.thermal_changes)), "1"),
+            "thermal_floor": (history.thermal_floor, "K"),
             "thermal_layers": (float(temperature.shape[0]), "1"),
         })
         weights = simpson_weights(temperature.shape[0])
