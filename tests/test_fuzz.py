@@ -40,7 +40,7 @@ KNOWN_KEYS = set(TOP_LEVEL) | {
     "max_cycles", "tolerance", "load_tolerance", "file", "pinion_teeth", "shaper_teeth", "face_gear_teeth",
     "module", "pressure_angle", "shaft_angle", "pinion_addendum", "face_gear_addendum", "inner_radius",
     "outer_radius", "pinion_speed", "pinion_torque", "load_sharing", "points", "shaft_angle_error", "offset",
-    "pinion_axial_shift", "face_gear_axial_shift",
+    "pinion_axial_shift", "face_gear_axial_shift", "transition_side",
 }
 ERROR_LINE = re.compile(r"error: (?P<key>.+?): got (?P<value>.*); expected (?P<expected>.+)")
 FUZZ = settings(deadline=None, database=None, suppress_health_check=[HealthCheck.too_slow])
