@@ -140,6 +140,15 @@ def viscosity_ratio_at(p, t, law):
 
 
 @njit(cache=True)
+def roelands_temperature_factor_at(t, law):
+    """((T - T_inf)/(T_0 - T_inf))^(-S_0) of the Roelands law (1 for Barus): the temperature part of
+    viscosity_ratio_at, eta/eta_0 = exp(ln-term ((1 + p/p_r)^z factor - 1))."""
+    if law[0] == ROELANDS:
+        return ((t - ROELANDS_T_INF) / (law[6] - ROELANDS_T_INF)) ** (-law[4])
+    return 1.0
+
+
+@njit(cache=True)
 def viscosity_temperature_coefficient_at(p, t, law):
     """beta = -d ln(eta)/dT (1/K) at pressure p (Pa) and temperature t (K) of the viscosity law."""
     p = max(p, 0.0)

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from facegear_tehl.ehl.flow import isothermal_coefficients, layer_integrals, layered_coefficients
+from facegear_tehl.ehl.flow import isothermal_coefficients, layer_integrals, layered_coefficients, temperature_factors
 from facegear_tehl.lubricant import Lubricant
 
 
@@ -43,6 +43,7 @@ def test_layered_isothermal_newtonian_equals_isothermal():
     sin_psi = cy / kappa
     u1 = np.array([1.3 * cx, 0.6 * sin_psi])
     u2 = np.array([2 * cx - u1[0], 2 * sin_psi - u1[1]])
-    layered_coefficients(p, film, temperature, np.ones_like(temperature), law, 0.7, kappa, 1.0, 1.0, u1, u2, *b)
+    layered_coefficients(p, film, temperature, temperature_factors(temperature, law), np.ones_like(temperature), law,
+                         0.7, kappa, 1.0, 1.0, u1, u2, *b)
     for x, y in zip(a, b):
         assert np.allclose(x, y, rtol=1e-12, atol=0)

@@ -19,10 +19,13 @@ The layer count is odd (Simpson's rule across the film).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit
 
-from facegear_tehl.lubricant import density_ratio_at, viscosity_ratio_at
+from facegear_tehl.lubricant import (ROELANDS, ROELANDS_PRESSURE, density_ratio_at, roelands_temperature_factor_at,
+                                     viscosity_ratio_at)
 
 
 @njit(cache=True, error_model="numpy")
@@ -73,22 +76,41 @@ def layer_integrals(eta, rho):
     return f0, f1, r0, r1, r2
 
 
+@njit(cache=True)
+def temperature_factors(temperature, law):
+    """The Roelands temperature factor of every layer node (lubricant.roelands_temperature_factor_at): it
+    stays fixed while the pressure cycles run on a frozen film state, so it is computed once per state."""
+    out = np.empty_like(temperature)
+    flat_t, flat_out = temperature.ravel(), out.ravel()
+    for n in range(flat_t.size):
+        flat_out[n] = roelands_temperature_factor_at(flat_t[n], law)
+    return out
+
+
 @njit(cache=True, error_model="numpy")
-def layered_coefficients(pressure_pa, film, temperature, viscosity_factor, law, lam, kappa, sx, sy, u1, u2,
-                         eps, fx, fy):
-    """eps, f_x, f_y for a film with layer temperatures (K) and viscosity factors eta*/eta, shape (nz, ny, nx).
+def layered_coefficients(pressure_pa, film, temperature, temperature_factor, viscosity_factor, law, lam, kappa, sx,
+                         sy, u1, u2, eps, fx, fy):
+    """eps, f_x, f_y for a film with layer temperatures (K) and viscosity factors eta*/eta, shape (nz, ny, nx);
+    temperature_factor from `temperature_factors` (the same numbers as viscosity_ratio_at, with the pressure
+    and temperature parts of the Roelands law evaluated once per column and once per state).
 
     u1, u2: surface velocities divided by |u_e|, in the (x, y) frame (in place).
     """
     nz, ny, nx = temperature.shape
     eta = np.empty(nz)
     rho = np.empty(nz)
+    roelands = law[0] == ROELANDS
     for j in range(ny):
         for i in range(nx):
             p = pressure_pa[j, i]
+            pressure_factor = (1.0 + max(p, 0.0) / ROELANDS_PRESSURE) ** law[2]
             for k in range(nz):
                 t = temperature[k, j, i]
-                eta[k] = max(viscosity_ratio_at(p, t, law) * viscosity_factor[k, j, i], 1e-300)
+                if roelands:
+                    ratio = math.exp(law[3] * (pressure_factor * temperature_factor[k, j, i] - 1.0))
+                else:
+                    ratio = viscosity_ratio_at(p, t, law)
+                eta[k] = max(ratio * viscosity_factor[k, j, i], 1e-300)
                 rho[k] = density_ratio_at(p, t, law)
             f0, f1, r0, r1, r2 = layer_integrals(eta, rho)
             h = max(film[j, i], 0.0)

@@ -206,6 +206,7 @@ def _freeze_film_state(solver: MultigridSolver, index: int, state: FilmState) ->
         level = solver.levels[level_index]
         level.temperature = np.ascontiguousarray(state.temperature[:, ::stride, ::stride])
         level.viscosity_factor = np.ascontiguousarray(state.viscosity_factor[:, ::stride, ::stride])
+        level.temperature_factor = None  # recomputed from the new temperature at the next film update
         if level_index == index:
             solver.update_film(level)
 
@@ -384,7 +385,7 @@ def _couple(solver, index, point, lubricant, scaling, settings, mode, history, i
                 state = model.update(level.pressure * scaling.p_h, level.film * scaling.film_scale,
                                      initial.temperature)
         else:
-            level.temperature = level.viscosity_factor = None
+            level.temperature = level.viscosity_factor = level.temperature_factor = None
             solver.update_film(level)
         return state, False, message
     return state, False, (
