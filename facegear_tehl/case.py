@@ -68,7 +68,7 @@ class Materials:
 class SolverSettings:
     """Numerical settings of the EHL solver."""
 
-    grid: int  # nodes per side on the finest grid, 2^n + 1
+    grid: int  # nodes per side on the finest grid, 2^n + 1 (along x, the minor axis, when grid_y is set)
     domain_x: tuple[float, float] | None  # in units of the minor semi-axis b; None: automatic
     domain_y: tuple[float, float] | None  # in units of the major semi-axis a; None: automatic
     thermal: str  # off | reduced | full | auto
@@ -80,6 +80,11 @@ class SolverSettings:
     thermal_layers: int = 9  # layer nodes across the film of the `full` thermal model (odd)
     max_thermal_iterations: int = 40  # outer iterations of film state and pressure
     thermal_tolerance: float = 1e-3  # largest temperature change per outer iteration, relative to the rise
+    grid_y: int | None = None  # nodes along y (the major axis) on the finest grid, 2^n + 1; None: as `grid`
+
+    @property
+    def nodes_y(self) -> int:
+        return self.grid if self.grid_y is None else self.grid_y
 
 
 @dataclass(frozen=True)
@@ -103,7 +108,13 @@ class Case:
         """The same case on another finest grid (validated like the YAML key solver.grid)."""
         _check_grid(grid, "--grid")
         check(grid >= self.solver.coarsest_grid, "--grid", grid, f"at least solver.coarsest_grid = {self.solver.coarsest_grid}")
-        return replace(self, solver=replace(self.solver, grid=grid))
+        grid_y = self.solver.grid_y
+        if grid_y is not None:  # keep the case's aspect: grid_y refines (or coarsens) with grid
+            grid_y = (grid_y - 1) * (grid - 1) // (self.solver.grid - 1) + 1
+            check(grid_y >= self.solver.coarsest_grid, "--grid", grid,
+                  f"a grid whose solver.grid_y ({grid_y} at this grid) is at least solver.coarsest_grid = "
+                  f"{self.solver.coarsest_grid}")
+        return replace(self, solver=replace(self.solver, grid=grid, grid_y=grid_y))
 
 
 def _check_grid(n: int, key: str) -> None:
@@ -205,6 +216,11 @@ def _solver(block: Block) -> SolverSettings:
     coarsest = block.integer("coarsest_grid", 17, low=9)
     _check_grid(coarsest, block.key_path("coarsest_grid"))
     check(coarsest <= grid, block.key_path("coarsest_grid"), coarsest, f"at most solver.grid = {grid}")
+    grid_y = None
+    if block.has("grid_y"):
+        grid_y = block.integer("grid_y", grid)
+        _check_grid(grid_y, block.key_path("grid_y"))
+        check(coarsest <= grid_y, block.key_path("grid_y"), grid_y, f"at least solver.coarsest_grid = {coarsest}")
     dx = dy = None  # automatic: 4.5 semi-axes upstream, 1.5 downstream of the entrainment (ehl.solve)
     if block.has("domain"):
         domain = block.block("domain")
@@ -233,6 +249,7 @@ def _solver(block: Block) -> SolverSettings:
         thermal_layers=block.integer("thermal_layers", 9, low=3, high=41),
         max_thermal_iterations=block.integer("max_thermal_iterations", 40, low=1, high=500),
         thermal_tolerance=block.number("thermal_tolerance", 1e-3, positive=True, high=0.1),
+        grid_y=grid_y,
     )
     check(settings.thermal_layers % 2 == 1, block.key_path("thermal_layers"), settings.thermal_layers,
           "an odd number of layer nodes (Simpson's rule across the film), e.g. 7, 9 or 11")

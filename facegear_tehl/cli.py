@@ -76,7 +76,7 @@ def run(
     target = _output_path(Path(case_file), case, output)
     processes = min(workers, len(selected))
     click.echo(
-        f"tehl run: {case.name}: {', '.join(p.name for p in selected)} on a {solver.grid}x{solver.grid} grid"
+        f"tehl run: {case.name}: {', '.join(p.name for p in selected)} on a {solver.grid}x{solver.nodes_y} grid"
         + (f", {processes} worker processes" if processes > 1 else ""),
         err=True,
     )
@@ -174,7 +174,7 @@ def validate(case_file: str) -> None:
                 f"p_hertz {min(p_hertz):.0f}..{max(p_hertz):.0f} MPa)")
     lubricant = case.lubricant
     click.echo(
-        f"ok: {case.name}: {kind}; grid {case.solver.grid}x{case.solver.grid}; models: viscosity "
+        f"ok: {case.name}: {kind}; grid {case.solver.grid}x{case.solver.nodes_y}; models: viscosity "
         f"{lubricant.viscosity_model}, density {lubricant.density_model}, rheology {lubricant.rheology}, "
         f"thermal {case.solver.thermal}"
     )

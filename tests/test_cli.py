@@ -79,6 +79,8 @@ BAD_CASES = {
     "poisson ratio 0.6": (_replace("poisson_ratio: 0.3", "poisson_ratio: 0.6"), "materials.body_1.poisson_ratio",
                           "< 0.5"),
     "grid 100": (_replace("  grid: 257", "  grid: 100"), "solver.grid", "2^n + 1"),
+    "grid_y 100": (_replace("  grid: 257", "  grid: 257\n  grid_y: 100"), "solver.grid_y", "2^n + 1"),
+    "grid_y 9": (_replace("  grid: 257", "  grid: 257\n  grid_y: 9"), "solver.grid_y", "at least solver.coarsest_grid"),
     "domain without the contact": (_replace("x: [-4.5, 1.5]", "x: [-0.5, 1.5]"), "solver.domain.x", "containing"),
     "broken yaml": (_replace("  radius_x: 0.0127", "  radius_x: [0.0127"), "(file)", "YAML syntax error"),
     "missing file": (None, "(file)", "readable case file"),
@@ -372,3 +374,15 @@ def test_run_case_api_end_to_end(tmp_path):
     write_result(run, tmp_path / "r.h5")
     _check_ball_on_disc(tmp_path / "r.h5")
     assert read_result(tmp_path / "r.h5").points["contact"].scalars["h_c"] == run.points[0].scalar("h_c")
+
+
+def test_grid_override_keeps_the_aspect_of_grid_y(tmp_path):
+    """--grid and tehl sweep scale solver.grid_y with solver.grid; too coarse a y side is refused under --grid."""
+    from facegear_tehl.case import load_case
+    from facegear_tehl.schema import CaseError
+
+    case = load_case(_case(tmp_path, _replace("  grid: 257", "  grid: 257\n  grid_y: 65")))
+    assert case.solver.nodes_y == 65
+    assert case.with_grid(129).solver.grid_y == 33 and case.with_grid(513).solver.grid_y == 129
+    with pytest.raises(CaseError, match="--grid"):
+        case.with_grid(33)  # grid_y would be 9 < coarsest_grid 17

@@ -16,6 +16,14 @@ def hierarchy_sizes(finest: int, coarsest: int) -> list[int]:
     return sizes[::-1]
 
 
+def hierarchy_shapes(finest_x: int, finest_y: int, coarsest: int) -> list[tuple[int, int]]:
+    """(nx, ny) per level, coarsest first: both halve together until the smaller reaches `coarsest`,
+    e.g. (257, 65, 17) -> [(65, 17), (129, 33), (257, 65)]."""
+    xs, ys = hierarchy_sizes(finest_x, coarsest), hierarchy_sizes(finest_y, coarsest)
+    levels = min(len(xs), len(ys))
+    return list(zip(xs[-levels:], ys[-levels:]))
+
+
 def restrict_full_weighting(fine: np.ndarray) -> np.ndarray:
     """(1 2 1; 2 4 2; 1 2 1)/16 weighting at interior coarse nodes; boundary nodes 0."""
     nyc, nxc = (fine.shape[0] - 1) // 2 + 1, (fine.shape[1] - 1) // 2 + 1

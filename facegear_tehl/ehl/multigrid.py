@@ -117,22 +117,23 @@ class Level:
 class MultigridSolver:
     """FAS multigrid solver of one dimensionless EHL problem on a hierarchy of nested grids."""
 
-    def __init__(self, problem: Problem, sizes: list[int], relaxation: Relaxation = Relaxation()):
+    def __init__(self, problem: Problem, shapes: list[tuple[int, int]], relaxation: Relaxation = Relaxation()):
+        """`shapes`: (nx, ny) of each grid, coarsest first (grid.hierarchy_shapes)."""
         self.problem = problem
         self.relaxation = relaxation
-        self.levels: list[Level] = [self._make_level(n) for n in sizes]
+        self.levels: list[Level] = [self._make_level(nx, ny) for nx, ny in shapes]
         self.h0 = 0.0
         self.last_h0_step = 0.0  # H_0 change of the last coarsest-grid solve
         self.work_units = 0.0
         self.finest_nodes = self.levels[-1].nodes
 
     # ----------------------------------------------------------------- set-up
-    def _make_level(self, n: int) -> Level:
+    def _make_level(self, nx: int, ny: int) -> Level:
         pb = self.problem
-        x = np.linspace(pb.domain_x[0], pb.domain_x[1], n)
-        y = np.linspace(pb.domain_y[0], pb.domain_y[1], n)
+        x = np.linspace(pb.domain_x[0], pb.domain_x[1], nx)
+        y = np.linspace(pb.domain_y[0], pb.domain_y[1], ny)
         hx, hy = x[1] - x[0], y[1] - y[0]
-        deflection = DeflectionOperator(n, n, hx, hy, pb.ellipticity)
+        deflection = DeflectionOperator(nx, ny, hx, hy, pb.ellipticity)
         # Jacobi-distributive weights of a physical Laplacian (reynolds.py).
         cx, cy = 1.0 / hx**2, 1.0 / (pb.ellipticity * hy) ** 2
         wx, wy = 0.5 * cx / (cx + cy), 0.5 * cy / (cx + cy)
@@ -156,9 +157,9 @@ class MultigridSolver:
             weight_x=wx,
             weight_y=wy,
             xi_switch=self.relaxation.xi_switch * (elastic_ratio**4 if self.relaxation.scale_switch else 1.0),
-            pressure=np.zeros((n, n)),
+            pressure=np.zeros((ny, nx)),
             film_rhs=0.5 * xx**2 + 0.5 * pb.geometry_y * yy**2,
-            reynolds_rhs=np.zeros((n, n)),
+            reynolds_rhs=np.zeros((ny, nx)),
         )
 
     def reset_rhs(self, level: Level) -> None:

@@ -133,6 +133,7 @@ def point_solution(point, lubricant, scaling, solver, level, summaries, converge
         "error_estimate_h_c": (est_hc, "1"),
         "error_estimate_h_min": (est_hmin, "1"),
         "grid": (float(level.nx), "1"),
+        "grid_y": (float(level.ny), "1"),
         "algebraic_floor": (history.floor, "1"),
         "inlet_gap_ratio": (_inlet_gap_ratio(level, scaling, point, fine.h_c * film_scale), "1"),
     }

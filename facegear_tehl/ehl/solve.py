@@ -251,7 +251,8 @@ def _solve(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, 
         domain_x=domain_x,
         domain_y=domain_y,
     )
-    solver = MultigridSolver(problem, grid.hierarchy_sizes(settings.grid, settings.coarsest_grid), relaxation)
+    shapes = grid.hierarchy_shapes(settings.grid, settings.nodes_y, settings.coarsest_grid)
+    solver = MultigridSolver(problem, shapes, relaxation)
     mode, reason = thermal_choice(settings.thermal, point, lubricant)
     coupled = mode != "off" or lubricant.rheology == "ree_eyring"
     top = len(solver.levels) - 1
