@@ -12,7 +12,7 @@ from facegear_tehl.case import Case
 from facegear_tehl.ehl.solve import solve_point
 from facegear_tehl.heat_budget import heat_budget
 from facegear_tehl.contact import ContactPoint
-from facegear_tehl.parallel import SolveTask, solve_each
+from facegear_tehl.parallel import SolveTask, solve_each, stages_of
 from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.results import RunResult
 from facegear_tehl.solution import PointSolution
@@ -52,7 +52,7 @@ def run_case(
     # solve_point is looked up here, at call time, so that tests can stand in for the solver.
     # closing: an exception in this loop (Ctrl-C while reporting progress) stops the workers now, not when
     # the generator is collected (the traceback keeps it alive until the interpreter exits)
-    with closing(solve_each(tasks, solve=solve_point, jobs=jobs)) as outcomes:
+    with closing(solve_each(tasks, solve=solve_point, jobs=jobs, stages=stages_of(solve_point))) as outcomes:
         for done, (index, outcome) in enumerate(outcomes, start=1):
             solution = _with_path_coordinate(outcome.solution, selected[index])
             solutions[index] = solution

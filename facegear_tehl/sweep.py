@@ -34,7 +34,7 @@ from typing import Callable, Mapping, Sequence
 import numpy as np
 
 from facegear_tehl.case import THERMAL_MODELS, Case
-from facegear_tehl.parallel import SolveTask, solve_each
+from facegear_tehl.parallel import SolveTask, solve_each, stages_of
 from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.results import RunResult
 from facegear_tehl.schema import CaseError, check
@@ -195,7 +195,7 @@ def run_sweep(
 
     solutions: list[PointSolution | None] = [None] * len(grids)
     failed: set[int] = set()
-    with closing(solve_each(tasks, solve=solve_point, jobs=jobs)) as outcomes:  # see run.run_case
+    with closing(solve_each(tasks, solve=solve_point, jobs=jobs, stages=stages_of(solve_point))) as outcomes:  # see run.run_case
         for done, (task_index, outcome) in enumerate(outcomes, start=1):
             index = finest_first[task_index]
             solutions[index] = outcome.solution

@@ -20,7 +20,7 @@ import pytest
 
 from facegear_tehl.case import load_case
 from facegear_tehl.cli import tehl
-from facegear_tehl.parallel import SolveTask, available_cores, solve_each, worker_count
+from facegear_tehl.parallel import SolveTask, Stages, available_cores, solve_each, stages_of, worker_count
 from facegear_tehl.points import contact_analysis
 from facegear_tehl.run import run_case
 from facegear_tehl.schema import CaseError
@@ -123,6 +123,75 @@ def test_every_solve_has_one_blas_thread(jobs):
     tasks = [SolveTask(p, case.lubricant, case.solver) for p in contact_analysis(case).points[:3]]
     outcomes = [solved for _, solved in solve_each(tasks, solve=_blas_threads, jobs=jobs)]
     assert [s.solution.scalar("blas_threads") for s in outcomes] == [1.0] * 3
+
+
+def _begin(point, lubricant, settings, retry_after):
+    """A stand-in first stage: S2 fails, S3 runs away on its first attempt, S4 is whole after one stage, the
+    others hand an intermediate (with the worker's pid) to the second stage."""
+    if point.name == "S2":
+        raise FloatingPointError("overflow in the first stage")
+    if point.name == "S3" and retry_after is None:
+        return replace(synthetic.solution(point, converged=False), message="diverged at cycle 3")
+    if point.name == "S4":
+        return synthetic.solution(point)
+    return {"point": point, "begun_in": os.getpid(), "retry": retry_after is not None}
+
+
+def _finish(stage):
+    solution = synthetic.solution(stage["point"])
+    extra = {"begun_in": (float(stage["begun_in"]), "1"), "finished_in": (float(os.getpid()), "1"),
+             "retried": (float(stage["retry"]), "1")}
+    return replace(solution, scalars={**solution.scalars, **extra})
+
+
+def _needs_retry(solution):
+    return not solution.converged and "diverged" in solution.message
+
+
+def _with_retry(first, retry):
+    return replace(retry, message=f"retried after: {first.message}")
+
+
+STAND_IN_STAGES = Stages(_begin, _finish, _needs_retry, _with_retry)
+
+
+def test_stages_run_on_the_workers_and_give_the_serial_outcomes():
+    """Each point's stages go through the pool (a failing stage is recorded, a run-away first attempt is begun
+    again and merged by with_retry), with the outcomes the stages give when composed in one process."""
+    case = load_case(FACE_GEAR)
+    tasks = [SolveTask(p, case.lubricant, case.solver) for p in contact_analysis(case).points]
+    outcomes = dict(solve_each(tasks, solve=_blas_threads, jobs=2, stages=STAND_IN_STAGES))
+    assert sorted(outcomes) == [0, 1, 2, 3, 4]
+    by_name = {tasks[i].point.name: solved for i, solved in outcomes.items()}
+    assert by_name["S2"].failed and by_name["S2"].solution.message == "failed: FloatingPointError: overflow in the first stage"
+    s3 = by_name["S3"].solution
+    assert s3.converged and s3.message == "retried after: diverged at cycle 3" and s3.scalar("retried") == 1.0
+    assert "begun_in" not in by_name["S4"].solution.scalars  # whole after its first stage
+    for name in ("S1", "S5"):
+        scalars = by_name[name].solution.scalars
+        assert scalars["begun_in"][0] != os.getpid() and scalars["finished_in"][0] != os.getpid()
+        assert not by_name[name].failed and scalars["retried"][0] == 0.0
+
+
+def test_only_the_ehl_solver_is_staged():
+    from facegear_tehl.ehl import solve as ehl
+
+    stages = stages_of(ehl.solve_point)
+    assert stages is not None and stages.begin is ehl.begin_point and stages.finish is ehl.finish_point
+    assert stages_of(_slow_first) is None and stages_of(lambda p, l, s: None) is None
+
+
+def test_thermal_points_split_into_stages_give_the_serial_file(tmp_path):
+    """On 129^2 the thermal full points run as a coarse and a fine stage, in different workers when --jobs 2
+    (the default case's S1, S5): the file is bit-identical to --jobs 1, where each point runs in one go."""
+    files = []
+    for jobs in ("1", "2"):
+        target = tmp_path / f"jobs{jobs}.h5"
+        result = CliRunner().invoke(tehl, ["run", str(FACE_GEAR), "--points", "S1,S5", "--jobs", jobs,
+                                           "-o", str(target)])
+        assert result.exit_code == 0, result.output
+        files.append(target)
+    assert_same_file(*files)
 
 
 def test_worker_count():

@@ -216,17 +216,60 @@ def solve_point(point: ContactPoint, lubricant: Lubricant, settings: SolverSetti
 
     Convergence policy: a solve that runs away is repeated once with the other Gauss-Seidel / Jacobi switch
     (the ellipse-scaled one first, then Venner's circle value; multigrid.Level), and the retry is reported.
+    The same steps, split into stages that can run in different processes: `begin_point`, `finish_point`,
+    `needs_retry`, `with_retry` (parallel.solve_each).
     """
-    start = time.perf_counter()
-    solution = _solve(point, lubricant, settings, Relaxation(), start)
-    if solution.converged or "diverged" not in solution.message:
-        return solution
-    retry = _solve(point, lubricant, settings, Relaxation(scale_switch=False), start)
+    first = _through(begin_point(point, lubricant, settings))
+    if not needs_retry(first):
+        return first
+    return with_retry(first, _through(begin_point(point, lubricant, settings, retry_after=first)))
+
+
+def _through(begun: "PointSolution | Stage") -> PointSolution:
+    return finish_point(begun) if isinstance(begun, Stage) else begun
+
+
+def needs_retry(solution: PointSolution) -> bool:
+    """The first attempt ran away: repeat it with Venner's switch."""
+    return not solution.converged and "diverged" in solution.message
+
+
+def with_retry(first: PointSolution, retry: PointSolution) -> PointSolution:
+    """The retry's solution, noted, if it did better than running away; else the first attempt's."""
     if retry.converged or "diverged" not in retry.message:
-        note = f"converged after a retry with Venner's switch (first attempt: {solution.message})"
+        note = f"converged after a retry with Venner's switch (first attempt: {first.message})"
         return PointSolution(**{**retry.__dict__, "message": retry.message or "", "models": {
             **retry.models, "solver": retry.models["solver"] + "; " + note}})
-    return solution
+    return first
+
+
+@dataclass
+class Stage:
+    """A thermal full-multigrid solve after its coarse stage (the coupled problem one grid coarser, converged),
+    before the fine stage: everything `finish_point` needs, picklable, so that the two stages of a point can
+    run in different processes (parallel.solve_each) with the same result as in one."""
+
+    point: ContactPoint
+    lubricant: Lubricant
+    settings: SolverSettings
+    scaling: Scaling
+    solver: MultigridSolver
+    mode: str
+    reason: str
+    summaries: list
+    history: _History
+    coarse_state: FilmState
+    elapsed: float  # s spent so far (first attempt included)
+
+
+def begin_point(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
+                retry_after: PointSolution | None = None) -> "PointSolution | Stage":
+    """The solve up to the end of its coarse thermal stage (a Stage), or the whole solve when it has no
+    separate fine stage or the coarse stage failed. `retry_after`: the first attempt, which ran away: this
+    one uses Venner's switch, and its wall time counts the first's."""
+    relaxation = Relaxation() if retry_after is None else Relaxation(scale_switch=False)
+    start = time.perf_counter() - (0.0 if retry_after is None else retry_after.scalar("wall_time"))
+    return _solve(point, lubricant, settings, relaxation, start)
 
 
 def _solve(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, relaxation: Relaxation,
@@ -270,31 +313,9 @@ def _solve(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, 
             coarse_state, converged, message = _couple(solver, finest, point, lubricant, scaling, settings, mode,
                                                        history)
             if coarse_state is not None and not message.startswith("diverged"):
-                coarse = solver.levels[finest]
-                summaries[-1] = summarise(coarse)  # the coarse level, now with its film state
-                snapshot = (coarse.pressure.copy(), solver.h0)
-                frozen, converged, message = _start_fine_grid(solver, top, coarse_state, settings, history)
-                if message.startswith("diverged"):
-                    # the finest grid ran away: report the converged coarse-grid solution, flagged
-                    solver.reset_rhs(coarse)
-                    coarse.pressure, solver.h0 = snapshot
-                    _freeze_film_state(solver, finest, coarse_state)
-                    state = coarse_state
-                    message = f"finest grid: {message}; the result is the {coarse.nx}^2 solution"
-                    converged = False
-            if coarse_state is not None and not message.startswith(("diverged", "finest grid")):
-                finest = top
-                if mode == "reduced":
-                    fine = solver.levels[top]
-                    model = _film_model(fine, point, lubricant, scaling, settings, mode)
-                    state = model.update(fine.pressure * scaling.p_h, fine.film * scaling.film_scale,
-                                         frozen.temperature)
-                else:
-                    state, converged, message = _couple(solver, top, point, lubricant, scaling, settings, mode,
-                                                        history, frozen)
-                summaries.append(summarise(solver.levels[top]))
-            else:
-                state = coarse_state
+                return Stage(point, lubricant, settings, scaling, solver, mode, reason, summaries, history,
+                             coarse_state, time.perf_counter() - start)
+            state = coarse_state
         level = solver.levels[finest]
     else:
         finest, message = _full_multigrid(solver, scaling, settings, summaries, 0, top)
@@ -309,6 +330,47 @@ def _solve(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, 
             # report the best iterate, not the last (it may be running away)
             _, level.pressure, level.film, solver.h0 = best
             solver.update_film(level)
+    return _report(point, lubricant, scaling, solver, level, summaries, converged, message, start, history, state,
+                   mode, reason)
+
+
+def finish_point(stage: Stage) -> PointSolution:
+    """The fine stage of a thermal full-multigrid solve: the coarse solution and film state interpolated and
+    frozen on the finest grid, its pressure converged; `reduced` evaluates the film state once there, `full`
+    couples again on the finest grid. A finest grid that runs away reports the converged coarse solution."""
+    start = time.perf_counter() - stage.elapsed
+    solver, summaries, history, coarse_state = stage.solver, stage.summaries, stage.history, stage.coarse_state
+    point, lubricant, scaling, settings, mode = stage.point, stage.lubricant, stage.scaling, stage.settings, stage.mode
+    top = len(solver.levels) - 1
+    finest = top - 1
+    coarse = solver.levels[finest]
+    summaries[-1] = summarise(coarse)  # the coarse level, now with its film state
+    snapshot = (coarse.pressure.copy(), solver.h0)
+    frozen, converged, message = _start_fine_grid(solver, top, coarse_state, settings, history)
+    if message.startswith("diverged"):
+        # the finest grid ran away: report the converged coarse-grid solution, flagged
+        solver.reset_rhs(coarse)
+        coarse.pressure, solver.h0 = snapshot
+        _freeze_film_state(solver, finest, coarse_state)
+        state = coarse_state
+        message = f"finest grid: {message}; the result is the {coarse.nx}^2 solution"
+        converged = False
+    else:
+        finest = top
+        if mode == "reduced":
+            fine = solver.levels[top]
+            model = _film_model(fine, point, lubricant, scaling, settings, mode)
+            state = model.update(fine.pressure * scaling.p_h, fine.film * scaling.film_scale, frozen.temperature)
+        else:
+            state, converged, message = _couple(solver, top, point, lubricant, scaling, settings, mode, history,
+                                                frozen)
+        summaries.append(summarise(solver.levels[top]))
+    return _report(point, lubricant, scaling, solver, solver.levels[finest], summaries, converged, message, start,
+                   history, state, mode, stage.reason)
+
+
+def _report(point, lubricant, scaling, solver, level, summaries, converged, message, start, history, state, mode,
+            reason) -> PointSolution:
     if level.film.min() <= 0.0:
         converged = False
         message = ("the film closes (h_min <= 0: solid contact, outside the EHL model)" + ("; " + message if message
