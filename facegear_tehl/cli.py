@@ -293,7 +293,8 @@ _SUMMARY = (
     ("wall time s", "wall_time", 1.0, "{:.2f}"),
 )
 # Error-estimate columns: header, scalar key, the quantity it estimates the error of.
-_ERROR_ESTIMATES = (("err h_c %", "error_estimate_h_c", "h_c"), ("err h_min %", "error_estimate_h_min", "h_min"))
+_ERROR_ESTIMATES = (("err h_c %", "error_estimate_h_c", "h_c"), ("err h_min %", "error_estimate_h_min", "h_min"),
+                    ("err dT_max %", "error_estimate_dT_max", "dT_max"), ("err mu %", "error_estimate_mu", "mu"))
 
 
 # Heat-budget columns: header, /heat column, factor from SI, format.

@@ -169,7 +169,7 @@ def test_run_writes_the_result_and_a_summary(tmp_path, monkeypatch, fake_solver)
     assert "err h_min %" in header
     cells = row.split()
     assert cells[:4] == ["contact", "yes", "0.15", "0.09"]
-    assert cells[-3:] == ["0.25", "0.40", "-"]  # wall time, error estimates (h_min has none)
+    assert cells[-5:] == ["0.25", "0.40", "-", "-", "-"]  # wall time, error estimates (h_min, dT_max, mu: none)
     assert "result: ball_on_disc.h5 (status ok)" in result.stdout
     written = read_result(tmp_path / "ball_on_disc.h5")
     assert written.status == "ok" and written.case_yaml == CASE_TEXT and written.overrides == {}
@@ -215,7 +215,7 @@ def test_failed_point_exits_1_and_writes_a_flagged_result(tmp_path, monkeypatch,
     assert "error: contact: failed: FloatingPointError: overflow" in result.stderr
     written = read_result(tmp_path / "ball_on_disc.h5")
     assert written.status == "failed" and written.points["contact"].fields == {}
-    assert result.stdout.splitlines()[2].split()[2:] == ["-"] * 12
+    assert result.stdout.splitlines()[2].split()[2:] == ["-"] * 14
 
 
 def test_unexpected_error_exits_1_without_a_file(tmp_path, monkeypatch, fake_solver):

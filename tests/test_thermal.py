@@ -127,3 +127,19 @@ def test_thermal_floor_is_a_stalled_small_change_with_a_steady_film():
     assert not _at_thermal_floor([10 * c for c in flicker], steady, rise=98.0)  # 4.5 K of a 98 K rise: too large
     drifting = [1.9887e-7 * (1 + 0.002 * k) for k in range(8)]
     assert not _at_thermal_floor(flicker, drifting, rise=142.0)
+
+
+def test_error_estimates_of_dT_max_and_mu_come_from_the_coarse_thermal_stage():
+    """error_estimate_dT_max = (f_h - f_2h)/(2^1 - 1)/f_h (first order: the maximum sits at the pressure spike),
+    error_estimate_mu the same at second order, from the coarse stage's figures; NaN without that stage."""
+    from types import SimpleNamespace
+
+    from facegear_tehl.ehl.report import LevelSummary, _estimate
+
+    coarse = LevelSummary(n=65, h_c=1.0, h_min=0.8, p_max=1.1, dT_max=95.0, mu=0.0132)
+    fine = LevelSummary(n=129, h_c=1.0, h_min=0.8, p_max=1.1)
+    level = SimpleNamespace(nx=129)
+    assert _estimate([coarse, fine], level, 97.0, "dT_max", 1) == pytest.approx(2.0 / 97.0)
+    assert _estimate([coarse, fine], level, 0.0130, "mu", 2) == pytest.approx(-0.0002 / 3 / 0.0130)
+    assert math.isnan(_estimate([fine], level, 97.0, "dT_max", 1))
+    assert math.isnan(_estimate([LevelSummary(n=65, h_c=1.0, h_min=0.8, p_max=1.1), fine], level, 97.0, "dT_max", 1))

@@ -3,7 +3,7 @@ budget of one contact point, assembled into the `PointSolution` that the results
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 import math
 
 import numpy as np
@@ -14,6 +14,7 @@ from facegear_tehl.ehl.thermal import FilmState, thermal_loading
 from facegear_tehl.solution import Field, PointSolution
 
 ORDER = 2  # formal order of the discretisation, for the Richardson-scaled error estimate
+ORDER_DT_MAX = 1  # observed order of the largest temperature rise (it sits at the outlet pressure spike; README)
 
 
 @dataclass(frozen=True)
@@ -24,6 +25,8 @@ class LevelSummary:
     h_c: float
     h_min: float
     p_max: float
+    dT_max: float = math.nan  # K, with a film state (thermal full multigrid: the coarse stage)
+    mu: float = math.nan
 
 
 def summarise(level: Level) -> LevelSummary:
@@ -33,6 +36,14 @@ def summarise(level: Level) -> LevelSummary:
         h_min=float(level.film.min()),
         p_max=float(level.pressure.max()),
     )
+
+
+def with_film_state(summary: LevelSummary, level: Level, state: FilmState, scaling, load: float,
+                    t_inlet: float) -> LevelSummary:
+    """The summary of a level with its converged film state: largest temperature rise and friction coefficient."""
+    cell = (level.x[1] - level.x[0]) * scaling.b * (level.y[1] - level.y[0]) * scaling.a
+    mu = friction_coefficients(state, level.pressure, cell, load)[0]
+    return replace(summary, dT_max=float(state.temperature.max() - t_inlet), mu=mu)
 
 
 def friction_coefficients(state: FilmState, pressure: np.ndarray, cell: float,
@@ -72,6 +83,15 @@ def energy_budget(state: FilmState, film: np.ndarray, dx: float, dy: float, rho_
     imbalance = (generated - conducted - convected) / generated if generated > 0.0 else 0.0
     return {"dissipated_power": dissipated, "heat_generated": generated, "heat_conducted": conducted,
             "heat_convected": convected, "energy_balance_error": imbalance}
+
+
+def _estimate(summaries: list, level: Level, fine: float, name: str, order: int) -> float:
+    """Relative discretisation error of `fine` from the same figure one grid coarser (the thermal coarse stage),
+    Richardson-scaled for `order`; NaN without it."""
+    if len(summaries) < 2 or summaries[-1].n != level.nx or fine == 0.0:
+        return math.nan
+    coarse = getattr(summaries[-2], name)
+    return (fine - coarse) / (2**order - 1) / fine
 
 
 def _inlet_gap_ratio(level: Level, scaling, point, h_c: float) -> float:
@@ -155,6 +175,9 @@ def point_solution(point, lubricant, scaling, solver, level, summaries, converge
             "dT_surface_1_max": (float(temperature[0].max() - t_in), "K"),
             "dT_surface_2_max": (float(temperature[-1].max() - t_in), "K"),
             "thermal_iterations": (float(len(history.thermal_changes)), "1"),
+            "error_estimate_dT_max": (_estimate(summaries, level, float(temperature.max() - t_in), "dT_max",
+                                                ORDER_DT_MAX), "1"),
+            "error_estimate_mu": (_estimate(summaries, level, mu, "mu", ORDER), "1"),
             "thermal_floor": (history.thermal_floor, "K"),
             "thermal_layers": (float(temperature.shape[0]), "1"),
         })

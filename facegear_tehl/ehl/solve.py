@@ -26,7 +26,7 @@ from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import grid
 from facegear_tehl.ehl.multigrid import Level, MultigridSolver, Problem, Relaxation
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
-from facegear_tehl.ehl.report import LevelSummary, point_solution, summarise
+from facegear_tehl.ehl.report import LevelSummary, point_solution, summarise, with_film_state
 from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel, thermal_choice
 from facegear_tehl.film_formulas import hamrock_dowson_central
 from facegear_tehl.lubricant import Lubricant
@@ -344,7 +344,9 @@ def finish_point(stage: Stage) -> PointSolution:
     top = len(solver.levels) - 1
     finest = top - 1
     coarse = solver.levels[finest]
-    summaries[-1] = summarise(coarse)  # the coarse level, now with its film state
+    # the coarse level, now with its film state (its dT_max and mu give the fine grid's error estimates)
+    summaries[-1] = with_film_state(summarise(coarse), coarse, coarse_state, scaling, point.load,
+                                    lubricant.inlet_temperature)
     snapshot = (coarse.pressure.copy(), solver.h0)
     frozen, converged, message = _start_fine_grid(solver, top, coarse_state, settings, history)
     if message.startswith("diverged"):
