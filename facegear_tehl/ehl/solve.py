@@ -9,8 +9,11 @@ below `load_tolerance` (or `max_cycles` is spent: reported as not converged).
 Thermal and/or Ree-Eyring films (thermal.py) then iterate an outer loop: the across-film state (temperature
 and eta*/eta per layer) is updated from the current pressure and film, frozen into the flow coefficients of
 every grid (flow.py), and the pressure is cycled again; the loop stops when temperature, pressure and load
-have all converged. The discretisation error is estimated from the isothermal solution one grid coarser,
-Richardson-scaled for a second-order scheme: e = (H_h - H_2h)/(2^2 - 1).
+have all converged. From 129^2 up a thermal solve is a thermal full multigrid in two stages: the coupled
+problem one grid coarser (`begin_point`, which returns a picklable `Stage`), then the finest grid from its
+interpolated state (`finish_point`); `solve_point` composes them, parallel.solve_each may run them in
+different workers. The discretisation error is estimated from the solution one grid coarser (isothermal, or
+the coarse thermal stage), Richardson-scaled for a second-order scheme: e = (H_h - H_2h)/(2^2 - 1).
 """
 
 from __future__ import annotations
