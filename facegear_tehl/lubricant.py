@@ -130,31 +130,39 @@ def _broadcast(pressure, temperature, default_t):
 
 
 @njit(cache=True)
-def viscosity_ratio_at(p, t, law):
-    """eta/eta_0 at one pressure p (Pa, clipped at 0) and temperature t (K); law from `law_parameters`."""
-    p = max(p, 0.0)
-    if law[0] == ROELANDS:
-        temp_factor = ((t - ROELANDS_T_INF) / (law[6] - ROELANDS_T_INF)) ** (-law[4])
-        return math.exp(law[3] * ((1.0 + p / ROELANDS_PRESSURE) ** law[2] * temp_factor - 1.0))
-    return math.exp(law[1] * p - law[5] * (t - law[6]))
+def roelands_pressure_factor_at(p, law):
+    """(1 + p/p_r)^z of the Roelands law, p in Pa clipped at 0."""
+    return (1.0 + max(p, 0.0) / ROELANDS_PRESSURE) ** law[2]
 
 
 @njit(cache=True)
 def roelands_temperature_factor_at(t, law):
-    """((T - T_inf)/(T_0 - T_inf))^(-S_0) of the Roelands law (1 for Barus): the temperature part of
-    viscosity_ratio_at, eta/eta_0 = exp(ln-term ((1 + p/p_r)^z factor - 1))."""
+    """((T - T_inf)/(T_0 - T_inf))^(-S_0) of the Roelands law (1 for Barus)."""
     if law[0] == ROELANDS:
         return ((t - ROELANDS_T_INF) / (law[6] - ROELANDS_T_INF)) ** (-law[4])
     return 1.0
 
 
 @njit(cache=True)
+def roelands_ratio(pressure_factor, temperature_factor, law):
+    """eta/eta_0 = exp(ln-term ((1 + p/p_r)^z ((T - T_inf)/(T_0 - T_inf))^(-S_0) - 1)) from its two factors."""
+    return math.exp(law[3] * (pressure_factor * temperature_factor - 1.0))
+
+
+@njit(cache=True)
+def viscosity_ratio_at(p, t, law):
+    """eta/eta_0 at one pressure p (Pa, clipped at 0) and temperature t (K); law from `law_parameters`."""
+    if law[0] == ROELANDS:
+        return roelands_ratio(roelands_pressure_factor_at(p, law), roelands_temperature_factor_at(t, law), law)
+    return math.exp(law[1] * max(p, 0.0) - law[5] * (t - law[6]))
+
+
+@njit(cache=True)
 def viscosity_temperature_coefficient_at(p, t, law):
     """beta = -d ln(eta)/dT (1/K) at pressure p (Pa) and temperature t (K) of the viscosity law."""
-    p = max(p, 0.0)
     if law[0] == ROELANDS:
-        temp_factor = ((t - ROELANDS_T_INF) / (law[6] - ROELANDS_T_INF)) ** (-law[4])
-        return law[3] * law[4] * (1.0 + p / ROELANDS_PRESSURE) ** law[2] * temp_factor / (t - ROELANDS_T_INF)
+        return (law[3] * law[4] * roelands_pressure_factor_at(p, law) * roelands_temperature_factor_at(t, law)
+                / (t - ROELANDS_T_INF))
     return law[5]
 
 

@@ -19,13 +19,11 @@ The layer count is odd (Simpson's rule across the film).
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit
 
-from facegear_tehl.lubricant import (ROELANDS, ROELANDS_PRESSURE, density_ratio_at, roelands_temperature_factor_at,
-                                     viscosity_ratio_at)
+from facegear_tehl.lubricant import (ROELANDS, density_ratio_at, roelands_pressure_factor_at, roelands_ratio,
+                                     roelands_temperature_factor_at, viscosity_ratio_at)
 
 
 @njit(cache=True, error_model="numpy")
@@ -103,11 +101,11 @@ def layered_coefficients(pressure_pa, film, temperature, temperature_factor, vis
     for j in range(ny):
         for i in range(nx):
             p = pressure_pa[j, i]
-            pressure_factor = (1.0 + max(p, 0.0) / ROELANDS_PRESSURE) ** law[2]
+            pressure_factor = roelands_pressure_factor_at(p, law)
             for k in range(nz):
                 t = temperature[k, j, i]
                 if roelands:
-                    ratio = math.exp(law[3] * (pressure_factor * temperature_factor[k, j, i] - 1.0))
+                    ratio = roelands_ratio(pressure_factor, temperature_factor[k, j, i], law)
                 else:
                     ratio = viscosity_ratio_at(p, t, law)
                 eta[k] = max(ratio * viscosity_factor[k, j, i], 1e-300)

@@ -88,7 +88,7 @@ class Level:
     # Newtonian film at the inlet temperature.
     temperature: np.ndarray | None = None
     viscosity_factor: np.ndarray | None = None
-    temperature_factor: np.ndarray | None = None  # flow.temperature_factors of `temperature`
+    temperature_factor: np.ndarray | None = None  # flow.temperature_factors of `temperature`, set with it
 
     @property
     def nx(self) -> int:
@@ -184,8 +184,6 @@ class MultigridSolver:
             flow.isothermal_coefficients(p_pa, level.film, pb.law, pb.inlet_temperature, pb.lam, pb.wedge_x,
                                          pb.wedge_y, level.eps, level.flux_x, level.flux_y)
         else:
-            if level.temperature_factor is None or level.temperature_factor.shape != level.temperature.shape:
-                level.temperature_factor = flow.temperature_factors(level.temperature, pb.law)
             flow.layered_coefficients(p_pa, level.film, level.temperature, level.temperature_factor,
                                       level.viscosity_factor, pb.law, pb.lam,
                                       1.0 / pb.ellipticity, float(np.sign(pb.wedge_x)), float(np.sign(pb.wedge_y)),

@@ -41,9 +41,13 @@ def summarise(level: Level) -> LevelSummary:
 def with_film_state(summary: LevelSummary, level: Level, state: FilmState, scaling, load: float,
                     t_inlet: float) -> LevelSummary:
     """The summary of a level with its converged film state: largest temperature rise and friction coefficient."""
-    cell = (level.x[1] - level.x[0]) * scaling.b * (level.y[1] - level.y[0]) * scaling.a
-    mu = friction_coefficients(state, level.pressure, cell, load)[0]
+    mu = friction_coefficients(state, level.pressure, _cell_area(level, scaling), load)[0]
     return replace(summary, dT_max=float(state.temperature.max() - t_inlet), mu=mu)
+
+
+def _cell_area(level: Level, scaling) -> float:
+    """Area of one grid cell, m^2."""
+    return (level.x[1] - level.x[0]) * scaling.b * (level.y[1] - level.y[0]) * scaling.a
 
 
 def friction_coefficients(state: FilmState, pressure: np.ndarray, cell: float,
@@ -163,8 +167,7 @@ def point_solution(point, lubricant, scaling, solver, level, summaries, converge
     }
     if state is not None:
         t_in = lubricant.inlet_temperature
-        cell = (level.x[1] - level.x[0]) * scaling.b * (level.y[1] - level.y[0]) * scaling.a
-        mu, mu_1, mu_2 = friction_coefficients(state, level.pressure, cell, point.load)
+        mu, mu_1, mu_2 = friction_coefficients(state, level.pressure, _cell_area(level, scaling), point.load)
         temperature = state.temperature
         scalars.update({
             "mu": (mu, "1"),

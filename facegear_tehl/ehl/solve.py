@@ -26,7 +26,7 @@ import numpy as np
 
 from facegear_tehl.case import SolverSettings
 from facegear_tehl.contact import ContactPoint
-from facegear_tehl.ehl import grid
+from facegear_tehl.ehl import flow, grid
 from facegear_tehl.ehl.multigrid import Level, MultigridSolver, Problem, Relaxation
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
 from facegear_tehl.ehl.report import LevelSummary, point_solution, summarise, with_film_state
@@ -82,8 +82,12 @@ def _at_algebraic_floor(changes: list[float], loads: list[float], settings: Solv
         return False
     stalled = changes[-1] > 0.8 * changes[-3]
     small = changes[-1] < 10.0 * settings.tolerance
-    balanced = abs(0.5 * (loads[-1] + loads[-2])) < settings.load_tolerance
-    return stalled and small and balanced
+    return stalled and small and _balanced(loads, settings)
+
+
+def _balanced(loads: list[float], settings: SolverSettings) -> bool:
+    """The load error averaged over the last two cycles is within tolerance."""
+    return len(loads) >= 2 and abs(0.5 * (loads[-1] + loads[-2])) < settings.load_tolerance
 
 
 THERMAL_FLOOR_WINDOW = 8  # outer iterations over which a stalled thermal change is judged
@@ -114,9 +118,8 @@ def _pressure_settled(history: _History, settings: SolverSettings) -> bool:
     """Between film-state updates the pressure stays within its algebraic floor (_at_algebraic_floor's bound:
     the last four changes per cycle below 10x the tolerance, the load error of the last two cycles within
     tolerance), though two cycles per update are too few to see it stall."""
-    changes, loads = history.changes[-4:], history.loads[-2:]
-    return (len(changes) == 4 and max(changes) < 10.0 * settings.tolerance
-            and abs(0.5 * sum(loads)) < settings.load_tolerance)
+    changes = history.changes[-4:]
+    return len(changes) == 4 and max(changes) < 10.0 * settings.tolerance and _balanced(history.loads, settings)
 
 
 def _start_coarsest(solver: MultigridSolver, scaling: Scaling) -> None:
@@ -218,7 +221,7 @@ def _freeze_film_state(solver: MultigridSolver, index: int, state: FilmState) ->
         level = solver.levels[level_index]
         level.temperature = np.ascontiguousarray(state.temperature[:, ::stride, ::stride])
         level.viscosity_factor = np.ascontiguousarray(state.viscosity_factor[:, ::stride, ::stride])
-        level.temperature_factor = None  # recomputed from the new temperature at the next film update
+        level.temperature_factor = flow.temperature_factors(level.temperature, solver.problem.law)
         if level_index == index:
             solver.update_film(level)
 
