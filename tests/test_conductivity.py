@@ -16,7 +16,6 @@ from facegear_tehl.points import contact_analysis
 from facegear_tehl.schema import CaseError
 
 SLIDING = Path(__file__).resolve().parents[1] / "cases" / "ball_on_disc_sliding.yaml"
-CONSTANT_K = Path(__file__).resolve().parent / "data" / "energy_constant_k.npz"
 PAOB = dict(thermal_conductivity=0.154, conductivity_pressure_coefficient=1.40, conductivity_pressure_saturation=0.34)
 # k/k_0 = 1 + 1.4 p/(1 + 0.34 p) by hand: p = 0.5 GPa: 1 + 0.7/1.17 = 187/117; p = 1 GPa: 1 + 1.4/1.34 = 137/67
 HAND = [(0.0, 1.0), (0.5, 187.0 / 117.0), (1.0, 137.0 / 67.0)]
@@ -47,41 +46,6 @@ def test_default_conductivity_is_exactly_k0():
     lub = load_case(SLIDING).lubricant
     assert (lub.conductivity_pressure_coefficient, lub.conductivity_pressure_saturation) == (0.0, 0.0)
     assert np.array_equal(lub.conductivity_at(p), np.full(p.shape, 0.14))
-
-
-def kernel_inputs():
-    """Deterministic inputs of the energy kernel (+, -, *, / only: the same bits on any IEEE machine); reversed
-    flow downstream, heating and expansion cooling."""
-    nz, ny, nx = 5, 6, 10
-    z = np.arange(nz, dtype=float)[:, None, None]
-    y = np.arange(ny, dtype=float)[None, :, None]
-    x = np.arange(nx, dtype=float)[None, None, :]
-    shape = (nz, ny, nx)
-    full = lambda a: np.array(np.broadcast_to(a, shape), dtype=np.float64)
-    temperature = full(313.0 + 0.5 * z * (nz - 1 - z) + 0.25 * x + 0.125 * y)
-    velocity_x = full(2.0 - 0.5 * x + 0.25 * z)  # reversed flow downstream
-    velocity_y = full(0.25 * (y - 2.5) + 0.125 * z)
-    source = full(2e13 * (1.0 + 0.1 * x * y) * (1.0 + 0.5 * z))
-    sensitivity = full(1e7 * (1.0 + 0.01 * x * x))
-    expansivity_grad = full(3e4 * (x - 4.5) * (1.0 + 0.2 * y))  # heating and cooling
-    rho_c = full(1.7e6 + 1e4 * z + 3e3 * x)
-    film = np.array(5e-7 * (1.0 + 0.05 * x[0] * x[0] + 0.02 * y[0]) + 0.0 * x[0] * y[0])
-    return temperature, velocity_x, velocity_y, source, sensitivity, expansivity_grad, rho_c, film, 1e-6, 2e-6, 313.0
-
-
-def test_energy_kernel_with_default_conductivity_is_bit_identical_to_the_constant_k_kernel():
-    # The reference arrays were written by the kernel before k(p) (scalar k = 0.14, commit a23720e): 8 sweeps
-    # and the wall heat fluxes. With a = b = 0 the per-column conductivity is exactly k_0, and every bit agrees.
-    # (Regenerate the file only when the kernel is changed on purpose.)
-    reference = np.load(CONSTANT_K)
-    temperature, u, v, source, sensitivity, expansivity_grad, rho_c, film, dx, dy, t_inlet = kernel_inputs()
-    conductivity = oil(thermal_conductivity=0.14).conductivity_at(np.full(film.shape, 0.8e9))
-    done, change = energy.sweep_film_temperature(temperature, u, v, source, sensitivity, expansivity_grad, rho_c,
-                                                 conductivity, film, dx, dy, t_inlet, 8, 0.0)
-    q1, q2 = energy.wall_heat_flux(temperature, film, conductivity)
-    assert done == reference["sweeps"] and change == reference["change"]
-    assert np.array_equal(temperature, reference["temperature"])
-    assert np.array_equal(q1, reference["heat_flux_1"]) and np.array_equal(q2, reference["heat_flux_2"])
 
 
 def test_uniformly_heated_film_without_convection_has_the_conduction_solution_with_k_of_p():

@@ -12,8 +12,10 @@ is a tridiagonal system in k; convection is upwinded per layer by the sign of th
 flow in the inlet), with the inlet temperature outside the domain: second-order upwind, limited (van Leer)
 so that extrema are not overshot; the first-order part is implicit, the limited correction comes from the
 current iterate. The columns are swept Gauss-Seidel forwards and backwards. Compression cooling is implicit.
-(First-order upwinding alone made the largest temperature rise converge at order 0.6 with the grid on the
-face gear case, S1; with the limited correction the order is 1.0 and h_min converges at order 2.)
+Across the film the conduction term is discretised compactly (Numerov's scheme, `_column`): fourth order
+where conduction dominates, as in the Hertz zone; the heat flux into the walls by fourth-order one-sided
+differences. On S1 of the face gear case the default nine layers are then within 0.5 % of 33 layers in the
+largest temperature rise and 0.1 % in h_c and mu (the second-order scheme: 1.6 %, 0.9 %, 2.5 %).
 k = k(p) is the film's conductivity, one value per column since the pressure is constant across the film
 (lubricant.py: the constant k_0, or Larsson et al. 2000).
 """
@@ -59,37 +61,64 @@ def _upwind(temperature, k, j, i, dj, di, t_inlet):
 
 
 @njit(cache=True, error_model="numpy")
+def _balance(temperature, k, j, i, velocity_x, velocity_y, source, sensitivity, reference, expansivity_grad, rho_c,
+             dx, dy, t_inlet):
+    """Node (k, j, i)'s balance without conduction as F = a T - b (W/m^3): (a, b), a the implicit part
+    (convection, heating linearised about `reference`, compression)."""
+    u = velocity_x[k, j, i]
+    v = velocity_y[k, j, i]
+    rc = rho_c[k, j, i]
+    t_x, c_x = _upwind(temperature, k, j, i, 0, 1 if u >= 0.0 else -1, t_inlet)
+    t_y, c_y = _upwind(temperature, k, j, i, 1 if v >= 0.0 else -1, 0, t_inlet)
+    ax = rc * abs(u) / dx
+    ay = rc * abs(v) / dy
+    comp = expansivity_grad[k, j, i]  # beta_T (u . grad p), W/(m^3 K) per K of T
+    sig = sensitivity[k, j, i]
+    a = ax + ay + sig
+    b = ax * (t_x + c_x) + ay * (t_y + c_y) + source[k, j, i] + sig * reference[k, j, i]
+    if comp < 0.0:
+        a -= comp  # cooling by expansion: implicit
+    else:
+        b += comp * temperature[k, j, i]
+    return a, b
+
+
+@njit(cache=True, error_model="numpy")
 def _column(temperature, j, i, velocity_x, velocity_y, source, sensitivity, reference, expansivity_grad, rho_c,
-            conductivity, film, dx, dy, t_inlet, lower, diag, upper, rhs):
+            conductivity, film, dx, dy, t_inlet, wall_balance, lower, diag, upper, rhs, implicit, explicit):
     """Solve the interior layers of column (j, i) in place (conductivity: (ny, nx), W/(m K), one value per
-    column); returns the largest change (K)."""
+    column; wall_balance: F of the two wall nodes, (2, ny, nx)); returns the largest change (K).
+
+    Every node k gives its balance as F_k = a_k T_k - b_k (`_balance`); k T'' = F is discretised compactly
+    (Numerov's scheme): k (T_k-1 - 2 T_k + T_k+1)/dz^2 = theta (F_k-1 + F_k+1)/12 + (1 - theta/6) F_k, fourth
+    order for theta = 1, with the walls' F known. theta = min(1, 12 k/(dz^2 max a)) keeps the off-diagonals
+    negative (no overshoot) where convection outweighs conduction across the film (thick inlet films); there
+    the scheme tends to the second-order one."""
     nz, ny, nx = temperature.shape
     n = nz - 2
     h = max(film[j, i], 1e-12)
     kz = conductivity[j, i] / (h / (nz - 1)) ** 2
+    largest = 0.0
     for m in range(n):
-        k = m + 1
-        u = velocity_x[k, j, i]
-        v = velocity_y[k, j, i]
-        rc = rho_c[k, j, i]
-        t_x, c_x = _upwind(temperature, k, j, i, 0, 1 if u >= 0.0 else -1, t_inlet)
-        t_y, c_y = _upwind(temperature, k, j, i, 1 if v >= 0.0 else -1, 0, t_inlet)
-        ax = rc * abs(u) / dx
-        ay = rc * abs(v) / dy
-        comp = expansivity_grad[k, j, i]  # beta_T (u . grad p), W/(m^3 K) per K of T
-        sig = sensitivity[k, j, i]
-        d = ax + ay + 2.0 * kz + sig
-        r = ax * (t_x + c_x) + ay * (t_y + c_y) + source[k, j, i] + sig * reference[k, j, i]
-        if comp < 0.0:
-            d -= comp  # cooling by expansion: implicit
-        else:
-            r += comp * temperature[k, j, i]
-        lower[m] = -kz
-        upper[m] = -kz
-        diag[m] = d
-        rhs[m] = r
-    rhs[0] += kz * temperature[0, j, i]
-    rhs[n - 1] += kz * temperature[nz - 1, j, i]
+        a, b = _balance(temperature, m + 1, j, i, velocity_x, velocity_y, source, sensitivity, reference,
+                        expansivity_grad, rho_c, dx, dy, t_inlet)
+        implicit[m] = a
+        explicit[m] = b
+        largest = max(largest, a)
+    theta = min(1.0, 12.0 * kz / largest) if largest > 0.0 else 1.0
+    wside = theta / 12.0
+    wmid = 1.0 - theta / 6.0
+    for m in range(n):
+        lower[m] = -kz + wside * implicit[m - 1] if m > 0 else 0.0
+        upper[m] = -kz + wside * implicit[m + 1] if m < n - 1 else 0.0
+        diag[m] = 2.0 * kz + wmid * implicit[m]
+        rhs[m] = wmid * explicit[m]
+        if m > 0:
+            rhs[m] += wside * explicit[m - 1]
+        if m < n - 1:
+            rhs[m] += wside * explicit[m + 1]
+    rhs[0] += kz * temperature[0, j, i] - wside * wall_balance[0, j, i]
+    rhs[n - 1] += kz * temperature[nz - 1, j, i] - wside * wall_balance[1, j, i]
     # Thomas algorithm (diagonally dominant)
     for m in range(1, n):
         w = lower[m] / diag[m - 1]
@@ -121,6 +150,15 @@ def sweep_film_temperature(temperature, velocity_x, velocity_y, source, sensitiv
     diag = np.empty(n)
     upper = np.empty(n)
     rhs = np.empty(n)
+    implicit = np.empty(n)
+    explicit = np.empty(n)
+    wall_balance = np.empty((2, ny, nx))  # the walls' temperatures stay fixed during the sweeps
+    for j in range(ny):
+        for i in range(nx):
+            for side, k in enumerate((0, nz - 1)):
+                a, b = _balance(temperature, k, j, i, velocity_x, velocity_y, source, sensitivity, reference,
+                                expansivity_grad, rho_c, dx, dy, t_inlet)
+                wall_balance[side, j, i] = a * temperature[k, j, i] - b
     change = 0.0
     done = 0
     for s in range(sweeps):
@@ -129,12 +167,14 @@ def sweep_film_temperature(temperature, velocity_x, velocity_y, source, sensitiv
             if s % 2 == 0:
                 for i in range(nx):
                     c = _column(temperature, j, i, velocity_x, velocity_y, source, sensitivity, reference,
-                                expansivity_grad, rho_c, conductivity, film, dx, dy, t_inlet, lower, diag, upper, rhs)
+                                expansivity_grad, rho_c, conductivity, film, dx, dy, t_inlet, wall_balance, lower, diag,
+                                upper, rhs, implicit, explicit)
                     change = max(change, c)
             else:
                 for i in range(nx - 1, -1, -1):
                     c = _column(temperature, j, i, velocity_x, velocity_y, source, sensitivity, reference,
-                                expansivity_grad, rho_c, conductivity, film, dx, dy, t_inlet, lower, diag, upper, rhs)
+                                expansivity_grad, rho_c, conductivity, film, dx, dy, t_inlet, wall_balance, lower, diag,
+                                upper, rhs, implicit, explicit)
                     change = max(change, c)
         done = s + 1
         if change < tolerance:
@@ -144,11 +184,16 @@ def sweep_film_temperature(temperature, velocity_x, velocity_y, source, sensitiv
 
 def wall_heat_flux(temperature: np.ndarray, film: np.ndarray,
                    conductivity: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
-    """Heat flux from the film into solid 1 (at z = 0) and solid 2 (at z = h), W/m^2, by second-order
-    one-sided differences: q_1 = k dT/dz|_0, q_2 = -k dT/dz|_h, with k per column ((ny, nx), or a scalar;
-    W/(m K))."""
+    """Heat flux from the film into solid 1 (at z = 0) and solid 2 (at z = h), W/m^2: q_1 = k dT/dz|_0,
+    q_2 = -k dT/dz|_h by fourth-order one-sided differences (-25, 48, -36, 16, -3)/(12 dz) (second order,
+    (-3, 4, -1)/(2 dz), on three layers), with k per column ((ny, nx), or a scalar; W/(m K))."""
     nz = temperature.shape[0]
     dz = np.maximum(film, 1e-12) / (nz - 1)
-    q1 = conductivity * (-3.0 * temperature[0] + 4.0 * temperature[1] - temperature[2]) / (2.0 * dz)
-    q2 = conductivity * (-3.0 * temperature[-1] + 4.0 * temperature[-2] - temperature[-3]) / (2.0 * dz)
+    t = temperature
+    if nz >= 5:
+        q1 = conductivity * (-25.0 * t[0] + 48.0 * t[1] - 36.0 * t[2] + 16.0 * t[3] - 3.0 * t[4]) / (12.0 * dz)
+        q2 = conductivity * (-25.0 * t[-1] + 48.0 * t[-2] - 36.0 * t[-3] + 16.0 * t[-4] - 3.0 * t[-5]) / (12.0 * dz)
+        return q1, q2
+    q1 = conductivity * (-3.0 * t[0] + 4.0 * t[1] - t[2]) / (2.0 * dz)
+    q2 = conductivity * (-3.0 * t[-1] + 4.0 * t[-2] - t[-3]) / (2.0 * dz)
     return q1, q2

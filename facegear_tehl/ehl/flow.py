@@ -14,7 +14,7 @@ In the solver's variables (scaling.py; rho, eta as ratios to rho_0, eta_0; veloc
     f_x = s_x [u_1x R0 + (u_2x - u_1x) R2/F0],   f_y = s_y kappa [u_1y R0 + (u_2y - u_1y) R2/F0]
 
 (s_x, s_y: signs of the entrainment components, which orient the upwind differences in reynolds.py).
-The layer count is odd (Simpson's rule across the film).
+The layer count is odd (Simpson's rule across the film; layers.py).
 """
 
 from __future__ import annotations
@@ -22,6 +22,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from facegear_tehl.ehl.layers import cumulative_stencil, simpson_weight
 from facegear_tehl.lubricant import (ROELANDS, density_ratio_at, roelands_pressure_factor_at, roelands_ratio,
                                      roelands_temperature_factor_at, viscosity_ratio_at)
 
@@ -44,8 +45,8 @@ def isothermal_coefficients(pressure_pa, film, law, temperature, lam, cx, cy, ep
 def layer_integrals(eta, rho):
     """(F0, F1, R0, R1, R2) for viscosity and density ratios on an odd number of equally spaced layer nodes.
 
-    f0, f1 are integrated exactly for 1/eta linear between nodes; R0, R1, R2 by Simpson's rule. Exact for
-    constant properties (F0 = 1/eta, F1 = 1/(2 eta), R1 = rho/(6 eta), R2 = rho/(2 eta)).
+    The running integrals f0, f1 by the fourth-order cumulative rule, R0, R1, R2 by Simpson's rule (layers.py).
+    Exact for constant properties (F0 = 1/eta, F1 = 1/(2 eta), R1 = rho/(6 eta), R2 = rho/(2 eta)).
     """
     nz = eta.size
     dz = 1.0 / (nz - 1)
@@ -55,22 +56,17 @@ def layer_integrals(eta, rho):
     r1 = 0.0
     r2 = 0.0
     for k in range(nz):
-        if k == 0 or k == nz - 1:
-            w = dz / 3.0
-        elif k % 2 == 1:
-            w = 4.0 * dz / 3.0
-        else:
-            w = 2.0 * dz / 3.0
         if k > 0:
-            z0 = (k - 1) * dz
-            z1 = k * dz
-            g0 = 1.0 / eta[k - 1]
-            g1 = 1.0 / eta[k]
-            f0 += 0.5 * dz * (g0 + g1)
-            f1 += dz * (z0 * g0 / 3.0 + z0 * g1 / 6.0 + z1 * g0 / 6.0 + z1 * g1 / 3.0)
-        r0 += w * rho[k]
-        r1 += w * rho[k] * f1
-        r2 += w * rho[k] * f0
+            first, w0, w1, w2, w3 = cumulative_stencil(k, nz)
+            for m, w in enumerate((w0, w1, w2, w3)):
+                if w != 0.0:
+                    g = w * dz / eta[first + m]
+                    f0 += g
+                    f1 += g * (first + m) * dz
+        w = simpson_weight(k, nz) * rho[k]
+        r0 += w
+        r1 += w * f1
+        r2 += w * f0
     return f0, f1, r0, r1, r2
 
 

@@ -11,7 +11,7 @@ from the constitutive law:
 The surface stress tau_s is fixed by the velocities of the surfaces, \\int_0^h gamma_dot dz = u_2 - u_1,
 solved by Newton's method with backtracking (Newtonian: in closed form). Integrals across the film use
 Simpson's rule on an odd number of equally spaced layer nodes; the velocity profile u(z) = u_1 + \\int_0^z
-gamma_dot dz' uses the trapezoidal rule. Dissipation per unit volume: tau . gamma_dot (W/m^3).
+gamma_dot dz' the fourth-order cumulative rule (layers.py). Dissipation per unit volume: tau . gamma_dot (W/m^3).
 
 The kernels here, in flow.py and energy.py are compiled with NumPy's floating-point error model: an iterate
 running away (infinite viscosity) gives inf/NaN, which the solver detects and reports, not an exception.
@@ -24,22 +24,10 @@ import math
 import numpy as np
 from numba import njit
 
+from facegear_tehl.ehl.layers import cumulative_step, simpson_weights
+
 MAX_STRESS_RATIO = 600.0  # |tau|/tau_0 cap inside sinh (overflow guard, far beyond physical values ~10)
 MIN_VISCOSITY_FACTOR = 1e-12  # floor of eta*/eta (r/sinh r underflows to 0 near the cap)
-
-
-@njit(cache=True, error_model="numpy")
-def _simpson_weights(nz: int) -> np.ndarray:
-    w = np.empty(nz)
-    dz = 1.0 / (nz - 1)
-    for k in range(nz):
-        if k == 0 or k == nz - 1:
-            w[k] = dz / 3.0
-        elif k % 2 == 1:
-            w[k] = 4.0 * dz / 3.0
-        else:
-            w[k] = 2.0 * dz / 3.0
-    return w
 
 
 @njit(cache=True, error_model="numpy")
@@ -137,11 +125,13 @@ def shear_state(pressure, film, grad_x, grad_y, eta_newtonian, u1, u2, tau0, war
     stress_1 / stress_2: (2, ny, nx) shear stress vectors at surfaces 1 and 2 (Pa).
     """
     nz, ny, nx = eta_newtonian.shape
-    weights = _simpson_weights(nz)
+    weights = simpson_weights(nz)
     dux = u2[0] - u1[0]
     duy = u2[1] - u1[1]
     speed = math.hypot(u1[0], u1[1]) + math.hypot(u2[0], u2[1]) + 1e-30
     eta = np.empty(nz)
+    rate_x = np.empty(nz)
+    rate_y = np.empty(nz)
     for j in range(ny):
         for i in range(nx):
             h = max(film[j, i], 1e-12)
@@ -151,29 +141,28 @@ def shear_state(pressure, film, grad_x, grad_y, eta_newtonian, u1, u2, tau0, war
             gpy = grad_y[j, i]
             tx, ty = surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, stress_1[0, j, i], stress_1[1, j, i],
                                     warm, speed)
-            ux = u1[0]
-            uy = u1[1]
-            prev_gx = 0.0
-            prev_gy = 0.0
             for k in range(nz):
                 z = h * k / (nz - 1)
                 sx = tx + z * gpx
                 sy = ty + z * gpy
                 gx, gy, _, _, _ = _shear_rate(sx, sy, eta[k], tau0)
+                rate_x[k] = gx
+                rate_y[k] = gy
                 te = math.hypot(sx, sy)
                 ge = math.hypot(gx, gy)
                 viscosity_factor[k, j, i] = max(te / (ge * eta[k]), MIN_VISCOSITY_FACTOR) if ge > 0.0 else 1.0
                 r = te / tau0 if math.isfinite(tau0) else 0.0
                 thinning[k, j, i] = math.tanh(r) / r if r > 1e-8 else 1.0
                 dissipation[k, j, i] = sx * gx + sy * gy
-                if k > 0:
-                    dz = h / (nz - 1)
-                    ux += 0.5 * dz * (prev_gx + gx)
-                    uy += 0.5 * dz * (prev_gy + gy)
+            ux = u1[0]
+            uy = u1[1]
+            velocity_x[0, j, i] = ux
+            velocity_y[0, j, i] = uy
+            for k in range(1, nz):
+                ux += cumulative_step(rate_x, k, h / (nz - 1))
+                uy += cumulative_step(rate_y, k, h / (nz - 1))
                 velocity_x[k, j, i] = ux
                 velocity_y[k, j, i] = uy
-                prev_gx = gx
-                prev_gy = gy
             stress_1[0, j, i] = tx
             stress_1[1, j, i] = ty
             stress_2[0, j, i] = tx + h * gpx

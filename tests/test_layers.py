@@ -1,0 +1,71 @@
+"""Across-film discretisation (layers.py, rheology.py, energy.py) against closed-form solutions."""
+
+import math
+
+import numpy as np
+import pytest
+
+from facegear_tehl.ehl import energy, rheology
+from facegear_tehl.ehl.flow import layer_integrals
+
+
+def nahme_couette(nz, s=2.0, h=1e-6, k=0.13, eta0=0.03, beta=0.04, t_wall=350.0):
+    """Plane Couette flow of a Newtonian oil with eta = eta0 exp(-beta (T - T_w)), both walls at T_w, solved
+    with the film kernels (one column, no convection), and the closed form (Nahme 1940; e.g. Pearson 1985):
+    beta (T - T_w) = 2 ln[cosh s / cosh(s (2 z/h - 1))], with the wall speed U = sqrt(8 k/(beta eta0)) sinh s
+    fixing s, the shear stress tau = sqrt(8 k eta0/beta) s/(h cosh s), and tau U/2 into each wall.
+    Returns (relative errors of the mid-film rise, of tau, of the wall heat fluxes)."""
+    speed = math.sqrt(8.0 * k / (beta * eta0)) * math.sinh(s)
+    tau = math.sqrt(8.0 * k * eta0 / beta) * s / (h * math.cosh(s))
+    rise = 2.0 * math.log(math.cosh(s)) / beta
+    shape = (nz, 1, 1)
+    temperature = np.full(shape, t_wall)
+    zero = np.zeros((1, 1))
+    film = np.full((1, 1), h)
+    conductivity = np.full((1, 1), k)
+    factor, dissipation, u, v, thinning = (np.empty(shape) for _ in range(5))
+    stress_1, stress_2 = np.zeros((2, 1, 1)), np.zeros((2, 1, 1))
+    for outer in range(400):
+        eta = eta0 * np.exp(-beta * (temperature - t_wall))
+        rheology.shear_state(zero, film, zero, zero, eta, np.zeros(2), np.array([speed, 0.0]), math.inf, outer > 0,
+                             factor, dissipation, u, v, stress_1, stress_2, thinning)
+        before = temperature.copy()
+        # dx = dy = 1e30 m: no convection along the film
+        energy.sweep_film_temperature(temperature, u, v, dissipation, beta * dissipation, np.zeros(shape),
+                                      np.full(shape, 1.8e6), conductivity, film, 1e30, 1e30, t_wall, 1, 0.0)
+        if np.abs(temperature - before).max() < 1e-12:
+            break
+    q1, q2 = energy.wall_heat_flux(temperature, film, conductivity)
+    return ((temperature[nz // 2, 0, 0] - t_wall - rise) / rise, (stress_1[0, 0, 0] - tau) / tau,
+            (q1[0, 0] - 0.5 * tau * speed) / (0.5 * tau * speed), (q2[0, 0] - 0.5 * tau * speed) / (0.5 * tau * speed))
+
+
+def test_thermal_couette_flow_has_nahmes_solution_at_fourth_order():
+    # s = 2: the viscosity falls 14-fold from the walls to mid-film (the face gear case: ~25-fold)
+    errors = {nz: np.abs(nahme_couette(nz)) for nz in (9, 17, 33)}
+    assert errors[9][0] < 1.5e-3 and errors[9][1] < 1e-3 and max(errors[9][2:]) < 5e-3  # second order: 9e-3, 1e-2, 1.6e-2
+    for quantity in range(4):
+        order = math.log2(errors[17][quantity] / errors[33][quantity])
+        assert order > 3.5, (quantity, order)
+
+
+@pytest.mark.parametrize("a", [1.0, 3.2])
+def test_layer_integrals_of_an_exponential_viscosity_converge_at_fourth_order(a):
+    # 1/eta = exp(a zeta), rho = 1: F0 = (e^a - 1)/a, F1 = e^a/a - (e^a - 1)/a^2, R2 = \int f0 = (F0 - 1)/a,
+    # R1 = \int f1 by quadrature. a = 3.2: 1/eta grows 25-fold across the film (the trapezoidal rule: 1.3 % off
+    # on nine nodes)
+    from scipy import integrate
+    f0_exact = math.expm1(a) / a
+    f1_exact = math.exp(a) / a - math.expm1(a) / a**2
+    r2_exact = (f0_exact - 1.0) / a
+    r1_exact = integrate.quad(lambda z: math.exp(a * z) * z / a - math.expm1(a * z) / a**2, 0.0, 1.0,
+                              epsabs=1e-14)[0]
+    errors = []
+    for nz in (9, 17, 33):
+        z = np.linspace(0.0, 1.0, nz)
+        f0, f1, r0, r1, r2 = layer_integrals(np.exp(-a * z), np.ones(nz))
+        assert r0 == pytest.approx(1.0, rel=1e-14)
+        errors.append(max(abs(f0 / f0_exact - 1), abs(f1 / f1_exact - 1), abs(r1 / r1_exact - 1),
+                          abs(r2 / r2_exact - 1)))
+    assert errors[0] < 5e-4
+    assert math.log2(errors[1] / errors[2]) > 3.5
