@@ -20,13 +20,12 @@ def simpson_weight(k: int, nz: int) -> float:
     return 4.0 * dz / 3.0 if k % 2 == 1 else 2.0 * dz / 3.0
 
 
-@njit(cache=True)
 def simpson_weights(nz: int) -> np.ndarray:
-    """All nz weights of `simpson_weight`."""
-    w = np.empty(nz)
-    for k in range(nz):
-        w[k] = simpson_weight(k, nz)
-    return w
+    """All nz weights of `simpson_weight` (NumPy; Numba kernels call `simpson_weight`)."""
+    w = np.full(nz, 2.0)
+    w[1::2] = 4.0
+    w[0] = w[-1] = 1.0
+    return w / (3.0 * (nz - 1))
 
 
 @njit(cache=True)

@@ -9,6 +9,7 @@ import math
 import numpy as np
 
 from facegear_tehl.ehl import grid
+from facegear_tehl.ehl.layers import simpson_weights
 from facegear_tehl.ehl.multigrid import Level
 from facegear_tehl.ehl.thermal import FilmState, thermal_loading
 from facegear_tehl.solution import Field, PointSolution
@@ -60,14 +61,6 @@ def friction_coefficients(state: FilmState, pressure: np.ndarray, cell: float,
     f2 = np.array([state.stress_2[0][wet].sum(), state.stress_2[1][wet].sum()]) * cell
     mu_1, mu_2 = float(np.hypot(*f1) / load), float(np.hypot(*f2) / load)
     return 0.5 * (mu_1 + mu_2), mu_1, mu_2
-
-
-def simpson_weights(nz: int) -> np.ndarray:
-    """Simpson weights of nz (odd) equally spaced nodes on [0, 1]."""
-    w = np.full(nz, 2.0)
-    w[1::2] = 4.0
-    w[0] = w[-1] = 1.0
-    return w / (3.0 * (nz - 1))
 
 
 def energy_budget(state: FilmState, film: np.ndarray, dx: float, dy: float, rho_c: np.ndarray,

@@ -24,7 +24,7 @@ import math
 import numpy as np
 from numba import njit
 
-from facegear_tehl.ehl.layers import cumulative_step, simpson_weights
+from facegear_tehl.ehl.layers import cumulative_step, simpson_weight
 
 MAX_STRESS_RATIO = 600.0  # |tau|/tau_0 cap inside sinh (overflow guard, far beyond physical values ~10)
 MIN_VISCOSITY_FACTOR = 1e-12  # floor of eta*/eta (r/sinh r underflows to 0 near the cap)
@@ -125,7 +125,9 @@ def shear_state(pressure, film, grad_x, grad_y, eta_newtonian, u1, u2, tau0, war
     stress_1 / stress_2: (2, ny, nx) shear stress vectors at surfaces 1 and 2 (Pa).
     """
     nz, ny, nx = eta_newtonian.shape
-    weights = simpson_weights(nz)
+    weights = np.empty(nz)
+    for k in range(nz):
+        weights[k] = simpson_weight(k, nz)
     dux = u2[0] - u1[0]
     duy = u2[1] - u1[1]
     speed = math.hypot(u1[0], u1[1]) + math.hypot(u2[0], u2[1]) + 1e-30
