@@ -129,12 +129,35 @@ def test_inlet_gap_ratio_is_the_rigid_gap_at_the_upstream_boundary_in_films():
     assert _inlet_gap_ratio(level, scaling, point, 1e-6) == pytest.approx(expected, rel=1e-12)
 
 
-def test_hierarchy_shapes_halve_both_sides_until_the_smaller_is_coarsest():
-    from facegear_tehl.ehl.grid import hierarchy_shapes
+def test_hierarchy_shapes_halve_x_alone_down_to_square_then_both_until_the_smaller_is_coarsest():
+    from facegear_tehl.ehl.grid import SEMI_X, STANDARD, hierarchy_shapes, transfer
 
-    assert hierarchy_shapes(257, 65, 17) == [(65, 17), (129, 33), (257, 65)]
+    assert hierarchy_shapes(257, 65, 17) == [(17, 17), (33, 33), (65, 65), (129, 65), (257, 65)]
     assert hierarchy_shapes(129, 129, 17) == [(17, 17), (33, 33), (65, 65), (129, 129)]
     assert hierarchy_shapes(65, 257, 17) == [(17, 65), (33, 129), (65, 257)]
+    assert transfer((257, 65), (129, 65)) is SEMI_X and transfer((65, 65), (33, 33)) is STANDARD
+
+
+def test_x_only_transfers_keep_the_lines():
+    from facegear_tehl.ehl.grid import SEMI_X
+
+    x = np.linspace(-1.0, 1.0, 17)
+    field = np.tile(1.0 - x**2, (9, 1))  # (ny, nx) = (9, 17), constant along Y
+    field[0, :] = field[-1, :] = 0.0
+    coarse = SEMI_X.restrict(field)
+    assert coarse.shape == (9, 9)
+    i = np.arange(1, 8)
+    expected = (field[1:-1, 2 * i - 1] + 2.0 * field[1:-1, 2 * i] + field[1:-1, 2 * i + 1]) / 4.0
+    assert np.allclose(coarse[1:-1, 1:-1], expected)
+    assert np.array_equal(SEMI_X.inject(field), field[:, ::2])
+    line = np.tile(2.0 * x[::2] + 1.0, (9, 1))  # linear along X: reproduced by both prolongations
+    assert np.allclose(SEMI_X.prolong(line), np.tile(2.0 * x + 1.0, (9, 1)))
+    assert np.allclose(SEMI_X.prolong_cubic(line), np.tile(2.0 * x + 1.0, (9, 1)))
+    cavitated = field.copy()
+    cavitated[4, 7] = 0.0  # the coarse nodes whose 3 fine nodes include it (fine 6 and 8) take injection
+    restricted = SEMI_X.restrict_pressure(cavitated)
+    assert restricted[4, 3] == cavitated[4, 6] and restricted[4, 4] == cavitated[4, 8]
+    assert restricted[4, 2] == coarse[4, 2] and restricted[3, 3] == coarse[3, 3]
 
 
 def test_fewer_nodes_across_a_long_ellipse_keep_the_film():

@@ -1,9 +1,13 @@
 """Nested uniform grids and the transfer operators between them (arrays indexed [j, i], i along X).
 
-Level l has (2^l m + 1) nodes per side; coarse node (jc, ic) coincides with fine node (2 jc, 2 ic).
+Level l has (2^l m + 1) nodes per side; coarse node (jc, ic) coincides with fine node (2 jc, 2 ic), or with
+fine node (jc, 2 ic) where only X is coarsened (semi-coarsening: `SEMI_X`).
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
@@ -17,11 +21,20 @@ def hierarchy_sizes(finest: int, coarsest: int) -> list[int]:
 
 
 def hierarchy_shapes(finest_x: int, finest_y: int, coarsest: int) -> list[tuple[int, int]]:
-    """(nx, ny) per level, coarsest first: both halve together until the smaller reaches `coarsest`,
-    e.g. (257, 65, 17) -> [(65, 17), (129, 33), (257, 65)]."""
+    """(nx, ny) per level, coarsest first: nx halves alone while it is larger than ny (semi-coarsening), then
+    both halve together until the smaller reaches `coarsest`, e.g. (257, 65, 17) -> [(17, 17), (33, 33),
+    (65, 65), (129, 65), (257, 65)]; (65, 257, 17) -> [(17, 65), (33, 129), (65, 257)].
+
+    The coarse grids of a grid refined along X are those of the square grid: a coarsest grid with 65 or more
+    nodes along X (the rolling direction) runs away from the Hertz start (so does a 65^2 coarsest grid).
+    """
+    x_only = []
+    while finest_x > finest_y:
+        x_only.insert(0, (finest_x, finest_y))
+        finest_x = (finest_x - 1) // 2 + 1
     xs, ys = hierarchy_sizes(finest_x, coarsest), hierarchy_sizes(finest_y, coarsest)
     levels = min(len(xs), len(ys))
-    return list(zip(xs[-levels:], ys[-levels:]))
+    return list(zip(xs[-levels:], ys[-levels:])) + x_only
 
 
 def restrict_full_weighting(fine: np.ndarray) -> np.ndarray:
@@ -61,12 +74,20 @@ def inject(fine: np.ndarray) -> np.ndarray:
     return fine[::2, ::2].copy()
 
 
+def prolong_linear_x(coarse: np.ndarray) -> np.ndarray:
+    """Linear interpolation along X only, to the grid with twice the X resolution."""
+    nyc, nxc = coarse.shape
+    out = np.zeros((nyc, 2 * nxc - 1))
+    out[:, ::2] = coarse
+    out[:, 1::2] = 0.5 * (coarse[:, :-1] + coarse[:, 1:])
+    return out
+
+
 def prolong_bilinear(coarse: np.ndarray) -> np.ndarray:
     """Bilinear interpolation of a coarse-grid array to the next finer grid."""
-    nyc, nxc = coarse.shape
-    out = np.zeros((2 * nyc - 1, 2 * nxc - 1))
-    out[::2, ::2] = coarse
-    out[::2, 1::2] = 0.5 * (coarse[:, :-1] + coarse[:, 1:])
+    along_x = prolong_linear_x(coarse)
+    out = np.zeros((2 * coarse.shape[0] - 1, along_x.shape[1]))
+    out[::2, :] = along_x
     out[1::2, :] = 0.5 * (out[:-1:2, :] + out[2::2, :])
     return out
 
@@ -89,6 +110,47 @@ def _cubic_axis(a: np.ndarray) -> np.ndarray:
 def prolong_cubic(coarse: np.ndarray) -> np.ndarray:
     """Bicubic (fourth-order) interpolation of a converged coarse solution: the full-multigrid start."""
     return _cubic_axis(_cubic_axis(coarse).T).T
+
+
+def restrict_full_weighting_x(fine: np.ndarray) -> np.ndarray:
+    """(1 2 1)/4 weighting along X at interior coarse nodes (Y not coarsened); boundary nodes 0."""
+    out = np.zeros((fine.shape[0], (fine.shape[1] - 1) // 2 + 1))
+    out[1:-1, 1:-1] = (2.0 * fine[1:-1, 2:-1:2] + fine[1:-1, 1:-2:2] + fine[1:-1, 3::2]) / 4.0
+    return out
+
+
+def restrict_pressure_x(fine: np.ndarray) -> np.ndarray:
+    """restrict_pressure along X only: injection where any of the 3 fine nodes is cavitated."""
+    out = restrict_full_weighting_x(fine)
+    zero = fine <= 0.0
+    near_zero = np.zeros(out.shape, dtype=bool)
+    near_zero[1:-1, 1:-1] = zero[1:-1, 1:-2:2] | zero[1:-1, 2:-1:2] | zero[1:-1, 3::2]
+    out[near_zero] = fine[:, ::2][near_zero]
+    return out
+
+
+def inject_x(fine: np.ndarray) -> np.ndarray:
+    return fine[:, ::2].copy()
+
+
+@dataclass(frozen=True)
+class Transfer:
+    """The transfer operators between a grid and the next finer one."""
+
+    restrict: Callable[[np.ndarray], np.ndarray]  # full weighting (residuals)
+    restrict_pressure: Callable[[np.ndarray], np.ndarray]
+    inject: Callable[[np.ndarray], np.ndarray]
+    prolong: Callable[[np.ndarray], np.ndarray]  # (bi)linear: coarse-grid corrections, film state
+    prolong_cubic: Callable[[np.ndarray], np.ndarray]  # the full-multigrid start
+
+
+STANDARD = Transfer(restrict_full_weighting, restrict_pressure, inject, prolong_bilinear, prolong_cubic)
+SEMI_X = Transfer(restrict_full_weighting_x, restrict_pressure_x, inject_x, prolong_linear_x, _cubic_axis)
+
+
+def transfer(fine_shape: tuple[int, int], coarse_shape: tuple[int, int]) -> Transfer:
+    """The operators between grids of (nx, ny) `fine_shape` and `coarse_shape` (hierarchy_shapes)."""
+    return SEMI_X if fine_shape[1] == coarse_shape[1] else STANDARD
 
 
 def bilinear_at(values: np.ndarray, x: np.ndarray, y: np.ndarray, x0: float, y0: float) -> float:

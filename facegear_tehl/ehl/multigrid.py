@@ -122,6 +122,8 @@ class MultigridSolver:
         self.problem = problem
         self.relaxation = relaxation
         self.levels: list[Level] = [self._make_level(nx, ny) for nx, ny in shapes]
+        # transfers[i]: between levels i - 1 and i (transfers[0] unused)
+        self.transfers = [grid.STANDARD] + [grid.transfer(fine, coarse) for coarse, fine in zip(shapes, shapes[1:])]
         self.h0 = 0.0
         self.last_h0_step = 0.0  # H_0 change of the last coarsest-grid solve
         self.work_units = 0.0
@@ -143,8 +145,12 @@ class MultigridSolver:
         # (2/pi^2) 4 asinh(1); a long ellipse has a larger one (2.3-2.6x for the face gear contacts) and its line
         # Gauss-Seidel goes unstable where the circle's would not (seen at 513^2): the switch is scaled by the
         # fourth power of that ratio (1 for a circle; 30-45 for the face gear points, where 3 still diverged at
-        # 513^2 and 10 converged: an empirical calibration).
+        # 513^2 and 10 converged: an empirical calibration). Cells longer along Y than along X (h_y > h_x, a grid
+        # refined along X) scale it again by (h_y/h_x)^2: their line Gauss-Seidel, which leaves the elastic
+        # coupling to the other lines and beyond the band to the next sweep, diverged on the 513 x 129 face gear
+        # grid (h_y = 4 h_x) with switches up to 30 and converged from 100 to 3000 (here 490).
         elastic_ratio = pb.deflection_coefficient * deflection.coefficients[0, 0] / hx / CIRCLE_SELF_COEFFICIENT
+        scale = elastic_ratio**4 * max(hy / hx, 1.0) ** 2 if self.relaxation.scale_switch else 1.0
         xx, yy = np.meshgrid(x, y)
         return Level(
             x=x,
@@ -156,7 +162,7 @@ class MultigridSolver:
             pattern_jd_t=e_jd_t,
             weight_x=wx,
             weight_y=wy,
-            xi_switch=self.relaxation.xi_switch * (elastic_ratio**4 if self.relaxation.scale_switch else 1.0),
+            xi_switch=self.relaxation.xi_switch * scale,
             pressure=np.zeros((ny, nx)),
             film_rhs=0.5 * xx**2 + 0.5 * pb.geometry_y * yy**2,
             reynolds_rhs=np.zeros((ny, nx)),
@@ -277,19 +283,19 @@ class MultigridSolver:
     # ------------------------------------------------------------ multigrid
     def coarsen(self, index: int) -> None:
         """FAS restriction from level `index` to `index - 1`."""
-        fine, coarse = self.levels[index], self.levels[index - 1]
-        coarse.pressure = grid.restrict_pressure(fine.pressure)
+        fine, coarse, transfer = self.levels[index], self.levels[index - 1], self.transfers[index]
+        coarse.pressure = transfer.restrict_pressure(fine.pressure)
         coarse.pressure_restricted = coarse.pressure.copy()
         w = coarse.deflection.apply(coarse.pressure)
-        coarse.film_rhs = grid.inject(fine.film) - self.h0 - self.problem.deflection_coefficient * w
+        coarse.film_rhs = transfer.inject(fine.film) - self.h0 - self.problem.deflection_coefficient * w
         self.update_film(coarse)
-        coarse.reynolds_rhs = grid.restrict_full_weighting(self.residual(fine)) + self.operator(coarse)
+        coarse.reynolds_rhs = transfer.restrict(self.residual(fine)) + self.operator(coarse)
         coarse.force_rhs = fine.force_rhs + fine.load_integral() - coarse.load_integral()
 
     def refine(self, index: int) -> None:
         """Add the interpolated coarse-grid correction where the fine pressure is positive."""
         fine, coarse = self.levels[index], self.levels[index - 1]
-        correction = grid.prolong_bilinear(coarse.pressure - coarse.pressure_restricted)
+        correction = self.transfers[index].prolong(coarse.pressure - coarse.pressure_restricted)
         active = fine.pressure > 0.0
         fine.pressure[active] += correction[active]
         np.maximum(fine.pressure, 0.0, out=fine.pressure)
@@ -314,7 +320,7 @@ class MultigridSolver:
         """Full-multigrid step: start level `index` from the bicubic interpolation of level `index - 1`."""
         fine, coarse = self.levels[index], self.levels[index - 1]
         self.reset_rhs(fine)
-        fine.pressure = np.maximum(grid.prolong_cubic(coarse.pressure), 0.0)
+        fine.pressure = np.maximum(self.transfers[index].prolong_cubic(coarse.pressure), 0.0)
         fine.pressure[0, :] = fine.pressure[-1, :] = 0.0
         fine.pressure[:, 0] = fine.pressure[:, -1] = 0.0
         self.update_film(fine)

@@ -216,11 +216,12 @@ def _cycle(solver: MultigridSolver, index: int, settings: SolverSettings, histor
 
 def _freeze_film_state(solver: MultigridSolver, index: int, state: FilmState) -> None:
     """Give every grid the film state (injected to coarse grids) and recompute its flow coefficients."""
+    top = solver.levels[index]
     for level_index in range(index + 1):
-        stride = 2 ** (index - level_index)
         level = solver.levels[level_index]
-        level.temperature = np.ascontiguousarray(state.temperature[:, ::stride, ::stride])
-        level.viscosity_factor = np.ascontiguousarray(state.viscosity_factor[:, ::stride, ::stride])
+        sx, sy = (top.nx - 1) // (level.nx - 1), (top.ny - 1) // (level.ny - 1)
+        level.temperature = np.ascontiguousarray(state.temperature[:, ::sy, ::sx])
+        level.viscosity_factor = np.ascontiguousarray(state.viscosity_factor[:, ::sy, ::sx])
         level.temperature_factor = flow.temperature_factors(level.temperature, solver.problem.law)
         if level_index == index:
             solver.update_film(level)
@@ -409,15 +410,17 @@ def _start_fine_grid(solver, index, coarse_state, settings, history):
     converge the pressure against it. Returns (frozen state, converged, message)."""
     solver.interpolate_up(index)
     frozen = FilmState(**{**coarse_state.__dict__,
-                          "temperature": _prolong_layers(coarse_state.temperature),
-                          "viscosity_factor": np.exp(_prolong_layers(np.log(coarse_state.viscosity_factor)))})
+                          "temperature": _prolong_layers(solver, index, coarse_state.temperature),
+                          "viscosity_factor": np.exp(_prolong_layers(solver, index,
+                                                                     np.log(coarse_state.viscosity_factor)))})
     _freeze_film_state(solver, index, frozen)
     converged, message = _cycle(solver, index, settings, history, settings.max_cycles, None)
     return frozen, converged, message
 
 
-def _prolong_layers(field: np.ndarray) -> np.ndarray:
-    return np.stack([grid.prolong_bilinear(layer) for layer in field])
+def _prolong_layers(solver: MultigridSolver, index: int, field: np.ndarray) -> np.ndarray:
+    """Each layer of `field` (nz, ny, nx) of level `index - 1` interpolated to level `index`."""
+    return np.stack([solver.transfers[index].prolong(layer) for layer in field])
 
 
 def _couple(solver, index, point, lubricant, scaling, settings, mode, history, initial: FilmState | None = None):
