@@ -109,11 +109,8 @@ class Case:
         _check_grid(grid, "--grid")
         check(grid >= self.solver.coarsest_grid, "--grid", grid, f"at least solver.coarsest_grid = {self.solver.coarsest_grid}")
         grid_y = self.solver.grid_y
-        if grid_y is not None:  # keep the case's aspect: grid_y refines (or coarsens) with grid
-            grid_y = (grid_y - 1) * (grid - 1) // (self.solver.grid - 1) + 1
-            check(grid_y >= self.solver.coarsest_grid, "--grid", grid,
-                  f"a grid whose solver.grid_y ({grid_y} at this grid) is at least solver.coarsest_grid = "
-                  f"{self.solver.coarsest_grid}")
+        if grid_y is not None:  # keep the case's aspect: grid_y refines (or coarsens) with grid, to coarsest_grid
+            grid_y = max((grid_y - 1) * (grid - 1) // (self.solver.grid - 1) + 1, self.solver.coarsest_grid)
         return replace(self, solver=replace(self.solver, grid=grid, grid_y=grid_y))
 
 

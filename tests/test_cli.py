@@ -377,12 +377,10 @@ def test_run_case_api_end_to_end(tmp_path):
 
 
 def test_grid_override_keeps_the_aspect_of_grid_y(tmp_path):
-    """--grid and tehl sweep scale solver.grid_y with solver.grid; too coarse a y side is refused under --grid."""
+    """--grid and tehl sweep scale solver.grid_y with solver.grid, never below solver.coarsest_grid."""
     from facegear_tehl.case import load_case
-    from facegear_tehl.schema import CaseError
 
     case = load_case(_case(tmp_path, _replace("  grid: 257", "  grid: 257\n  grid_y: 65")))
     assert case.solver.nodes_y == 65
     assert case.with_grid(129).solver.grid_y == 33 and case.with_grid(513).solver.grid_y == 129
-    with pytest.raises(CaseError, match="--grid"):
-        case.with_grid(33)  # grid_y would be 9 < coarsest_grid 17
+    assert case.with_grid(33).solver.grid_y == 17 and case.with_grid(17).solver.grid_y == 17  # 9 and 5 scaled

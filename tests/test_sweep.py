@@ -138,6 +138,20 @@ def _invoke(*args) -> object:
     return CliRunner().invoke(tehl, ["sweep", *(str(a) for a in args)])
 
 
+def _square(case):
+    """The face gear case on square grids (its 257 x 65 has too few y nodes below 65 along x for the quick
+    sweeps here: 33 x 17 does not converge)."""
+    return replace(case, solver=replace(case.solver, grid=129, grid_y=None))
+
+
+def _square_file(tmp_path):
+    path = tmp_path / "facegear_square.yaml"
+    text = FACE_GEAR.read_text()
+    assert "  grid: 257\n  grid_y: 65\n" in text
+    path.write_text(text.replace("  grid: 257\n  grid_y: 65\n", "  grid: 129\n"))
+    return path
+
+
 @pytest.mark.parametrize(
     "options, key, expected",
     [
@@ -192,7 +206,7 @@ def test_sweep_ball_on_disc_writes_hdf5_and_csv(tmp_path):
 
 def test_sweep_a_face_gear_point(tmp_path):
     target = tmp_path / "fg.h5"
-    result = _invoke(FACE_GEAR, "--grids", "17,33,65", "--point", "S3", "--thermal", "off", "-o", target)
+    result = _invoke(_square_file(tmp_path), "--grids", "17,33,65", "--point", "S3", "--thermal", "off", "-o", target)
     assert result.exit_code in (0, 3), result.output
     written = read_result(target)
     assert list(written.points) == ["S3@17", "S3@33", "S3@65"] and written.overrides["thermal"] == "off"
@@ -204,7 +218,8 @@ def test_sweep_a_face_gear_point(tmp_path):
 
 def test_sweep_jobs_2_gives_the_same_file_as_jobs_1(tmp_path):
     for jobs in ("1", "2"):
-        result = _invoke(FACE_GEAR, "--grids", "17,33,65", "--jobs", jobs, "-o", tmp_path / f"jobs{jobs}.h5")
+        result = _invoke(_square_file(tmp_path), "--grids", "17,33,65", "--jobs", jobs, "-o",
+                         tmp_path / f"jobs{jobs}.h5")
         assert result.exit_code in (0, 3), result.output
     assert_same_file(tmp_path / "jobs1.h5", tmp_path / "jobs2.h5")
 
@@ -251,24 +266,25 @@ def _assert_converges(table, names, first, last):
 def test_face_gear_point_converges_monotonically_at_second_order():
     """Issue 7, item 3: grids 33-129, isothermal, the pitch point S3 (h_c and h_min; p_max, the spike,
     is not monotone)."""
-    sweep = run_sweep(load_case(FACE_GEAR), (33, 65, 129), point="S3", thermal="off")
+    sweep = run_sweep(_square(load_case(FACE_GEAR)), (33, 65, 129), point="S3", thermal="off")
     assert sweep.run.status == "ok"
     _assert_converges(sweep.run.sweep, ["h_c", "h_min"], 33, 129)
 
 
 @pytest.mark.slow
 def test_s1_of_the_face_gear_case_converges_and_the_default_grid_is_within_1_percent():
-    """Grids 33-257 at S1 with the case's model (thermal full, Ree-Eyring; the README table): h_c and h_min
-    converge monotonically at order 1-2.5, and the default grid (129) is within 1 % of the extrapolated
-    value."""
+    """Grids 65 x 17 to 513 x 129 at S1 with the case's model (thermal full, Ree-Eyring; the README table):
+    h_c and h_min converge monotonically at order 1-2.5, and the default grid (257 x 65) is within 1 % of the
+    extrapolated value in h_c, h_min and dT_max (issue 7)."""
     case = load_case(FACE_GEAR)
-    sweep = run_sweep(case, GRIDS[:4], point="S1")
+    sweep = run_sweep(case, GRIDS[1:], point="S1")
     table = sweep.run.sweep
     assert sweep.run.status == "ok"
-    _assert_converges(table, ["h_c", "h_min"], 33, 257)
+    _assert_converges(table, ["h_c", "h_min"], 65, 513)
     default = list(table["grid"].values).index(case.solver.grid)
+    for name in ("h_c", "h_min", "dT_max"):
+        assert abs(table[f"{name}_error"].values[default]) < 0.01, name
     for name in ("h_c", "h_min"):
-        assert abs(table[f"{name}_error"].values[default]) < 0.01
         assert table[f"{name}_uncertainty"].values[-1] < 0.005 * table[name].values[-1]
 
 
@@ -290,7 +306,7 @@ def test_full_sweep_of_the_circular_benchmark():
                                        "coefficients (the 257^2 solution is reported, flagged); remove this mark when "
                                        "it converges")
 def test_full_sweep_of_s1():
-    case = load_case(FACE_GEAR)
+    case = _square(load_case(FACE_GEAR))
     sweep = run_sweep(case, GRIDS, point="S1")
     assert sweep.run.status == "ok"
     _assert_converges(sweep.run.sweep, ["h_c", "h_min"], 65, 513)

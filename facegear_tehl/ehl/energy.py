@@ -15,7 +15,7 @@ current iterate. The columns are swept Gauss-Seidel forwards and backwards. Comp
 Across the film the conduction term is discretised compactly (Numerov's scheme, `_column`): fourth order
 where conduction dominates, as in the Hertz zone; the heat flux into the walls by fourth-order one-sided
 differences. On S1 of the face gear case the default nine layers are then within 0.5 % of 33 layers in the
-largest temperature rise and 0.1 % in h_c and mu (the second-order scheme: 1.6 %, 0.9 %, 2.5 %).
+largest temperature rise and 0.1 % in h_c and mu (the second-order scheme: 1.5 %, 0.9 %, 1.8 %).
 k = k(p) is the film's conductivity, one value per column since the pressure is constant across the film
 (lubricant.py: the constant k_0, or Larsson et al. 2000).
 """

@@ -95,11 +95,12 @@ THERMAL_FLOOR_FRACTION = 0.01  # largest stalled change accepted, as a fraction 
 THERMAL_FLOOR_H_C = 5e-4  # largest relative spread of h_c over the window (its grid error: 1e-3 to 6e-3)
 
 
-def _at_thermal_floor(changes: list[float], h_c: list[float], rise: float) -> bool:
+def _at_thermal_floor(changes: list[float], h_c: list[float], rise: float, h_c_error: float = 0.0) -> bool:
     """The outer loop has reached its algebraic floor: over the last THERMAL_FLOOR_WINDOW outer iterations
     (of this grid) the largest temperature change stopped falling (the smallest change of the last half is
     above half the smallest of the first half), stays below 1 % of the temperature rise, and h_c is steady
-    to 5e-4 (below its discretisation error on 129^2-257^2, 1e-3 to 6e-3). What is left is a period-2 flicker of a few nodes where a layer velocity changes sign between
+    to 5e-4 or to half its estimated discretisation error `h_c_error` (relative), if larger (the error is
+    1e-3 to 6e-3 on 129^2-257^2). What is left is a period-2 flicker of a few nodes where a layer velocity changes sign between
     iterations (the upwind direction of the energy equation switches; under-relaxing the temperature only
     scales it): e.g. the heaviest face gear point of cases/hard, 0.43 K at the inlet edge with a 98 K rise.
     """
@@ -110,7 +111,7 @@ def _at_thermal_floor(changes: list[float], h_c: list[float], rise: float) -> bo
     half = n // 2
     stalled = min(recent[half:]) > 0.5 * min(recent[:half])
     small = max(recent) < THERMAL_FLOOR_FRACTION * max(rise, 1.0)
-    steady = (max(films) - min(films)) <= THERMAL_FLOOR_H_C * abs(films[-1])
+    steady = (max(films) - min(films)) <= max(THERMAL_FLOOR_H_C, 0.5 * h_c_error) * abs(films[-1])
     return stalled and small and steady
 
 
@@ -381,7 +382,7 @@ def finish_point(stage: Stage) -> PointSolution:
             state = model.update(fine.pressure * scaling.p_h, fine.film * scaling.film_scale, frozen.temperature)
         else:
             state, converged, message = _couple(solver, top, point, lubricant, scaling, settings, mode, history,
-                                                frozen)
+                                                frozen, summaries[-1].h_c)
         summaries.append(summarise(solver.levels[top]))
     return _report(point, lubricant, scaling, solver, solver.levels[finest], summaries, converged, message, start,
                    history, state, mode, stage.reason)
@@ -423,10 +424,19 @@ def _prolong_layers(solver: MultigridSolver, index: int, field: np.ndarray) -> n
     return np.stack([solver.transfers[index].prolong(layer) for layer in field])
 
 
-def _couple(solver, index, point, lubricant, scaling, settings, mode, history, initial: FilmState | None = None):
+def _h_c_error(level: Level, coarse_h_c: float) -> float:
+    """Second-order Richardson estimate of the relative error of h_c on `level` from the value one grid
+    coarser (report.py's error estimate); 0 without it."""
+    h_c = grid.bilinear_at(level.film, level.x, level.y, 0.0, 0.0)
+    return abs(h_c - coarse_h_c) / (3.0 * abs(h_c)) if math.isfinite(coarse_h_c) and h_c != 0.0 else 0.0
+
+
+def _couple(solver, index, point, lubricant, scaling, settings, mode, history, initial: FilmState | None = None,
+            coarse_h_c: float = math.nan):
     """Outer loop of the film state and the pressure on level `index`, from `initial` (default: the inlet
     temperature and a Newtonian film); returns (film state, converged, message). If the iteration runs away,
-    the last finite iterate (at worst the entry state) is restored and reported with the reason."""
+    the last finite iterate (at worst the entry state) is restored and reported with the reason. coarse_h_c:
+    the dimensionless h_c one grid coarser, for the discretisation error the thermal floor is judged against."""
     level = solver.levels[index]
     model = _film_model(level, point, lubricant, scaling, settings, mode)
     temperature = model.initial_temperature() if initial is None else initial.temperature
@@ -458,7 +468,8 @@ def _couple(solver, index, point, lubricant, scaling, settings, mode, history, i
         if outer > 0 and met and thermal_change < settings.thermal_tolerance * max(rise, 1.0):
             return state, True, ""
         if ((met or _pressure_settled(history, settings))
-                and _at_thermal_floor(history.thermal_changes[first:], history.thermal_h_c[first:], rise)):
+                and _at_thermal_floor(history.thermal_changes[first:], history.thermal_h_c[first:], rise,
+                                      _h_c_error(level, coarse_h_c))):
             history.thermal_floor = thermal_change
             return state, True, ""
     if message.startswith("diverged"):

@@ -71,7 +71,7 @@ def test_defaults_and_units():
 def test_shipped_case_reproduces_example_a():
     case = load_case(CASE_FILE)
     assert case.contact is None and case.gear is not None
-    assert case.solver.grid == 129 and case.solver.thermal == "full"
+    assert (case.solver.grid, case.solver.nodes_y, case.solver.thermal) == (257, 65, "full")
     gear = case.gear
     assert gear.inner_radius > 0.4659 and gear.outer_radius < 0.5664  # inside [L1, L2] of example A at 110 deg
     # the case takes S2 and S4 at the double-tooth side (2/3 of F_n); FACEGEAR.md §8 at the single side (1)
