@@ -251,3 +251,8 @@ def _stop_workers(executor: ProcessPoolExecutor) -> None:
         process.terminate()
     for process in processes:
         process.join()
+    # Let the executor's manager thread see the broken pool and close its wake-up pipe now: left running, it
+    # can close the pipe while the interpreter's exit hook writes to it ("Bad file descriptor" at exit).
+    manager = getattr(executor, "_executor_manager_thread", None)
+    if manager is not None:
+        manager.join(timeout=5.0)
