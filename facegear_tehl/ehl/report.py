@@ -82,13 +82,18 @@ def energy_budget(state: FilmState, film: np.ndarray, dx: float, dy: float, rho_
             "heat_convected": convected, "energy_balance_error": imbalance}
 
 
+def richardson_error(fine: float, coarse: float, order: int) -> float:
+    """Relative discretisation error of `fine` from the same figure one grid coarser, Richardson-scaled for
+    `order`: (f_h - f_2h)/((2^order - 1) f_h)."""
+    return (fine - coarse) / (2**order - 1) / fine
+
+
 def _estimate(summaries: list, level: Level, fine: float, name: str, order: int) -> float:
-    """Relative discretisation error of `fine` from the same figure one grid coarser (the thermal coarse stage),
-    Richardson-scaled for `order`; NaN without it."""
+    """`richardson_error` of `fine` against the summary one grid coarser (the thermal coarse stage); NaN
+    without it."""
     if len(summaries) < 2 or summaries[-1].n != level.nx or fine == 0.0:
         return math.nan
-    coarse = getattr(summaries[-2], name)
-    return (fine - coarse) / (2**order - 1) / fine
+    return richardson_error(fine, getattr(summaries[-2], name), order)
 
 
 def _inlet_gap_ratio(level: Level, scaling, point, h_c: float) -> float:

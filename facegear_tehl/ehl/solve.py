@@ -29,7 +29,8 @@ from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import flow, grid
 from facegear_tehl.ehl.multigrid import Level, MultigridSolver, Problem, Relaxation
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
-from facegear_tehl.ehl.report import LevelSummary, point_solution, summarise, with_film_state
+from facegear_tehl.ehl.report import (ORDER, LevelSummary, point_solution, richardson_error, summarise,
+                                      with_film_state)
 from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel, thermal_choice
 from facegear_tehl.film_formulas import hamrock_dowson_central
 from facegear_tehl.lubricant import Lubricant
@@ -113,6 +114,11 @@ def _at_thermal_floor(changes: list[float], h_c: list[float], rise: float, h_c_e
     small = max(recent) < THERMAL_FLOOR_FRACTION * max(rise, 1.0)
     steady = (max(films) - min(films)) <= max(THERMAL_FLOOR_H_C, 0.5 * h_c_error) * abs(films[-1])
     return stalled and small and steady
+
+
+def _h_c_error(h_c: float, coarse_h_c: float) -> float:
+    """|Richardson estimate| of the relative error of h_c (m) from h_c one grid coarser (m); 0 without it."""
+    return abs(richardson_error(h_c, coarse_h_c, ORDER)) if math.isfinite(coarse_h_c) and h_c != 0.0 else 0.0
 
 
 def _pressure_settled(history: _History, settings: SolverSettings) -> bool:
@@ -424,13 +430,6 @@ def _prolong_layers(solver: MultigridSolver, index: int, field: np.ndarray) -> n
     return np.stack([solver.transfers[index].prolong(layer) for layer in field])
 
 
-def _h_c_error(level: Level, coarse_h_c: float) -> float:
-    """Second-order Richardson estimate of the relative error of h_c on `level` from the value one grid
-    coarser (report.py's error estimate); 0 without it."""
-    h_c = grid.bilinear_at(level.film, level.x, level.y, 0.0, 0.0)
-    return abs(h_c - coarse_h_c) / (3.0 * abs(h_c)) if math.isfinite(coarse_h_c) and h_c != 0.0 else 0.0
-
-
 def _couple(solver, index, point, lubricant, scaling, settings, mode, history, initial: FilmState | None = None,
             coarse_h_c: float = math.nan):
     """Outer loop of the film state and the pressure on level `index`, from `initial` (default: the inlet
@@ -469,7 +468,7 @@ def _couple(solver, index, point, lubricant, scaling, settings, mode, history, i
             return state, True, ""
         if ((met or _pressure_settled(history, settings))
                 and _at_thermal_floor(history.thermal_changes[first:], history.thermal_h_c[first:], rise,
-                                      _h_c_error(level, coarse_h_c))):
+                                      _h_c_error(history.thermal_h_c[-1], coarse_h_c * scaling.film_scale))):
             history.thermal_floor = thermal_change
             return state, True, ""
     if message.startswith("diverged"):
