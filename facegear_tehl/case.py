@@ -7,9 +7,8 @@ Top-level blocks: `name`, `description`, one of `contact` (a plain elliptical co
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
-import math
 import re
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -18,9 +17,9 @@ import yaml
 from facegear_tehl.gears.spec import GearSpec, parse_gear_block
 from facegear_tehl.lubricant import DENSITY_MODELS, KELVIN, RHEOLOGY_MODELS, VISCOSITY_MODELS, Lubricant
 from facegear_tehl.materials import Solid
-from facegear_tehl.schema import Block, CaseError, check
+from facegear_tehl.schema import Block, CaseError, check, defaults
+from facegear_tehl.settings import THERMAL_MODELS, OutputSettings, SolverSettings  # also imported from here
 
-THERMAL_MODELS = ("off", "reduced", "full", "auto")
 MAX_GRID = 4097  # nodes per side: 16.8 million nodes, beyond what one machine solves
 # Physical numbers are checked against broad ranges (moduli from rubber to beyond diamond, loads 1e-6..1e9 N,
 # speeds 1e-6..1e3 m/s, ...): far wider than any lubricated contact, they keep the contact analysis and the
@@ -40,7 +39,7 @@ _Loader.add_implicit_resolver(
         |\.[0-9_]+(?:[eE][-+]?[0-9]+)?
         |[-+]?\.(?:inf|Inf|INF)
         |\.(?:nan|NaN|NAN))$""",
-        re.X,
+        re.VERBOSE,
     ),
     list("-+0123456789."),
 )
@@ -54,42 +53,14 @@ class PlainContact:
     radius_y: float  # m
     load: float  # N
     entrainment_speed: float  # m/s, |(u1 + u2)/2|
-    slide_roll_ratio: float  # (u1 - u2)/u_e along the entrainment direction
-    entrainment_angle: float  # deg, entrainment velocity to the x (minor) axis
+    slide_roll_ratio: float = 0.0  # (u1 - u2)/u_e along the entrainment direction
+    entrainment_angle: float = 0.0  # deg, entrainment velocity to the x (minor) axis
 
 
 @dataclass(frozen=True)
 class Materials:
     body_1: Solid
     body_2: Solid
-
-
-@dataclass(frozen=True)
-class SolverSettings:
-    """Numerical settings of the EHL solver."""
-
-    grid: int  # nodes per side on the finest grid, 2^n + 1 (along x, the minor axis, when grid_y is set)
-    domain_x: tuple[float, float] | None  # in units of the minor semi-axis b; None: automatic
-    domain_y: tuple[float, float] | None  # in units of the major semi-axis a; None: automatic
-    thermal: str  # off | reduced | full | auto
-    coarsest_grid: int  # nodes per side on the coarsest grid of the hierarchy
-    cycles_per_level: int  # V-cycles per level in the full-multigrid start
-    max_cycles: int  # extra V-cycles allowed on the finest grid to meet the tolerances
-    tolerance: float  # relative change of pressure between cycles (L1 norm) to stop
-    load_tolerance: float  # relative load-balance error to accept
-    thermal_layers: int = 9  # layer nodes across the film of the `full` thermal model (odd)
-    max_thermal_iterations: int = 40  # outer iterations of film state and pressure
-    thermal_tolerance: float = 1e-3  # largest temperature change per outer iteration, relative to the rise
-    grid_y: int | None = None  # nodes along y (the major axis) on the finest grid, 2^n + 1; None: as `grid`
-
-    @property
-    def nodes_y(self) -> int:
-        return self.grid if self.grid_y is None else self.grid_y
-
-
-@dataclass(frozen=True)
-class OutputSettings:
-    file: str | None  # default result path (relative to the case file); None: <case name>.h5
 
 
 @dataclass(frozen=True)
@@ -104,7 +75,7 @@ class Case:
     output: OutputSettings
     gear: GearSpec | None = None  # a face gear pair; exactly one of contact and gear is set
 
-    def with_grid(self, grid: int) -> "Case":
+    def with_grid(self, grid: int) -> Case:
         """The same case on another finest grid (validated like the YAML key solver.grid)."""
         _check_grid(grid, "--grid")
         check(grid >= self.solver.coarsest_grid, "--grid", grid, f"at least solver.coarsest_grid = {self.solver.coarsest_grid}")
@@ -120,15 +91,24 @@ def _check_grid(n: int, key: str) -> None:
           f"2^n + 1 nodes per side, at most {MAX_GRID} (e.g. 65, 129, 257, 513)")
 
 
+# Field defaults of the dataclasses: an absent (or null) key takes the default of its field.
+_SOLID = defaults(Solid)
+_LUBRICANT = defaults(Lubricant)
+_CONTACT = defaults(PlainContact)
+_SOLVER = defaults(SolverSettings)
+_OUTPUT = defaults(OutputSettings)
+
+
 def _solid(block: Block) -> Solid:
     solid = Solid(
         elastic_modulus=block.number("elastic_modulus", positive=True, low=1e5, high=1e13, unit="Pa"),
         poisson_ratio=block.number("poisson_ratio", low=0.0, high=0.5, open_low=True, open_high=True),
-        density=block.number("density", 7850.0, positive=True, low=1.0, high=1e5, unit="kg/m^3"),
-        thermal_conductivity=block.number("thermal_conductivity", 46.0, positive=True, low=1e-3, high=1e4,
-                                          unit="W/(m K)"),
-        specific_heat=block.number("specific_heat", 470.0, positive=True, low=1.0, high=1e5, unit="J/(kg K)"),
-        roughness=block.number("roughness", 0.0, nonnegative=True, high=1e-4, unit="m (RMS)"),
+        density=block.number("density", _SOLID["density"], positive=True, low=1.0, high=1e5, unit="kg/m^3"),
+        thermal_conductivity=block.number("thermal_conductivity", _SOLID["thermal_conductivity"], positive=True,
+                                          low=1e-3, high=1e4, unit="W/(m K)"),
+        specific_heat=block.number("specific_heat", _SOLID["specific_heat"], positive=True, low=1.0, high=1e5,
+                                   unit="J/(kg K)"),
+        roughness=block.number("roughness", _SOLID["roughness"], nonnegative=True, high=1e-4, unit="m (RMS)"),
     )
     block.finish()
     return solid
@@ -141,34 +121,41 @@ def _materials(block: Block) -> Materials:
 
 
 def _lubricant(block: Block) -> Lubricant:
-    rheology = block.choice("rheology", RHEOLOGY_MODELS, "newtonian")
-    if rheology == "ree_eyring":
+    d = _LUBRICANT
+    rheology = block.choice("rheology", RHEOLOGY_MODELS, d["rheology"])
+    eyring = d["eyring_stress"]
+    if rheology == "ree_eyring" or block.has("eyring_stress"):  # required by Ree-Eyring, checked if given
         eyring = block.number("eyring_stress", positive=True, low=1e4, unit="Pa")
-    else:
-        eyring = block.number("eyring_stress", math.inf, positive=True, low=1e4, unit="Pa")
-    temperature_c = block.number("inlet_temperature", 40.0, low=-100.0, high=400.0, unit="degC")
-    z = block.number("roelands_z", None, low=0.0, high=2.0, open_low=True) if block.has("roelands_z") else None
+    temperature = d["inlet_temperature"]
+    if block.has("inlet_temperature"):  # degC in the file
+        temperature = block.number("inlet_temperature", low=-100.0, high=400.0, unit="degC") + KELVIN
+    z = block.number("roelands_z", d["roelands_z"], low=0.0, high=2.0, open_low=True)
     lubricant = Lubricant(
         viscosity=block.number("viscosity", positive=True, low=1e-6, high=1e6, unit="Pa s"),
-        inlet_temperature=temperature_c + KELVIN,
+        inlet_temperature=temperature,
         pressure_viscosity=block.number("pressure_viscosity", positive=True, high=1e-6, unit="1/Pa"),
-        density=block.number("density", 870.0, positive=True, low=1.0, high=1e5, unit="kg/m^3"),
-        viscosity_model=block.choice("viscosity_model", VISCOSITY_MODELS, "roelands"),
-        density_model=block.choice("density_model", DENSITY_MODELS, "dowson_higginson"),
+        density=block.number("density", d["density"], positive=True, low=1.0, high=1e5, unit="kg/m^3"),
+        viscosity_model=block.choice("viscosity_model", VISCOSITY_MODELS, d["viscosity_model"]),
+        density_model=block.choice("density_model", DENSITY_MODELS, d["density_model"]),
         rheology=rheology,
         eyring_stress=eyring,
         roelands_z=z,
-        temperature_viscosity=block.number("temperature_viscosity", 0.0, nonnegative=True, high=1.0, unit="1/K"),
-        thermal_expansion=block.number("thermal_expansion", 0.0, nonnegative=True, high=0.01, unit="1/K"),
-        thermal_conductivity=block.number("thermal_conductivity", 0.13, positive=True, low=1e-3, high=100.0,
-                                          unit="W/(m K)"),
+        temperature_viscosity=block.number("temperature_viscosity", d["temperature_viscosity"], nonnegative=True,
+                                           high=1.0, unit="1/K"),
+        thermal_expansion=block.number("thermal_expansion", d["thermal_expansion"], nonnegative=True, high=0.01,
+                                       unit="1/K"),
+        thermal_conductivity=block.number("thermal_conductivity", d["thermal_conductivity"], positive=True,
+                                          low=1e-3, high=100.0, unit="W/(m K)"),
         # k(p) = k_0 [1 + a p/(1 + b p)], p in GPa (Larsson et al. 2000; PAOB a = 1.40, b = 0.34); the broad
         # bound 100/GPa (70 times PAOB's a) keeps k/k_0 <= 1 + 100 p/GPa
-        conductivity_pressure_coefficient=block.number("conductivity_pressure_coefficient", 0.0, nonnegative=True,
+        conductivity_pressure_coefficient=block.number("conductivity_pressure_coefficient",
+                                                       d["conductivity_pressure_coefficient"], nonnegative=True,
                                                        high=100.0, unit="1/GPa"),
-        conductivity_pressure_saturation=block.number("conductivity_pressure_saturation", 0.0, nonnegative=True,
+        conductivity_pressure_saturation=block.number("conductivity_pressure_saturation",
+                                                      d["conductivity_pressure_saturation"], nonnegative=True,
                                                       high=100.0, unit="1/GPa"),
-        specific_heat=block.number("specific_heat", 2000.0, positive=True, low=1.0, high=1e5, unit="J/(kg K)"),
+        specific_heat=block.number("specific_heat", d["specific_heat"], positive=True, low=1.0, high=1e5,
+                                   unit="J/(kg K)"),
     )
     check(
         lubricant.roelands_log_term > 0.0 or lubricant.viscosity_model != "roelands",
@@ -188,8 +175,9 @@ def _plain_contact(block: Block) -> PlainContact:
         entrainment_speed=block.number("entrainment_speed", positive=True, low=1e-6, high=1e3, unit="m/s"),
         # |SRR| > 2: the surfaces move in opposite directions (u_2 = u_e (1 - SRR/2) < 0); at |SRR| = 4 the
         # slower one moves backward at the entrainment speed.
-        slide_roll_ratio=block.number("slide_roll_ratio", 0.0, low=-4.0, high=4.0),
-        entrainment_angle=block.number("entrainment_angle", 0.0, low=-90.0, high=90.0, unit="deg"),
+        slide_roll_ratio=block.number("slide_roll_ratio", _CONTACT["slide_roll_ratio"], low=-4.0, high=4.0),
+        entrainment_angle=block.number("entrainment_angle", _CONTACT["entrainment_angle"], low=-90.0, high=90.0,
+                                       unit="deg"),
     )
     check(
         contact.radius_y >= contact.radius_x,
@@ -208,17 +196,18 @@ def _plain_contact(block: Block) -> PlainContact:
 
 
 def _solver(block: Block) -> SolverSettings:
-    grid = block.integer("grid", 257)
+    d = _SOLVER
+    grid = block.integer("grid", d["grid"])
     _check_grid(grid, block.key_path("grid"))
-    coarsest = block.integer("coarsest_grid", 17, low=9)
+    coarsest = block.integer("coarsest_grid", d["coarsest_grid"], low=9)
     _check_grid(coarsest, block.key_path("coarsest_grid"))
     check(coarsest <= grid, block.key_path("coarsest_grid"), coarsest, f"at most solver.grid = {grid}")
-    grid_y = None
+    grid_y = d["grid_y"]
     if block.has("grid_y"):
-        grid_y = block.integer("grid_y", grid)
+        grid_y = block.integer("grid_y")
         _check_grid(grid_y, block.key_path("grid_y"))
         check(coarsest <= grid_y, block.key_path("grid_y"), grid_y, f"at least solver.coarsest_grid = {coarsest}")
-    dx = dy = None  # automatic: 4.5 semi-axes upstream, 1.5 downstream of the entrainment (ehl.solve)
+    dx, dy = d["domain_x"], d["domain_y"]
     if block.has("domain"):
         domain = block.block("domain")
         dx = domain.interval("x")
@@ -228,7 +217,7 @@ def _solver(block: Block) -> SolverSettings:
               "an interval containing the contact [-1, 1] (units of the semi-axis b), e.g. [-4.5, 1.5]")
         check(dy[0] < -1.0 and dy[1] > 1.0, domain.key_path("y"), list(dy),
               "an interval containing the contact [-1, 1] (units of the semi-axis a), e.g. [-3, 3]")
-    thermal = block.get("thermal", "off")
+    thermal = block.get("thermal", d["thermal"])
     if thermal is False:  # YAML 1.1 reads a bare `off` as false
         thermal = "off"
     check(isinstance(thermal, str) and thermal in THERMAL_MODELS, block.key_path("thermal"), thermal,
@@ -239,13 +228,13 @@ def _solver(block: Block) -> SolverSettings:
         domain_y=dy,
         thermal=thermal,
         coarsest_grid=coarsest,
-        cycles_per_level=block.integer("cycles_per_level", 2, low=1, high=20),
-        max_cycles=block.integer("max_cycles", 40, low=0, high=1000),
-        tolerance=block.number("tolerance", 1e-4, positive=True, high=0.1),
-        load_tolerance=block.number("load_tolerance", 1e-4, positive=True, high=0.1),
-        thermal_layers=block.integer("thermal_layers", 9, low=3, high=41),
-        max_thermal_iterations=block.integer("max_thermal_iterations", 40, low=1, high=500),
-        thermal_tolerance=block.number("thermal_tolerance", 1e-3, positive=True, high=0.1),
+        cycles_per_level=block.integer("cycles_per_level", d["cycles_per_level"], low=1, high=20),
+        max_cycles=block.integer("max_cycles", d["max_cycles"], low=0, high=1000),
+        tolerance=block.number("tolerance", d["tolerance"], positive=True, high=0.1),
+        load_tolerance=block.number("load_tolerance", d["load_tolerance"], positive=True, high=0.1),
+        thermal_layers=block.integer("thermal_layers", d["thermal_layers"], low=3, high=41),
+        max_thermal_iterations=block.integer("max_thermal_iterations", d["max_thermal_iterations"], low=1, high=500),
+        thermal_tolerance=block.number("thermal_tolerance", d["thermal_tolerance"], positive=True, high=0.1),
         grid_y=grid_y,
     )
     check(settings.thermal_layers % 2 == 1, block.key_path("thermal_layers"), settings.thermal_layers,
@@ -255,7 +244,7 @@ def _solver(block: Block) -> SolverSettings:
 
 
 def _output(block: Block) -> OutputSettings:
-    settings = OutputSettings(file=block.string("file", None) if block.has("file") else None)
+    settings = OutputSettings(file=block.string("file") if block.has("file") else _OUTPUT["file"])
     check(settings.file is None or (settings.file.strip() != "" and "\0" not in settings.file),
           block.key_path("file"), settings.file, "a file path (not empty, no NUL character)")
     block.finish()

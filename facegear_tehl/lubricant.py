@@ -16,8 +16,8 @@ Thermal conductivity (ratio to k_0 at p = 0):
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
@@ -47,9 +47,9 @@ class Lubricant:
     in 1/GPa as in the source (Larsson et al. 2000) and the case file."""
 
     viscosity: float  # eta_0, Pa s at p = 0 and the inlet temperature
-    inlet_temperature: float  # T_0, K
     pressure_viscosity: float  # alpha, 1/Pa (Barus coefficient; sets Roelands z unless roelands_z is given)
-    density: float  # rho_0, kg/m^3 at p = 0 and T_0
+    inlet_temperature: float = 40.0 + KELVIN  # T_0, K
+    density: float = 870.0  # rho_0, kg/m^3 at p = 0 and T_0
     viscosity_model: str = "roelands"
     density_model: str = "dowson_higginson"
     rheology: str = "newtonian"

@@ -7,10 +7,12 @@ unknown keys are reported with a "did you mean" hint.
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 import math
 import reprlib
-from typing import Any, Callable, Iterable, Mapping
+from collections.abc import Iterable, Mapping
+from typing import Any
 
 
 class CaseError(ValueError):
@@ -134,12 +136,6 @@ class Block:
             raise CaseError(self.key_path(key), value, "a string")
         return value
 
-    def boolean(self, key: str, default: Any = _MISSING) -> bool:
-        value = self.get(key, default)
-        if not isinstance(value, bool):
-            raise CaseError(self.key_path(key), value, "true or false")
-        return value
-
     def interval(self, key: str, default: Any = _MISSING) -> tuple[float, float]:
         """A two-number list [low, high] with low < high."""
         value = self.get(key, default)
@@ -156,7 +152,7 @@ class Block:
             raise CaseError(self.key_path(key), value, "[low, high] with low < high")
         return low, high
 
-    def block(self, key: str, default: Any = _MISSING) -> "Block":
+    def block(self, key: str, default: Any = _MISSING) -> Block:
         value = self.get(key, default)
         return Block(value, self.key_path(key))
 
@@ -177,4 +173,6 @@ def check(condition: bool, key: str, value: Any, expected: str) -> None:
         raise CaseError(key, value, expected)
 
 
-Reader = Callable[[Block], Any]
+def defaults(cls: type) -> dict[str, Any]:
+    """The default of each field of the dataclass `cls` that has one: the parsers' only source of defaults."""
+    return {f.name: f.default for f in dataclasses.fields(cls) if f.default is not dataclasses.MISSING}

@@ -12,10 +12,10 @@ y = n x x along the major axis, with n the common normal out of the pinion (body
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, fields
 import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field, fields
 from types import MappingProxyType
-from typing import Mapping
 
 import numpy as np
 

@@ -14,8 +14,8 @@ differences: the lengthwise relative curvature comes from a near-cancellation):
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 import math
+from dataclasses import dataclass
 
 import numpy as np
 

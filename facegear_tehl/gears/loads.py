@@ -8,7 +8,7 @@ with S2 = s_max - p_b and S4 = s_min + p_b. A point exactly at S2 or S4 takes th
 
 from __future__ import annotations
 
-from typing import Sequence
+from collections.abc import Sequence
 
 import numpy as np
 

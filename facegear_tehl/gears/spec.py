@@ -18,15 +18,15 @@ reaches below the pinion base circle, no contact under the given misalignment.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
 from facegear_tehl.gears.geometry import PairGeometry, axial_section, pointing_limit, undercut_limit
 from facegear_tehl.gears.loads import LOAD_SHARING_MODELS, TRANSITION_SIDES, contact_ratio
-from facegear_tehl.gears.tca import MESHING_POINTS, ContactError, ContactPath, Misalignment
-from facegear_tehl.schema import Block, CaseError, check
+from facegear_tehl.gears.tca import ALIGNED, MESHING_POINTS, ContactError, ContactPath, Misalignment
+from facegear_tehl.schema import Block, CaseError, check, defaults
 
 RPM = 2.0 * math.pi / 60.0  # rad/s per rev/min
 MAX_POINT_COUNT = 1000
@@ -49,10 +49,10 @@ class GearSpec:
     outer_radius: float  # m
     pinion_speed: float  # rad/s
     pinion_torque: float  # N m
-    load_sharing: str | tuple[float, ...]  # a model of loads.LOAD_SHARING_MODELS, or one coefficient per point
-    points: tuple[str, ...] | int  # names among S1..S5, or a count of evenly spaced points
+    load_sharing: str | tuple[float, ...] = "iso_linear"  # of loads.LOAD_SHARING_MODELS, or one coefficient per point
+    points: tuple[str, ...] | int = MESHING_POINTS  # names among S1..S5, or a count of evenly spaced points
     transition_side: str = "single"  # of loads.TRANSITION_SIDES: K exactly at S2 and S4 under a sharing model
-    misalignment: Misalignment = Misalignment()
+    misalignment: Misalignment = ALIGNED
 
     @property
     def geometry(self) -> PairGeometry:
@@ -74,6 +74,10 @@ class GearSpec:
             width = max(2, len(str(self.points)))
             return tuple(f"P{i + 1:0{width}d}" for i in range(self.points))
         return self.points
+
+
+_GEAR = defaults(GearSpec)  # an absent (or null) key takes the default of its field
+_MISALIGNMENT = defaults(Misalignment)
 
 
 def parse_gear_block(block: Block) -> GearSpec:
@@ -112,20 +116,30 @@ def parse_gear_block(block: Block) -> GearSpec:
         load_sharing=load_sharing,
         points=points,
         transition_side=_transition_side(block, load_sharing),
-        misalignment=Misalignment(
-            shaft_angle_error=math.radians(block.number("shaft_angle_error", 0.0, low=-1.0, high=1.0, unit="deg")),
-            offset=block.number("offset", 0.0, low=-module, high=module, unit="m"),
-            pinion_axial_shift=block.number("pinion_axial_shift", 0.0, low=-10 * module, high=10 * module, unit="m"),
-            face_gear_axial_shift=block.number("face_gear_axial_shift", 0.0, low=-module, high=module, unit="m"),
-        ),
+        misalignment=_misalignment(block, module),
     )
     block.finish()
     _check_feasible(spec, block)
     return spec
 
 
+def _misalignment(block: Block, module: float) -> Misalignment:
+    d = _MISALIGNMENT
+    angle_error = d["shaft_angle_error"]
+    if block.has("shaft_angle_error"):  # deg in the file
+        angle_error = math.radians(block.number("shaft_angle_error", low=-1.0, high=1.0, unit="deg"))
+    return Misalignment(
+        shaft_angle_error=angle_error,
+        offset=block.number("offset", d["offset"], low=-module, high=module, unit="m"),
+        pinion_axial_shift=block.number("pinion_axial_shift", d["pinion_axial_shift"], low=-10 * module,
+                                        high=10 * module, unit="m"),
+        face_gear_axial_shift=block.number("face_gear_axial_shift", d["face_gear_axial_shift"], low=-module,
+                                           high=module, unit="m"),
+    )
+
+
 def _points(block: Block) -> tuple[str, ...] | int:
-    value = block.get("points", list(MESHING_POINTS))
+    value = block.get("points", list(_GEAR["points"]))
     key = block.key_path("points")
     if isinstance(value, int) and not isinstance(value, bool):
         check(2 <= value <= MAX_POINT_COUNT, key, value, f"a count of points in 2..{MAX_POINT_COUNT}")
@@ -141,7 +155,7 @@ def _points(block: Block) -> tuple[str, ...] | int:
 
 
 def _load_sharing(block: Block, count: int) -> str | tuple[float, ...]:
-    value = block.get("load_sharing", "iso_linear")
+    value = block.get("load_sharing", _GEAR["load_sharing"])
     key = block.key_path("load_sharing")
     if isinstance(value, str):
         check(value in LOAD_SHARING_MODELS, key, value, "one of " + ", ".join(LOAD_SHARING_MODELS) + " or a list")
@@ -163,7 +177,7 @@ def _transition_side(block: Block, load_sharing: str | tuple[float, ...]) -> str
         raise CaseError(block.key_path("transition_side"), block.get("transition_side"),
                         "no transition_side when load_sharing is a list of coefficients (the list sets K at "
                         "every point; transition_side applies to " + ", ".join(LOAD_SHARING_MODELS) + ")")
-    return block.choice("transition_side", TRANSITION_SIDES, "single")
+    return block.choice("transition_side", TRANSITION_SIDES, _GEAR["transition_side"])
 
 
 def _misalignment_key(spec: GearSpec, block: Block) -> str:

@@ -25,8 +25,8 @@ shaft_angle_error = -d.)
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from scipy import optimize
@@ -66,13 +66,16 @@ class Misalignment:
     def is_zero(self) -> bool:
         return not any((self.shaft_angle_error, self.offset, self.pinion_axial_shift, self.face_gear_axial_shift))
 
-    def scaled(self, factor: float) -> "Misalignment":
+    def scaled(self, factor: float) -> Misalignment:
         return Misalignment(
             self.shaft_angle_error * factor,
             self.offset * factor,
             self.pinion_axial_shift * factor,
             self.face_gear_axial_shift * factor,
         )
+
+
+ALIGNED = Misalignment()  # no assembly error
 
 
 @dataclass(frozen=True)
@@ -214,7 +217,7 @@ def _equations(geo: PairGeometry, place: _Placement, phi_1: float, x: np.ndarray
 
 
 def solve_contact(
-    geo: PairGeometry, phi_1: float, guess: np.ndarray, mis: Misalignment = Misalignment()
+    geo: PairGeometry, phi_1: float, guess: np.ndarray, mis: Misalignment = ALIGNED
 ) -> ContactState:
     """General TCA at pinion angle phi_1 (rad) by Newton from `guess` = (theta_1, u_1, theta_s, phi_s, phi_2)."""
     place = _placement(geo, mis)
@@ -261,7 +264,7 @@ class ContactPath:
     aligned solution; other states start from it with a first-order predictor.
     """
 
-    def __init__(self, geo: PairGeometry, mis: Misalignment = Misalignment()):
+    def __init__(self, geo: PairGeometry, mis: Misalignment = ALIGNED):
         self.geo = geo
         self.mis = mis
         if mis.is_zero:

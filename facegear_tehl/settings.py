@@ -1,0 +1,41 @@
+"""Numerical settings of the EHL solver and output settings of a case: plain data with their defaults.
+
+The defaults here are the only ones: the case parser (`case.py`) reads an absent key as the field's default.
+This module imports nothing of the package, so the solver loads it without the gear geometry.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+THERMAL_MODELS = ("off", "reduced", "full", "auto")
+
+
+@dataclass(frozen=True)
+class SolverSettings:
+    """Numerical settings of the EHL solver."""
+
+    grid: int = 257  # nodes per side on the finest grid, 2^n + 1 (along x, the minor axis, when grid_y is set)
+    # in units of the minor semi-axis b; None: automatic, 4.5 semi-axes upstream and 1.5 downstream of the
+    # entrainment (Venner & Lubrecht 2000; ehl.solve)
+    domain_x: tuple[float, float] | None = None
+    domain_y: tuple[float, float] | None = None  # in units of the major semi-axis a; None: automatic
+    thermal: str = "off"  # one of THERMAL_MODELS
+    coarsest_grid: int = 17  # nodes per side on the coarsest grid of the hierarchy
+    cycles_per_level: int = 2  # V-cycles per level in the full-multigrid start
+    max_cycles: int = 40  # extra V-cycles allowed on the finest grid to meet the tolerances
+    tolerance: float = 1e-4  # relative change of pressure between cycles (L1 norm) to stop
+    load_tolerance: float = 1e-4  # relative load-balance error to accept
+    thermal_layers: int = 9  # layer nodes across the film of the `full` thermal model (odd)
+    max_thermal_iterations: int = 40  # outer iterations of film state and pressure
+    thermal_tolerance: float = 1e-3  # largest temperature change per outer iteration, relative to the rise
+    grid_y: int | None = None  # nodes along y (the major axis) on the finest grid, 2^n + 1; None: as `grid`
+
+    @property
+    def nodes_y(self) -> int:
+        return self.grid if self.grid_y is None else self.grid_y
+
+
+@dataclass(frozen=True)
+class OutputSettings:
+    file: str | None = None  # default result path (relative to the case file); None: <case name>.h5
