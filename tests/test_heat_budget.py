@@ -5,13 +5,11 @@ import math
 import numpy as np
 import pytest
 
-from facegear_tehl.case import load_case
-from facegear_tehl.run import run_case
 
-
-@pytest.fixture(scope="module")
-def run():
-    return run_case(load_case("cases/facegear_110.yaml"), grid=65, jobs=1)
+@pytest.fixture
+def run(facegear_run):
+    """The default face gear case on --grid 65, solved once per session (conftest.py)."""
+    return facegear_run
 
 
 def test_heat_table_has_one_row_per_point(run):

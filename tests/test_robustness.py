@@ -99,6 +99,12 @@ def test_a_hard_case_end_to_end_writes_no_nan_or_inf(hard_runs):
     assert non_finite_entries(path) == []
 
 
+def test_the_default_face_gear_run_writes_no_nan_or_inf(facegear_file):
+    """cases/facegear_110.yaml as shipped (thermal full, Ree-Eyring; conftest.py) on --grid 65."""
+    assert read_result(facegear_file).status == "ok"
+    assert non_finite_entries(facegear_file) == []
+
+
 def test_repeated_runs_are_bit_identical(hard_runs):
     (_, first), (_, second) = hard_runs
     assert_same_file(first, second)

@@ -10,7 +10,6 @@ from facegear_tehl.case import load_case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.solve import solve_point
 from facegear_tehl.ehl.thermal import gupta_reduction, thermal_choice
-from facegear_tehl.points import contact_analysis
 
 SLIDING = "cases/ball_on_disc_sliding.yaml"
 
@@ -78,11 +77,10 @@ def test_auto_picks_the_cheapest_model_predicted_within_tolerance_and_says_why()
     assert 1.0 - gupta_reduction(cold, lub) < 0.01 < 1.0 - gupta_reduction(hot, lub)
 
 
-@pytest.fixture(scope="module")
-def face_gear_points():
-    case = load_case("cases/facegear_110.yaml")
-    settings = dataclasses.replace(case.solver, grid=65)
-    return {p.name: solve_point(p, case.lubricant, settings) for p in contact_analysis(case).points}
+@pytest.fixture
+def face_gear_points(facegear_run):
+    """The default face gear case on --grid 65 (65 x 17), solved once per session (conftest.py), by point."""
+    return {p.name: p for p in facegear_run.points}
 
 
 def test_face_gear_temperature_and_friction_are_smallest_at_the_pitch_point(face_gear_points):
