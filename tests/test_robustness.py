@@ -93,8 +93,10 @@ def test_a_hard_case_end_to_end_writes_no_nan_or_inf(hard_runs):
     code, path = hard_runs[0]
     result = read_result(path)
     point = result.points["contact"]
-    assert (code, result.status) in ((0, "ok"), (3, "not_converged"))
-    assert point.converged or point.message
+    # the point this fixture is for (module header): not converged, exit code 3, and the file says why
+    assert (code, result.status, point.converged) == (3, "not_converged", False)
+    assert point.message.startswith("thermal loop not converged after "), point.message
+    assert point.scalars["h_min"] > 0.0  # an open film, though the thermal loop did not settle
     assert point.fields["pressure"].values.shape == (33, 33) and "temperature_mid" in point.fields
     assert non_finite_entries(path) == []
 

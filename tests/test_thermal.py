@@ -64,7 +64,22 @@ def test_hard_thermal_case_converges_or_says_why_never_nan():
     for f in sol.fields.values():
         assert np.isfinite(f.values).all()
     assert all(math.isfinite(v) for v, _ in sol.scalars.values())
-    assert sol.converged or sol.message
+    # converged: an open film and no message; else the message names the reason, and a closed film as such
+    if sol.converged:
+        assert sol.message == "" and sol.scalar("h_min") > 0.0
+    else:
+        assert sol.message.startswith(("thermal loop not converged", "not converged", "diverged", "the film closes"))
+        assert ("film closes" in sol.message) == (sol.scalar("h_min") <= 0.0)
+
+
+@pytest.mark.xfail(strict=True, reason="SRR 2 at p_h 2 GPa on 65^2: the outer thermal loop stalls with a 35 K change "
+                                       "per iteration (still after 100 iterations) and the iterate's film closes "
+                                       "(h_min about -77 nm)")
+def test_hard_thermal_case_converges_with_an_open_film():
+    point, lub, settings = plain(SLIDING, slide_roll_ratio=2.0, load=551.0)
+    sol = solve_point(point, lub, dataclasses.replace(settings, thermal="full", max_thermal_iterations=10))
+    assert sol.converged, sol.message
+    assert 0.0 < sol.scalar("h_min") < sol.scalar("h_c")
 
 
 def test_auto_picks_the_cheapest_model_predicted_within_tolerance_and_says_why():
