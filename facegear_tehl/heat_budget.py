@@ -16,6 +16,7 @@ From a solved point (the thermal / Ree-Eyring film's friction coefficient mu, te
 
 from __future__ import annotations
 
+from dataclasses import replace
 import math
 
 import numpy as np
@@ -49,7 +50,6 @@ COLUMNS = {
     "oil_to_friction_ratio": ("1", "Q_oil/Q_f"),
     "distribution_difference": ("1", "share of P placed differently by the pressure and shear-power distributions"),
 }
-GEAR_ONLY = ("duty_ratio_1", "duty_ratio_2", "steady_power_1", "steady_power_2")
 
 
 def point_budget(point: ContactPoint, solution: PointSolution, lubricant: Lubricant
@@ -132,7 +132,7 @@ def heat_budget(points: list[ContactPoint], solutions: list[PointSolution], lubr
         values, fields = point_budget(point, solution, lubricant)
         rows.append((point.name, values))
         scalars = {**solution.scalars, **{k: (v, COLUMNS[k][0]) for k, v in values.items() if k != "mu"}}
-        out.append(PointSolution(**{**solution.__dict__, "scalars": scalars, "fields": {**solution.fields, **fields}}))
+        out.append(replace(solution, scalars=scalars, fields={**solution.fields, **fields}))
     if not rows:
         return out, {}
     names = [name for name, _ in rows]

@@ -1,12 +1,12 @@
 """Independent EHL solves (the points of a case, the grids of a sweep) over worker processes.
 
 `solve_each` yields the solves in completion order, each with its index in the task list, so callers can
-show progress as solves finish and still store the results in their own order. The EHL solver is run in
-stages (`Stages`: a thermal full-multigrid point's coarse and fine stage are separate tasks), so that five
-points on two workers do not leave one worker idle while the other solves the fifth point whole: S1-S5 of
-the face gear case, thermal full 129^2, 1.73x faster on two workers than on one (1.68x with whole points). A solve that raises is
-returned as a failed `PointSolution` (converged = False, the error as its message, no data); the other
-tasks still run. With one job, or one task, everything runs in this process (no pool).
+show progress as solves finish; `solve_all` (used by run.py and sweep.py) collects them in task order. The
+solver is passed in: a `StagedSolver` (the EHL solver) is run in stages (a thermal full-multigrid point's
+coarse and fine stage are separate tasks), so that five points on two workers do not leave one worker idle
+while the other solves the fifth point whole: S1-S5 of the face gear case, thermal full 129^2, 1.73x faster
+on two workers than on one (1.68x with whole points). A solve that raises is returned as a failed
+`PointSolution` (outcome FAILED, the error as its message, no data); the other tasks still run. With one job, or one task, everything runs in this process (no pool).
 
 Workers are forked on Linux: they inherit the imported modules and the Numba kernels, which this process
 compiles (or loads from Numba's on-disk cache) first by solving the first task on its coarsest grid, so
@@ -24,24 +24,45 @@ Each solve is then the same deterministic computation wherever it runs.
 from __future__ import annotations
 
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from contextlib import closing
 from dataclasses import dataclass, replace
 import multiprocessing
 import os
 import signal
 import sys
 import threading
-from typing import Callable, Iterator, Sequence
+from typing import Callable, Iterator, Protocol, Sequence, runtime_checkable
 
 from threadpoolctl import threadpool_limits
 
-from facegear_tehl.case import SolverSettings
+from facegear_tehl.settings import SolverSettings
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.schema import check
-from facegear_tehl.solution import PointSolution
+from facegear_tehl.solution import Outcome, PointSolution
 
 Solver = Callable[[ContactPoint, Lubricant, SolverSettings], PointSolution]
-"""`ehl.solve.solve_point` or a stand-in with its signature (module-level, so that it can be pickled)."""
+"""A whole solve: `ehl.solve.solve_point` or a stand-in with its signature (module-level, so that it can be
+pickled)."""
+
+
+@runtime_checkable
+class StagedSolver(Protocol):
+    """A solver that can also run in stages that may go to different processes, with the same result as a
+    whole solve (ehl.solve.StagedSolver): `begin(point, lubricant, settings, retry_after)` returns the solution
+    or a picklable intermediate that `finish` completes; a solution for which `needs_retry` holds is begun
+    again with `retry_after` set, and `with_retry(first, retry)` is kept."""
+
+    def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution: ...
+
+    def begin(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
+              retry_after: PointSolution | None = None) -> object: ...
+
+    def finish(self, stage: object) -> PointSolution: ...
+
+    def needs_retry(self, solution: PointSolution) -> bool: ...
+
+    def with_retry(self, first: PointSolution, retry: PointSolution) -> PointSolution: ...
 
 
 @dataclass(frozen=True)
@@ -61,6 +82,10 @@ class Solved:
     failed: bool
 
 
+Progress = Callable[[PointSolution, int, int], None]
+"""Called as each solve finishes with (solution, solves done, solves in all)."""
+
+
 def available_cores() -> int:
     """Cores this process may run on (its CPU affinity where the OS tells, else os.cpu_count())."""
     if hasattr(os, "sched_getaffinity"):
@@ -77,10 +102,10 @@ def worker_count(jobs: int | None, key: str = "--jobs") -> int:
 
 
 def failed_solution(name: str, error: BaseException) -> PointSolution:
-    """The record of a solve that raised `error`: not converged, no data, the error as the message."""
+    """The record of a solve that raised `error`: failed, no data, the error as the message."""
     return PointSolution(
         name=name,
-        converged=False,
+        outcome=Outcome.FAILED,
         message=f"failed: {type(error).__name__}: {error}",
         scalars={},
         fields={},
@@ -88,43 +113,39 @@ def failed_solution(name: str, error: BaseException) -> PointSolution:
     )
 
 
-def stages_of(solve: Solver) -> "Stages | None":
-    """The staged form of `solve` when it is the EHL solver (ehl.solve.solve_point); None for a stand-in."""
-    if getattr(solve, "__module__", None) != "facegear_tehl.ehl.solve" or solve.__name__ != "solve_point":
-        return None
-    from facegear_tehl.ehl import solve as ehl  # the solver's stages; imported only when it is the one used
-
-    return Stages(ehl.begin_point, ehl.finish_point, ehl.needs_retry, ehl.with_retry)
-
-
-@dataclass(frozen=True)
-class Stages:
-    """`solve` split into stages that may run in different processes, with the same result as `solve` in one
-    (ehl.solve: begin_point, finish_point, needs_retry, with_retry). `begin(point, lubricant, settings,
-    retry_after)` returns the solution or a picklable intermediate that `finish` completes; a solution for
-    which `needs_retry` holds is begun again with `retry_after` set, and `with_retry(first, retry)` is kept."""
-
-    begin: Callable
-    finish: Callable
-    needs_retry: Callable[[PointSolution], bool]
-    with_retry: Callable[[PointSolution, PointSolution], PointSolution]
+def solve_all(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *, jobs: int | None = None,
+              progress: Progress | None = None) -> tuple[list[PointSolution], tuple[int, ...]]:
+    """Every task solved (`solve_each`), in task order, and the indices of those whose solve raised.
+    `progress` sees the solutions in the order they finish. An exception in `progress` (Ctrl-C while it
+    reports) stops the workers at once, not when the generator is collected."""
+    solutions: list[PointSolution | None] = [None] * len(tasks)
+    failed: list[int] = []
+    with closing(solve_each(tasks, solver, jobs=jobs)) as outcomes:
+        for done, (index, outcome) in enumerate(outcomes, start=1):
+            solutions[index] = outcome.solution
+            if outcome.failed:
+                failed.append(index)
+            if progress is not None:
+                progress(outcome.solution, done, len(tasks))
+    return solutions, tuple(sorted(failed))
 
 
-def solve_each(tasks: Sequence[SolveTask], *, solve: Solver, jobs: int | None = None,
-               stages: Stages | None = None) -> Iterator[tuple[int, Solved]]:
-    """Run every task with `solve` on up to `jobs` worker processes (None: all cores); yield (task index,
-    outcome) as each solve finishes. With `stages`, the workers run stages instead of whole solves, so that a
-    worker that would wait for the last point takes the next stage of another (five thermal points on two
-    workers). Interrupting the caller (Ctrl-C, SIGTERM, an error in the loop body) stops the workers at once."""
+def solve_each(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
+               jobs: int | None = None) -> Iterator[tuple[int, Solved]]:
+    """Run every task with `solver` on up to `jobs` worker processes (None: all cores); yield (task index,
+    outcome) as each solve finishes. A StagedSolver runs in stages on the workers, so that a worker that would
+    wait for the last point takes the next stage of another (five thermal points on two workers).
+    Interrupting the caller (Ctrl-C, SIGTERM, an error in the loop body) stops the workers at once."""
     workers = min(worker_count(jobs), len(tasks))
     if workers <= 1:
         with threadpool_limits(limits=1):
             for index, task in enumerate(tasks):
-                yield index, _solve_task(solve, task)
+                yield index, _solve_task(solver, task)
         return
+    staged = isinstance(solver, StagedSolver)
     context = _context()
     if context.get_start_method() == "fork":
-        _warm_up(solve, tasks[0])
+        _warm_up(solver, tasks[0])
     executor = ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=_init_worker)
     try:
         # per future: (task index, first attempt when this is its retry)
@@ -135,11 +156,11 @@ def solve_each(tasks: Sequence[SolveTask], *, solve: Solver, jobs: int | None = 
                 pending[executor.submit(_stage_task, function, tasks[index].point.name, *args)] = (index, first)
 
         for i, task in enumerate(tasks):
-            if stages is None:
-                with _DeferredSignals():
-                    pending[executor.submit(_solve_task, solve, task)] = (i, None)
+            if staged:
+                submit(i, None, solver.begin, task.point, task.lubricant, task.settings, None)
             else:
-                submit(i, None, stages.begin, task.point, task.lubricant, task.settings, None)
+                with _DeferredSignals():
+                    pending[executor.submit(_solve_task, solver, task)] = (i, None)
         while pending:
             with _DeferredSignals() as signals:
                 finished: set[Future] = set()
@@ -148,15 +169,15 @@ def solve_each(tasks: Sequence[SolveTask], *, solve: Solver, jobs: int | None = 
             for future in sorted(finished, key=lambda f: pending[f][0]):
                 index, first = pending.pop(future)
                 outcome = _outcome(future, tasks[index])
-                if stages is None or isinstance(outcome, Solved):
+                if not staged or isinstance(outcome, Solved):
                     yield index, outcome
                 elif not isinstance(outcome, PointSolution):  # an intermediate: its next stage
-                    submit(index, first, stages.finish, outcome)
-                elif first is None and stages.needs_retry(outcome):
+                    submit(index, first, solver.finish, outcome)
+                elif first is None and solver.needs_retry(outcome):
                     task = tasks[index]
-                    submit(index, outcome, stages.begin, task.point, task.lubricant, task.settings, outcome)
+                    submit(index, outcome, solver.begin, task.point, task.lubricant, task.settings, outcome)
                 else:
-                    yield index, Solved(outcome if first is None else stages.with_retry(first, outcome), failed=False)
+                    yield index, Solved(outcome if first is None else solver.with_retry(first, outcome), failed=False)
     except BaseException:
         _stop_workers(executor)
         raise
@@ -194,6 +215,7 @@ class _DeferredSignals:
 
 
 def _solve_task(solve: Solver, task: SolveTask) -> Solved:
+    """One whole solve: its solution, or a failed record if it raised (the other tasks still run)."""
     try:
         return Solved(solve(task.point, task.lubricant, task.settings), failed=False)
     except Exception as exc:  # one failing solve must not lose the others; the error is recorded

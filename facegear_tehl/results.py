@@ -5,7 +5,8 @@ Layout (format 1.x, ARCHITECTURE.md):
     /                   attrs: filetype, format_version, tehl_version, created, case_name, case_yaml,
                         status (ok | not_converged | failed), message, warnings (JSON list),
                         models (JSON), overrides (JSON)
-    /points/<name>/     attrs: one per scalar (SI), units (JSON: scalar -> unit), converged, message,
+    /points/<name>/     attrs: one per scalar (SI), units (JSON: scalar -> unit), converged, outcome (from 1.1:
+                        converged | not converged | diverged | film closed | failed), message,
                         models (JSON); datasets x, y (kind 'axis'), fields (ny, nx) (kind 'field'),
                         per-cycle arrays (kind 'history')
     /contact/           gear contact analysis, written if given: one dataset per path column (kind
@@ -40,10 +41,10 @@ from facegear_tehl.case import Case
 from facegear_tehl.solution import Field, PointSolution
 
 FILETYPE = "facegear_tehl result"
-FORMAT_VERSION = "1.0"
+FORMAT_VERSION = "1.1"  # 1.1: /points/<name> attrs outcome
 STATUSES = ("ok", "not_converged", "failed")
 # Group attributes that are not scalars.
-_RESERVED_ATTRS = ("units", "converged", "message", "models")
+_RESERVED_ATTRS = ("units", "converged", "outcome", "message", "models")
 _AXES = ("x", "y")
 
 
@@ -107,6 +108,7 @@ class PointResult:
 
     name: str
     converged: bool
+    outcome: str  # solution.Outcome's value: converged, not converged, diverged, film closed, failed
     message: str
     scalars: Mapping[str, float | int]
     units: Mapping[str, str]
@@ -194,6 +196,7 @@ def _write_point(points: h5py.Group, solution: PointSolution) -> None:
     group = points.create_group(solution.name, track_order=True)
     _write_scalars(group, solution.scalars)
     group.attrs["converged"] = bool(solution.converged)
+    group.attrs["outcome"] = solution.outcome.value
     group.attrs["message"] = solution.message
     group.attrs["models"] = json.dumps(dict(solution.models))
     for kind, entries in (("axis", solution.axes), ("field", solution.fields), ("history", solution.history)):
@@ -362,6 +365,7 @@ def _read_point(name: str, group: h5py.Group) -> PointResult:
     return PointResult(
         name=name,
         converged=bool(group.attrs["converged"]),
+        outcome=str(group.attrs.get("outcome", "converged" if group.attrs["converged"] else "not converged")),
         message=str(group.attrs["message"]),
         scalars=scalars,
         units=units,

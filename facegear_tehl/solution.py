@@ -3,9 +3,39 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+import enum
 from typing import Mapping
 
 import numpy as np
+
+
+class Outcome(enum.Enum):
+    """How a solve ended."""
+
+    CONVERGED = "converged"  # every tolerance met
+    NOT_CONVERGED = "not converged"  # the iteration budget was spent before the tolerances were met
+    DIVERGED = "diverged"  # the iteration ran away; the last sound iterate is reported
+    FILM_CLOSED = "film closed"  # h_min <= 0: solid contact, outside the EHL model
+    FAILED = "failed"  # the solve raised an error; no data
+
+
+@dataclass(frozen=True)
+class Status:
+    """The outcome of a solve or of one of its steps, with the reason in words (empty when converged)."""
+
+    outcome: Outcome
+    message: str = ""
+
+    @property
+    def converged(self) -> bool:
+        return self.outcome is Outcome.CONVERGED
+
+    @property
+    def diverged(self) -> bool:
+        return self.outcome is Outcome.DIVERGED
+
+
+CONVERGED = Status(Outcome.CONVERGED)
 
 
 @dataclass(frozen=True)
@@ -26,18 +56,22 @@ class PointSolution:
     fields: 2-D arrays on the (ny, nx) grid (pressure, film_thickness, temperature, ...).
     axes: 'x' and 'y' node coordinates, m.
     history: per-cycle arrays (residual_history, load_error_history, ...).
-    converged: the solve met its tolerances; message says why not (empty when converged).
+    outcome: how the solve ended; message says why it did not converge (empty when it did).
     models: which models produced it (viscosity, density, rheology, thermal, with their sources).
     """
 
     name: str
-    converged: bool
+    outcome: Outcome
     message: str
     scalars: Mapping[str, tuple[float, str]]
     fields: Mapping[str, Field]
     axes: Mapping[str, Field]
     history: Mapping[str, Field] = field(default_factory=dict)
     models: Mapping[str, str] = field(default_factory=dict)
+
+    @property
+    def converged(self) -> bool:
+        return self.outcome is Outcome.CONVERGED
 
     def scalar(self, key: str) -> float:
         return float(self.scalars[key][0])

@@ -23,20 +23,20 @@ Grids are independent solves (each with its own full-multigrid start); they run 
 
 from __future__ import annotations
 
-from contextlib import closing
 from dataclasses import dataclass, replace
 import math
 import os
 from pathlib import Path
 import secrets
-from typing import Callable, Mapping, Sequence
+from typing import Mapping, Sequence
 
 import numpy as np
 
 from facegear_tehl.case import THERMAL_MODELS, Case
-from facegear_tehl.parallel import SolveTask, solve_each, stages_of
+from facegear_tehl.parallel import Progress, SolveTask, Solver, StagedSolver, solve_all
 from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.results import RunResult
+from facegear_tehl.run import ehl_solver
 from facegear_tehl.schema import CaseError, check
 from facegear_tehl.solution import Field, PointSolution
 
@@ -46,9 +46,6 @@ QUANTITIES = ("p_max", "h_c", "h_min", "dT_max", "mu")
 """Point scalars the sweep tabulates, when the solver gives them (dT_max and mu: thermal solver)."""
 # Display of a quantity: (units shown, factor from SI, decimals of its value).
 _DISPLAY = {"m": ("µm", 1e6, 4), "Pa": ("MPa", 1e-6, 1), "K": ("K", 1.0, 2), "1": ("-", 1.0, 5)}
-
-Progress = Callable[[PointSolution, int, int], None]
-"""Called as each grid finishes with (solution, grids done, grids in the sweep)."""
 
 
 @dataclass(frozen=True)
@@ -174,10 +171,12 @@ def run_sweep(
     tolerance: float = 0.01,
     jobs: int | None = None,
     progress: Progress | None = None,
+    solver: Solver | StagedSolver | None = None,
 ) -> Sweep:
     """Solve `point` (default: the case's first) of `case` on every grid of `grids` (see `check_grids`),
     on up to `jobs` worker processes (None: all cores), the finest grid first; `thermal` overrides
-    solver.thermal. Bad input raises CaseError before any solve."""
+    solver.thermal; `solver`: the EHL solver unless a stand-in is given. Bad input raises CaseError before any
+    solve."""
     grids = check_grids(grids, case)
     check_tolerance(tolerance)
     if thermal is not None:
@@ -190,19 +189,11 @@ def run_sweep(
         SolveTask(replace(target, name=f"{target.name}@{grids[i]}"), case.lubricant, case.with_grid(grids[i]).solver)
         for i in finest_first
     ]
-    # Imported here: the solver (Numba kernels) is only needed once the input is checked.
-    from facegear_tehl.ehl.solve import solve_point
-
-    solutions: list[PointSolution | None] = [None] * len(grids)
-    failed: set[int] = set()
-    with closing(solve_each(tasks, solve=solve_point, jobs=jobs, stages=stages_of(solve_point))) as outcomes:  # see run.run_case
-        for done, (task_index, outcome) in enumerate(outcomes, start=1):
-            index = finest_first[task_index]
-            solutions[index] = outcome.solution
-            if outcome.failed:
-                failed.add(index)
-            if progress is not None:
-                progress(outcome.solution, done, len(grids))
+    solved, failed_tasks = solve_all(tasks, solver or ehl_solver(), jobs=jobs, progress=progress)
+    solutions: list[PointSolution] = [None] * len(grids)
+    for task_index, index in enumerate(finest_first):
+        solutions[index] = solved[task_index]
+    failed = {finest_first[task_index] for task_index in failed_tasks}
     quantities = _quantities(grids, solutions, tolerance)
     overrides: dict[str, object] = {"point": target.name, "grids": list(grids)}
     if thermal is not None:

@@ -18,7 +18,7 @@ from facegear_tehl.case import Case, load_case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.points import contact_analysis
 from facegear_tehl.results import RunResult
-from facegear_tehl.solution import Field, PointSolution
+from facegear_tehl.solution import Field, Outcome, PointSolution
 
 CASES = Path(__file__).resolve().parents[1] / "cases"
 BALL_ON_DISC = CASES / "ball_on_disc.yaml"
@@ -56,7 +56,7 @@ def solution(point: ContactPoint, *, nx: int = 33, ny: int = 17, converged: bool
     residuals = 10.0 ** -np.arange(1.0, CYCLES + 1.0)
     return PointSolution(
         name=point.name,
-        converged=converged,
+        outcome=Outcome.CONVERGED if converged else Outcome.NOT_CONVERGED,
         message="" if converged else "residual 1e-3 above tolerance 1e-5 after 40 cycles",
         scalars={
             "h_c": (H_C, "m"),

@@ -44,7 +44,7 @@ class FakeSolver:
 @pytest.fixture
 def fake_solver(monkeypatch) -> FakeSolver:
     solver = FakeSolver()
-    monkeypatch.setattr("facegear_tehl.run.solve_point", solver)
+    monkeypatch.setattr("facegear_tehl.run.ehl_solver", lambda: solver)
     return solver
 
 
@@ -318,7 +318,7 @@ def test_interrupted_run_keeps_the_previous_result(tmp_path, signum, code):
     before = target.read_bytes()
     run_with_fake_solver = """
         from facegear_tehl import cli, run
-        run.solve_point = lambda point, lubricant, settings: synthetic.solution(point)
+        run.ehl_solver = lambda: (lambda point, lubricant, settings: synthetic.solution(point))
         cli.main(sys.argv[1:])
     """
     args = ["run", str(synthetic.BALL_ON_DISC), "-o", str(target)]

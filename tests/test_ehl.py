@@ -116,18 +116,17 @@ def test_grid_convergence_257_to_513(m, limit):
 def test_inlet_gap_ratio_is_the_rigid_gap_at_the_upstream_boundary_in_films():
     """inlet_gap_ratio = (x_in^2/(2 R_x) + y_in^2/(2 R_y))/h_c at the point where the entrainment line leaves
     the domain upstream: for entrainment along x on the default domain, x_in = -4.5 b."""
-    from facegear_tehl.ehl.report import _inlet_gap_ratio
+    from facegear_tehl.ehl.report import inlet_gap_ratio
     from types import SimpleNamespace
 
     level = SimpleNamespace(x=np.linspace(-4.5, 1.5, 5), y=np.linspace(-3.0, 3.0, 5))
     scaling = SimpleNamespace(wedge_x=1.0, wedge_y=0.0, a=2e-3, b=1e-3)
-    point = SimpleNamespace(radius_x=0.02, radius_y=0.04)
-    assert _inlet_gap_ratio(level, scaling, point, 1e-6) == pytest.approx((4.5e-3) ** 2 / 0.04 / 1e-6, rel=1e-12)
+    assert inlet_gap_ratio(level, scaling, 0.02, 0.04, 1e-6) == pytest.approx((4.5e-3) ** 2 / 0.04 / 1e-6, rel=1e-12)
     # entrainment at 45 deg: the line leaves through y = -3 a = -6 mm only after x = -4.5 b = -4.5 mm, so x does
     c = math.sqrt(0.5)
     scaling = SimpleNamespace(wedge_x=c, wedge_y=c, a=2e-3, b=1e-3)
     expected = ((4.5e-3) ** 2 / 0.04 + (4.5e-3) ** 2 / 0.08) / 1e-6
-    assert _inlet_gap_ratio(level, scaling, point, 1e-6) == pytest.approx(expected, rel=1e-12)
+    assert inlet_gap_ratio(level, scaling, 0.02, 0.04, 1e-6) == pytest.approx(expected, rel=1e-12)
 
 
 def test_hierarchy_shapes_halve_x_alone_down_to_square_then_both_until_the_smaller_is_coarsest():

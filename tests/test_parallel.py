@@ -20,10 +20,11 @@ import pytest
 
 from facegear_tehl.case import load_case
 from facegear_tehl.cli import tehl
-from facegear_tehl.parallel import SolveTask, Stages, available_cores, solve_each, stages_of, worker_count
+from facegear_tehl.parallel import SolveTask, StagedSolver, available_cores, solve_each, worker_count
 from facegear_tehl.points import contact_analysis
 from facegear_tehl.run import run_case
 from facegear_tehl.schema import CaseError
+from facegear_tehl.solution import Outcome
 
 import synthetic
 
@@ -75,35 +76,34 @@ def _fail_at_s2(point, lubricant, settings):
 
 
 def test_progress_in_completion_order_results_in_case_order(monkeypatch):
-    monkeypatch.setattr("facegear_tehl.run.solve_point", _slow_first)
     seen = []
-    run = run_case(load_case(FACE_GEAR), jobs=2, progress=lambda s, done, total: seen.append((s.name, done, total)))
+    run = run_case(load_case(FACE_GEAR), jobs=2, progress=lambda s, done, total: seen.append((s.name, done, total)),
+                   solver=_slow_first)
     assert [p.name for p in run.points] == ["S1", "S2", "S3", "S4", "S5"]
     assert seen[-1] == ("S1", 5, 5)  # finished last, on its own worker
     assert [done for _, done, _ in seen] == [1, 2, 3, 4, 5]
     assert run.status == "ok"
 
 
-def test_a_failing_point_is_recorded_and_the_others_still_run(monkeypatch):
-    monkeypatch.setattr("facegear_tehl.run.solve_point", _fail_at_s2)
-    run = run_case(load_case(FACE_GEAR), jobs=2)
+def test_a_failing_point_is_recorded_and_the_others_still_run():
+    run = run_case(load_case(FACE_GEAR), jobs=2, solver=_fail_at_s2)
     assert run.failed == ("S2",) and run.status == "failed"
     by_name = {p.name: p for p in run.points}
     assert by_name["S2"].message == "failed: FloatingPointError: overflow in the elastic deflection"
-    assert not by_name["S2"].converged and not by_name["S2"].fields
+    assert by_name["S2"].outcome is Outcome.FAILED and not by_name["S2"].fields
     assert all(by_name[name].converged and by_name[name].fields for name in ("S1", "S3", "S4", "S5"))
     assert "path_coordinate" in by_name["S2"].scalars  # like every point of a gear case
 
 
-def test_one_job_runs_in_this_process(monkeypatch):
+def test_one_job_runs_in_this_process():
     calls = []
 
     def recording(point, lubricant, settings):
         calls.append(os.getpid())
         return synthetic.solution(point)
 
-    monkeypatch.setattr("facegear_tehl.run.solve_point", recording)  # a closure: a pool could not pickle it
-    run = run_case(load_case(FACE_GEAR), jobs=1, points=["S1", "S2"])
+    run = run_case(load_case(FACE_GEAR), jobs=1, points=["S1", "S2"], solver=recording)  # a closure: a pool could
+    # not pickle it
     assert calls == [os.getpid()] * 2 and run.status == "ok"
 
 
@@ -121,7 +121,7 @@ def test_every_solve_has_one_blas_thread(jobs):
     """OpenBLAS sums in another order with more threads: one everywhere keeps --jobs N bit-identical."""
     case = load_case(FACE_GEAR)
     tasks = [SolveTask(p, case.lubricant, case.solver) for p in contact_analysis(case).points[:3]]
-    outcomes = [solved for _, solved in solve_each(tasks, solve=_blas_threads, jobs=jobs)]
+    outcomes = [solved for _, solved in solve_each(tasks, _blas_threads, jobs=jobs)]
     assert [s.solution.scalar("blas_threads") for s in outcomes] == [1.0] * 3
 
 
@@ -131,7 +131,8 @@ def _begin(point, lubricant, settings, retry_after):
     if point.name == "S2":
         raise FloatingPointError("overflow in the first stage")
     if point.name == "S3" and retry_after is None:
-        return replace(synthetic.solution(point, converged=False), message="diverged at cycle 3")
+        return replace(synthetic.solution(point, converged=False), outcome=Outcome.DIVERGED,
+                       message="diverged at cycle 3")
     if point.name == "S4":
         return synthetic.solution(point)
     return {"point": point, "begun_in": os.getpid(), "retry": retry_after is not None}
@@ -144,15 +145,24 @@ def _finish(stage):
     return replace(solution, scalars={**solution.scalars, **extra})
 
 
-def _needs_retry(solution):
-    return not solution.converged and "diverged" in solution.message
+class StandIn:
+    """A stand-in staged solver (module-level: the pool pickles it): whole solves as _blas_threads, stages as
+    _begin and _finish."""
 
+    def __call__(self, point, lubricant, settings):
+        return _blas_threads(point, lubricant, settings)
 
-def _with_retry(first, retry):
-    return replace(retry, message=f"retried after: {first.message}")
+    def begin(self, point, lubricant, settings, retry_after=None):
+        return _begin(point, lubricant, settings, retry_after)
 
+    def finish(self, stage):
+        return _finish(stage)
 
-STAND_IN_STAGES = Stages(_begin, _finish, _needs_retry, _with_retry)
+    def needs_retry(self, solution):
+        return solution.outcome is Outcome.DIVERGED
+
+    def with_retry(self, first, retry):
+        return replace(retry, message=f"retried after: {first.message}")
 
 
 def test_stages_run_on_the_workers_and_give_the_serial_outcomes():
@@ -160,7 +170,7 @@ def test_stages_run_on_the_workers_and_give_the_serial_outcomes():
     again and merged by with_retry), with the outcomes the stages give when composed in one process."""
     case = load_case(FACE_GEAR)
     tasks = [SolveTask(p, case.lubricant, case.solver) for p in contact_analysis(case).points]
-    outcomes = dict(solve_each(tasks, solve=_blas_threads, jobs=2, stages=STAND_IN_STAGES))
+    outcomes = dict(solve_each(tasks, StandIn(), jobs=2))
     assert sorted(outcomes) == [0, 1, 2, 3, 4]
     by_name = {tasks[i].point.name: solved for i, solved in outcomes.items()}
     assert by_name["S2"].failed and by_name["S2"].solution.message == "failed: FloatingPointError: overflow in the first stage"
@@ -173,12 +183,12 @@ def test_stages_run_on_the_workers_and_give_the_serial_outcomes():
         assert not by_name[name].failed and scalars["retried"][0] == 0.0
 
 
-def test_only_the_ehl_solver_is_staged():
-    from facegear_tehl.ehl import solve as ehl
+def test_a_solver_is_staged_by_what_it_can_do():
+    """The runner stages a solver that has the stages (the EHL solver, a stand-in), not a plain function."""
+    from facegear_tehl.ehl.solve import STAGED
 
-    stages = stages_of(ehl.solve_point)
-    assert stages is not None and stages.begin is ehl.begin_point and stages.finish is ehl.finish_point
-    assert stages_of(_slow_first) is None and stages_of(lambda p, l, s: None) is None
+    assert isinstance(STAGED, StagedSolver) and isinstance(StandIn(), StagedSolver)
+    assert not isinstance(_slow_first, StagedSolver)
 
 
 def test_thermal_points_split_into_stages_give_the_serial_file(tmp_path):
@@ -214,7 +224,7 @@ _STALLING_RUN = textwrap.dedent(
                 pass
             time.sleep(60)
         return synthetic.solution(point)
-    run.solve_point = stall
+    run.ehl_solver = lambda: stall
     cli.main(sys.argv[1:])
     """
 )

@@ -20,7 +20,7 @@ from facegear_tehl.plots import PlotReport, _map, _section, _section_directions,
 from facegear_tehl.points import contact_analysis
 from facegear_tehl.results import RunResult, read_result, write_result
 from facegear_tehl.run import run_case
-from facegear_tehl.solution import Field, PointSolution
+from facegear_tehl.solution import Field, Outcome, PointSolution
 from facegear_tehl.sweep import run_sweep
 
 import synthetic
@@ -142,9 +142,9 @@ def test_friction_from_the_heat_table_alone(gear_run, tmp_path):
 
 def test_partial_run_draws_what_is_there_and_says_what_is_missing(gear_run, tmp_path):
     s1, s3, s5 = gear_run.points
-    failed = PointSolution(name="S3", converged=False, message="failed: RuntimeError: diverged", scalars={
+    failed = PointSolution(name="S3", outcome=Outcome.FAILED, message="failed: RuntimeError: diverged", scalars={
         "path_coordinate": s3.scalars["path_coordinate"]}, fields={}, axes={})
-    stalled = replace(s5, converged=False, message="residual above tolerance after 40 cycles")
+    stalled = replace(s5, outcome=Outcome.NOT_CONVERGED, message="residual above tolerance after 40 cycles")
     path = write_result(replace(gear_run, points=(s1, failed, stalled), failed=("S3",)), tmp_path / "partial.h5")
     assert read_result(path).status == "failed"
     report = _plot(path, tmp_path / "figures", what=["fields", "trends", "convergence"])
@@ -156,7 +156,7 @@ def test_partial_run_draws_what_is_there_and_says_what_is_missing(gear_run, tmp_
 
 def test_a_single_point_with_results_skips_trends(gear_run, tmp_path):
     s1, s3, s5 = gear_run.points
-    empty = [PointSolution(name=p.name, converged=False, message="failed: x", scalars={}, fields={}, axes={})
+    empty = [PointSolution(name=p.name, outcome=Outcome.FAILED, message="failed: x", scalars={}, fields={}, axes={})
              for p in (s3, s5)]
     path = write_result(replace(gear_run, points=(s1, *empty), failed=("S3", "S5")), tmp_path / "one.h5")
     report = _plot(path, tmp_path / "figures", what=["trends"])

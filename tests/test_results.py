@@ -20,7 +20,7 @@ from facegear_tehl.results import (
     read_result,
     write_result,
 )
-from facegear_tehl.solution import Field
+from facegear_tehl.solution import Field, Outcome
 
 import synthetic
 
@@ -125,17 +125,27 @@ def test_tables_are_absent_when_not_given(run, tmp_path):
 
 
 def test_status_and_message_flag_non_converged_and_failed_points(run, tmp_path):
-    not_converged = _with_point(run, converged=False, message="load error 3e-2 above 1e-4")
+    not_converged = _with_point(run, outcome=Outcome.NOT_CONVERGED, message="load error 3e-2 above 1e-4")
     result = read_result(write_result(not_converged, tmp_path / "a.h5"))
     assert result.status == "not_converged"
     assert result.message == "contact: load error 3e-2 above 1e-4"
-    assert not result.points["contact"].converged
+    assert not result.points["contact"].converged and result.points["contact"].outcome == "not converged"
 
-    failed = _with_point(run, converged=False, message="failed: FloatingPointError: overflow", scalars={},
+    failed = _with_point(run, outcome=Outcome.FAILED, message="failed: FloatingPointError: overflow", scalars={},
                          fields={}, axes={}, history={})
     result = read_result(write_result(replace(failed, failed=("contact",)), tmp_path / "b.h5"))
-    assert result.status == "failed"
+    assert result.status == "failed" and result.points["contact"].outcome == "failed"
     assert result.points["contact"].fields == {} and result.points["contact"].scalars == {}
+
+
+@pytest.mark.parametrize("converged, outcome", [(True, "converged"), (False, "not converged")])
+def test_a_format_1_0_file_without_outcomes_reads_them_from_converged(run, tmp_path, converged, outcome):
+    path = write_result(run, tmp_path / "r.h5")
+    with h5py.File(path, "r+") as h5:
+        h5.attrs["format_version"] = "1.0"
+        del h5["points/contact"].attrs["outcome"]
+        h5["points/contact"].attrs["converged"] = converged
+    assert read_result(path).points["contact"].outcome == outcome
 
 
 def test_point_order_is_kept(run, tmp_path):
@@ -222,7 +232,7 @@ def test_failure_mid_write_leaves_no_file(run, tmp_path, monkeypatch):
 
 def test_overwrite_replaces_the_previous_file(run, tmp_path):
     target = tmp_path / "r.h5"
-    write_result(_with_point(run, converged=False, message="stalled"), target)
+    write_result(_with_point(run, outcome=Outcome.NOT_CONVERGED, message="stalled"), target)
     write_result(run, target)
     assert read_result(target).status == "ok"
     assert _files(tmp_path) == ["r.h5"]

@@ -129,7 +129,7 @@ _RUN_WITH_A_FAULT = textwrap.dedent(
         return synthetic.solution(point)
     def heat_budget(*args):
         raise RuntimeError("the heat budget broke")
-    run.solve_point = solve
+    run.ehl_solver = lambda: solve
     if fault == "heat budget raises":
         run.heat_budget = heat_budget
     cli.main(sys.argv[1:])

@@ -224,16 +224,18 @@ def test_sweep_jobs_2_gives_the_same_file_as_jobs_1(tmp_path):
     assert_same_file(tmp_path / "jobs1.h5", tmp_path / "jobs2.h5")
 
 
-def test_a_thermal_model_the_solver_did_not_run_is_reported(monkeypatch):
-    monkeypatch.setattr("facegear_tehl.ehl.solve.solve_point", lambda point, lub, settings: synthetic.solution(point))
-    sweep = run_sweep(synthetic.ball_on_disc(), (17, 33, 65), thermal="full", jobs=1)
+def test_a_thermal_model_the_solver_did_not_run_is_reported():
+    def solve(point, lub, settings):
+        return synthetic.solution(point)
+
+    sweep = run_sweep(synthetic.ball_on_disc(), (17, 33, 65), thermal="full", jobs=1, solver=solve)
     assert sweep.run.warnings == tuple(f"contact@{n}: thermal model 'full' asked for, the solver used 'off'"
                                        for n in (17, 33, 65))
     assert sweep.run.case.solver.thermal == "full" and sweep.run.overrides["thermal"] == "full"
-    assert run_sweep(synthetic.ball_on_disc(), (17, 33, 65), thermal="off", jobs=1).run.warnings == ()
+    assert run_sweep(synthetic.ball_on_disc(), (17, 33, 65), thermal="off", jobs=1, solver=solve).run.warnings == ()
 
 
-def test_a_grid_that_did_not_converge_enters_no_order_or_extrapolation(monkeypatch):
+def test_a_grid_that_did_not_converge_enters_no_order_or_extrapolation():
     """The finest grid's solve fails (as the thermal 513^2 face gear does: the 257^2 solution is returned):
     its value must not be read as a converged one (it would fake an order of 8 from a zero change)."""
     def solve(point, lub, settings):
@@ -241,8 +243,7 @@ def test_a_grid_that_did_not_converge_enters_no_order_or_extrapolation(monkeypat
         solved = synthetic.solution(point, converged=settings.grid < 129)
         return replace(solved, scalars={**solved.scalars, "h_c": (value, "m")})
 
-    monkeypatch.setattr("facegear_tehl.ehl.solve.solve_point", solve)
-    sweep = run_sweep(synthetic.ball_on_disc(), (17, 33, 65, 129), jobs=1)
+    sweep = run_sweep(synthetic.ball_on_disc(), (17, 33, 65, 129), jobs=1, solver=solve)
     h_c = next(q for q in sweep.quantities if q.name == "h_c")
     assert math.isnan(h_c.values[-1]) and math.isnan(h_c.change[-1]) and math.isnan(h_c.order[-1])
     assert h_c.order[2] == pytest.approx(2.0, rel=1e-9) and h_c.extrapolated[2] == pytest.approx(1.0, rel=1e-12)

@@ -22,8 +22,15 @@ k = k(p) is the film's conductivity, one value per column since the pressure is 
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 from numba import njit
+
+from facegear_tehl.ehl.layers import simpson_weights
+
+if TYPE_CHECKING:
+    from facegear_tehl.ehl.thermal import FilmState
 
 
 @njit(cache=True)
@@ -197,3 +204,24 @@ def wall_heat_flux(temperature: np.ndarray, film: np.ndarray,
     q1 = conductivity * (-3.0 * t[0] + 4.0 * t[1] - t[2]) / (2.0 * dz)
     q2 = conductivity * (-3.0 * t[-1] + 4.0 * t[-2] - t[-3]) / (2.0 * dz)
     return q1, q2
+
+
+def energy_budget(state: FilmState, film: np.ndarray, dx: float, dy: float, rho_c: np.ndarray,
+                  t_inlet: float) -> dict[str, float]:
+    """The film's energy balance of a film state on a (ny, nx) grid with film h (m), spacings dx, dy (m),
+    volumetric heat capacity rho c per layer (J/(m^3 K)) and inlet temperature (K): the power dissipated by
+    shear, the heat generated (dissipation + compression), conducted into the solids and convected out of the
+    domain by the oil (enthalpy flux rho c (T - T_0) u h through its boundary), W; and the relative imbalance
+    (generated - conducted - convected)/generated."""
+    depth = simpson_weights(state.temperature.shape[0])[:, None, None] * film[None, :, :]
+    dissipated = float((state.dissipation * depth).sum() * dx * dy)
+    generated = float(((state.dissipation + state.compression) * depth).sum() * dx * dy)
+    conducted = float((state.heat_flux_1 + state.heat_flux_2).sum() * dx * dy)
+    excess = rho_c * (state.temperature - t_inlet) * depth
+    out = (excess[:, :, -1] * state.velocity_x[:, :, -1]).sum() - (excess[:, :, 0] * state.velocity_x[:, :, 0]).sum()
+    out = out * dy + ((excess[:, -1, :] * state.velocity_y[:, -1, :]).sum()
+                      - (excess[:, 0, :] * state.velocity_y[:, 0, :]).sum()) * dx
+    convected = float(out)
+    imbalance = (generated - conducted - convected) / generated if generated > 0.0 else 0.0
+    return {"dissipated_power": dissipated, "heat_generated": generated, "heat_conducted": conducted,
+            "heat_convected": convected, "energy_balance_error": imbalance}

@@ -61,6 +61,14 @@ class Relaxation:
     scale_switch: bool = True  # scale xi_switch for long ellipses (see Level); False: Venner's value as is
 
 
+@dataclass(frozen=True)
+class Iterate:
+    """A saved pressure iterate of one grid and the film constant H_0 that goes with it."""
+
+    pressure: np.ndarray
+    h0: float
+
+
 @dataclass
 class Level:
     """One grid of the hierarchy with its state (mutable solver state, not passed between stages)."""
@@ -167,6 +175,57 @@ class MultigridSolver:
             film_rhs=0.5 * xx**2 + 0.5 * pb.geometry_y * yy**2,
             reynolds_rhs=np.zeros((ny, nx)),
         )
+
+    def start_from_hertz(self, central_film: float) -> None:
+        """Coarsest grid: the Hertz pressure P = sqrt(1 - X^2 - Y^2) (zero on the boundary), with H_0 such that
+        the film at the centre is `central_film` (dimensionless)."""
+        level = self.levels[0]
+        self.reset_rhs(level)
+        xx, yy = np.meshgrid(level.x, level.y)
+        level.pressure = np.sqrt(np.maximum(1.0 - xx**2 - yy**2, 0.0))
+        level.pressure[0, :] = level.pressure[-1, :] = 0.0
+        level.pressure[:, 0] = level.pressure[:, -1] = 0.0
+        self.h0 = 0.0
+        self.update_film(level)
+        self.h0 = central_film - self.central_film(level)
+        self.update_film(level)
+
+    def snapshot(self, index: int) -> Iterate:
+        """A copy of the pressure of level `index` and H_0."""
+        return Iterate(self.levels[index].pressure.copy(), self.h0)
+
+    def restore(self, index: int, iterate: Iterate) -> None:
+        """Make level `index` the finest grid again with a saved iterate: its original right-hand sides
+        (a coarser level's were overwritten by the FAS cycles of the finer ones), the pressure and H_0."""
+        level = self.levels[index]
+        self.reset_rhs(level)
+        level.pressure = iterate.pressure.copy()
+        self.h0 = iterate.h0
+        self.update_film(level)
+
+    def set_film_state(self, index: int, temperature: np.ndarray | None,
+                       viscosity_factor: np.ndarray | None) -> None:
+        """Freeze the across-film state (nz, ny, nx) of level `index` on it and, injected, on every coarser
+        grid, and recompute the film and flow coefficients of level `index`; None: the isothermal Newtonian
+        film at the inlet temperature."""
+        top = self.levels[index]
+        for level in self.levels[:index + 1]:
+            if temperature is None:
+                level.temperature = level.viscosity_factor = level.temperature_factor = None
+                continue
+            sx, sy = (top.nx - 1) // (level.nx - 1), (top.ny - 1) // (level.ny - 1)
+            level.temperature = np.ascontiguousarray(temperature[:, ::sy, ::sx])
+            level.viscosity_factor = np.ascontiguousarray(viscosity_factor[:, ::sy, ::sx])
+            level.temperature_factor = flow.temperature_factors(level.temperature, self.problem.law)
+        self.update_film(top)
+
+    def prolong_layers(self, index: int, layers: np.ndarray) -> np.ndarray:
+        """Each layer of `layers` (nz, ny, nx) on level `index - 1` interpolated to level `index`."""
+        return np.stack([self.transfers[index].prolong(layer) for layer in layers])
+
+    def central_film(self, level: Level) -> float:
+        """The film H at the contact centre X = Y = 0 (bilinear between the nodes)."""
+        return grid.bilinear_at(level.film, level.x, level.y, 0.0, 0.0)
 
     def reset_rhs(self, level: Level) -> None:
         """The original (finest-grid) right-hand sides: gap geometry, f = 0, target load."""
@@ -324,7 +383,3 @@ class MultigridSolver:
         fine.pressure[0, :] = fine.pressure[-1, :] = 0.0
         fine.pressure[:, 0] = fine.pressure[:, -1] = 0.0
         self.update_film(fine)
-
-    def level_table(self) -> list[tuple[int, int, int, float]]:
-        """(level, nx, ny, share of the work of a finest-grid sweep) per level, coarsest first."""
-        return [(i, lv.nx, lv.ny, lv.nodes / self.finest_nodes) for i, lv in enumerate(self.levels)]

@@ -74,11 +74,6 @@ class Scaling:
         """h = H * b^2/R_x, m."""
         return self.hertz.b**2 / self.hertz.radius_x
 
-    @property
-    def load_integral(self) -> float:
-        """Target of \\iint P dX dY = w/(p_h a b) = 2 pi/3."""
-        return 2.0 * math.pi / 3.0
-
 
 def scaling_for(point: ContactPoint, lubricant: Lubricant) -> Scaling:
     """The Hertzian scaling of one contact point."""

@@ -10,52 +10,79 @@ Thermal and/or Ree-Eyring films (thermal.py) then iterate an outer loop: the acr
 and eta*/eta per layer) is updated from the current pressure and film, frozen into the flow coefficients of
 every grid (flow.py), and the pressure is cycled again; the loop stops when temperature, pressure and load
 have all converged. From 129^2 up a thermal solve is a thermal full multigrid in two stages: the coupled
-problem one grid coarser (`begin_point`, which returns a picklable `Stage`), then the finest grid from its
-interpolated state (`finish_point`); `solve_point` composes them, parallel.solve_each may run them in
-different workers. The discretisation error is estimated from the solution one grid coarser (isothermal, or
-the coarse thermal stage), Richardson-scaled for a second-order scheme: e = (H_h - H_2h)/(2^2 - 1).
+problem one grid coarser (`PointSolve.begin`, which returns the picklable solve itself), then the finest grid
+from its interpolated state (`PointSolve.finish`); `solve_point` composes them, parallel.solve_all may run
+them in different workers (through `STAGED`). The discretisation error is estimated from the solution one
+grid coarser (isothermal, or the coarse thermal stage), Richardson-scaled for a second-order scheme:
+e = (H_h - H_2h)/(2^2 - 1).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+import itertools
 import math
 import time
 
 import numpy as np
 
-from facegear_tehl.case import SolverSettings
 from facegear_tehl.contact import ContactPoint
-from facegear_tehl.ehl import flow, grid
-from facegear_tehl.ehl.multigrid import Level, MultigridSolver, Problem, Relaxation
-from facegear_tehl.ehl.scaling import Scaling, scaling_for
+from facegear_tehl.ehl import grid
+from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem, Relaxation
 from facegear_tehl.ehl.report import (ORDER, LevelSummary, point_solution, richardson_error, summarise,
                                       with_film_state)
+from facegear_tehl.ehl.scaling import Scaling, scaling_for
 from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel, thermal_choice
 from facegear_tehl.film_formulas import hamrock_dowson_central
 from facegear_tehl.lubricant import Lubricant
-from facegear_tehl.solution import PointSolution
+from facegear_tehl.settings import SolverSettings
+from facegear_tehl.solution import CONVERGED, Outcome, PointSolution, Status
 
 DIVERGED_LOAD_ERROR = 0.5  # a relative load error above this after a full cycle means the iteration is running away
-EYRING_LAYERS = 9  # layers for an isothermal Ree-Eyring film
+EYRING_LAYERS = 9  # layers for an isothermal Ree-Eyring film (as the thermal default: Simpson on 9 nodes, layers.py)
 CYCLES_PER_THERMAL_UPDATE = 2  # V-cycles on the pressure between two updates of the film state
-THERMAL_RELAXATION = 0.7  # under-relaxation of the layer temperatures between outer iterations
-VISCOSITY_RELAXATION = 0.4  # under-relaxation of ln(eta*/eta) between outer iterations
+# Under-relaxation of the outer loop: the film state responds to the pressure with a lag of one update, and
+# the full step overshoots where the viscosity falls steeply with temperature (a period-2 oscillation of the
+# hot spot); 0.7 on the temperatures and 0.4 on ln(eta*/eta) (the stiffer of the two: eta* falls by orders of
+# magnitude over a few MPa of shear stress) converged every face gear point and thermal hard case tried.
+THERMAL_RELAXATION = 0.7
+VISCOSITY_RELAXATION = 0.4
 MIN_COARSE_THERMAL_GRID = 65  # the coupled problem is solved one grid coarser first only from this grid up
+DOMAIN_HALF_WIDTH = 3.0  # default domain: a square of +-3 semi-axes (Venner & Lubrecht 2000) ...
+DOMAIN_UPSTREAM_SHIFT = 1.5  # ... shifted 1.5 semi-axes upstream: 4.5 upstream, 1.5 downstream of the centre
+
+# Algebraic floor of the pressure iteration (a period-2 flicker at the spike and the free boundary):
+FLOOR_STALL = 0.8  # the change per cycle fell by less than 20 % over two cycles ...
+FLOOR_BAND = 10.0  # ... while below this multiple of the tolerance (h_c, h_min then steady to ~1e-5)
+# Algebraic floor of the thermal outer loop (see _at_thermal_floor):
+THERMAL_FLOOR_WINDOW = 8  # outer iterations over which a stalled thermal change is judged
+THERMAL_FLOOR_STALL = 0.5  # stalled: the smallest change of the window's last half above this share of its first
+THERMAL_FLOOR_FRACTION = 0.01  # largest stalled change accepted, as a fraction of the temperature rise
+THERMAL_FLOOR_H_C = 5e-4  # largest relative spread of h_c over the window (its grid error: 1e-3 to 6e-3)
+THERMAL_FLOOR_ERROR_SHARE = 0.5  # or this share of h_c's own error estimate, if larger
+MIN_RISE = 1.0  # K: tolerances relative to the temperature rise use at least this rise (near-isothermal films)
 
 
 @dataclass
-class _History:
-    """Bookkeeping of the finest-grid iteration (solver state, not passed between stages)."""
+class History:
+    """Bookkeeping of the finest-grid iteration: per cycle, per outer iteration, and the floors reached."""
 
-    changes: list = field(default_factory=list)
-    residuals: list = field(default_factory=list)
-    loads: list = field(default_factory=list)
-    cycles: int = 0
-    floor: float = math.nan
-    thermal_floor: float = math.nan
-    thermal_changes: list = field(default_factory=list)
-    thermal_h_c: list = field(default_factory=list)
+    cycles: int
+    changes: list[float] = field(default_factory=list)  # relative L1 pressure change per cycle (NaN: start)
+    residuals: list[float] = field(default_factory=list)  # mean |Reynolds residual| over pressurised nodes
+    loads: list[float] = field(default_factory=list)  # relative load error per cycle
+    floor: float = math.nan  # pressure change at an accepted algebraic floor
+    thermal_floor: float = math.nan  # K, temperature change at an accepted thermal floor
+    thermal_changes: list[float] = field(default_factory=list)  # K, largest layer-temperature change per update
+    thermal_h_c: list[float] = field(default_factory=list)  # m, central film per outer iteration
+
+
+@dataclass
+class _Best:
+    """The best iterate of a finest-grid iteration (smallest pressure change + |load error|)."""
+
+    score: float
+    iterate: Iterate
 
 
 def default_domain(scaling: Scaling) -> tuple[tuple[float, float], tuple[float, float]]:
@@ -65,244 +92,17 @@ def default_domain(scaling: Scaling) -> tuple[tuple[float, float], tuple[float, 
     """
     dx, dy = scaling.wedge_x, scaling.wedge_y
     norm = math.hypot(dx, dy)
-    cx, cy = -1.5 * dx / norm, -1.5 * dy / norm
-    return (cx - 3.0, cx + 3.0), (cy - 3.0, cy + 3.0)
+    cx, cy = -DOMAIN_UPSTREAM_SHIFT * dx / norm, -DOMAIN_UPSTREAM_SHIFT * dy / norm
+    return (cx - DOMAIN_HALF_WIDTH, cx + DOMAIN_HALF_WIDTH), (cy - DOMAIN_HALF_WIDTH, cy + DOMAIN_HALF_WIDTH)
 
 
-def _finite(level: Level) -> bool:
-    return bool(np.isfinite(level.pressure).all() and np.isfinite(level.film).all() and np.isfinite(level.eps).all())
-
-
-def _at_algebraic_floor(changes: list[float], loads: list[float], settings: SolverSettings) -> bool:
-    """The iteration has reached its algebraic floor: the pressure change per cycle stopped falling
-    (by less than 20 % over two cycles) below 10x the tolerance, and the load error averaged over the last
-    two cycles is within tolerance. The floor is a period-2 flicker of the nodes at the pressure spike and on
-    the cavitation boundary (a few 1e-4 of the pressure); h_c and h_min are then steady to about 1e-5.
-    """
-    if len(changes) < 5:
-        return False
-    stalled = changes[-1] > 0.8 * changes[-3]
-    small = changes[-1] < 10.0 * settings.tolerance
-    return stalled and small and _balanced(loads, settings)
-
-
-def _balanced(loads: list[float], settings: SolverSettings) -> bool:
-    """The load error averaged over the last two cycles is within tolerance."""
-    return len(loads) >= 2 and abs(0.5 * (loads[-1] + loads[-2])) < settings.load_tolerance
-
-
-THERMAL_FLOOR_WINDOW = 8  # outer iterations over which a stalled thermal change is judged
-THERMAL_FLOOR_FRACTION = 0.01  # largest stalled change accepted, as a fraction of the temperature rise
-THERMAL_FLOOR_H_C = 5e-4  # largest relative spread of h_c over the window (its grid error: 1e-3 to 6e-3)
-
-
-def _at_thermal_floor(changes: list[float], h_c: list[float], rise: float, h_c_error: float = 0.0) -> bool:
-    """The outer loop has reached its algebraic floor: over the last THERMAL_FLOOR_WINDOW outer iterations
-    (of this grid) the largest temperature change stopped falling (the smallest change of the last half is
-    above half the smallest of the first half), stays below 1 % of the temperature rise, and h_c is steady
-    to 5e-4 or to half its estimated discretisation error `h_c_error` (relative), if larger (the error is
-    1e-3 to 6e-3 on 129^2-257^2). What is left is a period-2 flicker of a few nodes where a layer velocity changes sign between
-    iterations (the upwind direction of the energy equation switches; under-relaxing the temperature only
-    scales it): e.g. the heaviest face gear point of cases/hard, 0.43 K at the inlet edge with a 98 K rise.
-    """
-    n = THERMAL_FLOOR_WINDOW
-    if len(changes) < n:
-        return False
-    recent, films = changes[-n:], h_c[-n:]
-    half = n // 2
-    stalled = min(recent[half:]) > 0.5 * min(recent[:half])
-    small = max(recent) < THERMAL_FLOOR_FRACTION * max(rise, 1.0)
-    steady = (max(films) - min(films)) <= max(THERMAL_FLOOR_H_C, 0.5 * h_c_error) * abs(films[-1])
-    return stalled and small and steady
-
-
-def _h_c_error(h_c: float, coarse_h_c: float) -> float:
-    """|Richardson estimate| of the relative error of h_c (m) from h_c one grid coarser (m); 0 without it."""
-    return abs(richardson_error(h_c, coarse_h_c, ORDER)) if math.isfinite(coarse_h_c) and h_c != 0.0 else 0.0
-
-
-def _pressure_settled(history: _History, settings: SolverSettings) -> bool:
-    """Between film-state updates the pressure stays within its algebraic floor (_at_algebraic_floor's bound:
-    the last four changes per cycle below 10x the tolerance, the load error of the last two cycles within
-    tolerance), though two cycles per update are too few to see it stall."""
-    changes = history.changes[-4:]
-    return len(changes) == 4 and max(changes) < 10.0 * settings.tolerance and _balanced(history.loads, settings)
-
-
-def _start_coarsest(solver: MultigridSolver, scaling: Scaling) -> None:
-    level = solver.levels[0]
-    solver.reset_rhs(level)
-    xx, yy = np.meshgrid(level.x, level.y)
-    level.pressure = np.sqrt(np.maximum(1.0 - xx**2 - yy**2, 0.0))
-    level.pressure[0, :] = level.pressure[-1, :] = 0.0
-    level.pressure[:, 0] = level.pressure[:, -1] = 0.0
-    solver.h0 = 0.0
-    solver.update_film(level)
-    # H_0 such that the Hertzian film at the centre equals the Hamrock-Dowson central film.
-    h_c_guess = (
-        hamrock_dowson_central(scaling.hamrock_u, scaling.hamrock_g, scaling.hamrock_w, scaling.ellipticity)
-        * scaling.hertz.radius_x
-        / scaling.film_scale
-    )
-    solver.h0 = h_c_guess - grid.bilinear_at(level.film, level.x, level.y, 0.0, 0.0)
-    solver.update_film(level)
-
-
-def _full_multigrid(solver: MultigridSolver, scaling: Scaling, settings: SolverSettings, summaries: list,
-                    first: int, last: int):
-    """Full-multigrid steps from level `first` (0: start from Hertz) up to `last`; appends level summaries.
-
-    Returns (index of the finest finite level, message)."""
-    if first == 0:
-        _start_coarsest(solver, scaling)
-        for _ in range(settings.cycles_per_level):
-            solver.cycle(0)
-        summaries.append(summarise(solver.levels[0]))
-        first = 1
-    snapshot = (solver.levels[first - 1].pressure.copy(), solver.h0)
-    for index in range(first, last + 1):
-        solver.interpolate_up(index)
-        for _ in range(settings.cycles_per_level):
-            solver.cycle(index)
-        level = solver.levels[index]
-        diverged = not _finite(level) or abs(solver.force_error(level)) > DIVERGED_LOAD_ERROR * solver.problem.load_integral
-        if diverged:
-            # the coarser level was overwritten by the FAS cycles of this one: restore its own solution
-            coarser = solver.levels[index - 1]
-            solver.reset_rhs(coarser)
-            coarser.pressure, solver.h0 = snapshot
-            solver.update_film(coarser)
-            return index - 1, f"diverged during the full-multigrid start on the {level.nx}^2 grid"
-        snapshot = (level.pressure.copy(), solver.h0)
-        summaries.append(summarise(level))
-    return last, ""
-
-
-def _cycle(solver: MultigridSolver, index: int, settings: SolverSettings, history: _History, max_cycles: int,
-           best: list | None) -> tuple[bool, str]:
-    """V-cycles on level `index` until the tolerances are met, at most `max_cycles`; returns (met, message).
-
-    `best` (if given) keeps the best iterate [score, pressure, film, h0] for reporting a non-converged solve.
-    """
-    level = solver.levels[index]
-    load_integral = solver.problem.load_integral
-    previous = level.pressure.copy()
-    for extra in range(max_cycles + 1):
-        change = float(np.abs(level.pressure - previous).sum() / max(np.abs(level.pressure).sum(), 1e-300))
-        load_error = solver.force_error(level) / load_integral
-        residual = solver.residual(level)
-        positive = level.pressure > 0.0
-        if extra > 0 or not history.changes:
-            history.changes.append(change if extra > 0 else math.nan)
-            history.residuals.append(float(np.abs(residual[positive]).mean()) if positive.any() else 0.0)
-            history.loads.append(load_error)
-        if abs(load_error) > DIVERGED_LOAD_ERROR:
-            return False, f"diverged at cycle {history.cycles} on the finest grid (load error {load_error:.2e})"
-        if best is not None:
-            score = (change if extra > 0 else 1.0) + abs(load_error)
-            if score < best[0]:
-                best[:] = [score, level.pressure.copy(), level.film.copy(), solver.h0]
-        if extra > 0 and change < settings.tolerance and abs(load_error) < settings.load_tolerance:
-            return True, ""
-        if extra > 0 and _at_algebraic_floor(history.changes, history.loads, settings):
-            history.floor = change
-            return True, ""
-        if extra == max_cycles:
-            return False, (
-                f"not converged after {history.cycles} cycles on the finest grid: pressure change {change:.2e} "
-                f"(tolerance {settings.tolerance:.0e}), load error {load_error:.2e} "
-                f"(tolerance {settings.load_tolerance:.0e})"
-            )
-        previous = level.pressure.copy()
-        solver.cycle(index)
-        history.cycles += 1
-        if not _finite(level):
-            return False, f"diverged at cycle {history.cycles} on the finest grid (non-finite pressure or film)"
-    return False, ""
-
-
-def _freeze_film_state(solver: MultigridSolver, index: int, state: FilmState) -> None:
-    """Give every grid the film state (injected to coarse grids) and recompute its flow coefficients."""
-    top = solver.levels[index]
-    for level_index in range(index + 1):
-        level = solver.levels[level_index]
-        sx, sy = (top.nx - 1) // (level.nx - 1), (top.ny - 1) // (level.ny - 1)
-        level.temperature = np.ascontiguousarray(state.temperature[:, ::sy, ::sx])
-        level.viscosity_factor = np.ascontiguousarray(state.viscosity_factor[:, ::sy, ::sx])
-        level.temperature_factor = flow.temperature_factors(level.temperature, solver.problem.law)
-        if level_index == index:
-            solver.update_film(level)
-
-
-def solve_point(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
-    """Solve the EHL problem of one contact point (thermal model and rheology as the settings say).
-
-    Convergence policy: a solve that runs away is repeated once with the other Gauss-Seidel / Jacobi switch
-    (the ellipse-scaled one first, then Venner's circle value; multigrid.Level), and the retry is reported.
-    The same steps, split into stages that can run in different processes: `begin_point`, `finish_point`,
-    `needs_retry`, `with_retry` (parallel.solve_each).
-    """
-    first = _through(begin_point(point, lubricant, settings))
-    if not needs_retry(first):
-        return first
-    return with_retry(first, _through(begin_point(point, lubricant, settings, retry_after=first)))
-
-
-def _through(begun: "PointSolution | Stage") -> PointSolution:
-    return finish_point(begun) if isinstance(begun, Stage) else begun
-
-
-def needs_retry(solution: PointSolution) -> bool:
-    """The first attempt ran away: repeat it with Venner's switch."""
-    return not solution.converged and "diverged" in solution.message
-
-
-def with_retry(first: PointSolution, retry: PointSolution) -> PointSolution:
-    """The retry's solution, noted, if it did better than running away; else the first attempt's."""
-    if retry.converged or "diverged" not in retry.message:
-        note = f"converged after a retry with Venner's switch (first attempt: {first.message})"
-        return PointSolution(**{**retry.__dict__, "message": retry.message or "", "models": {
-            **retry.models, "solver": retry.models["solver"] + "; " + note}})
-    return first
-
-
-@dataclass
-class Stage:
-    """A thermal full-multigrid solve after its coarse stage (the coupled problem one grid coarser, converged),
-    before the fine stage: everything `finish_point` needs, picklable, so that the two stages of a point can
-    run in different processes (parallel.solve_each) with the same result as in one."""
-
-    point: ContactPoint
-    lubricant: Lubricant
-    settings: SolverSettings
-    scaling: Scaling
-    solver: MultigridSolver
-    mode: str
-    reason: str
-    summaries: list
-    history: _History
-    coarse_state: FilmState
-    elapsed: float  # s spent so far (first attempt included)
-
-
-def begin_point(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
-                retry_after: PointSolution | None = None) -> "PointSolution | Stage":
-    """The solve up to the end of its coarse thermal stage (a Stage), or the whole solve when it has no
-    separate fine stage or the coarse stage failed. `retry_after`: the first attempt, which ran away: this
-    one uses Venner's switch, and its wall time counts the first's."""
-    relaxation = Relaxation() if retry_after is None else Relaxation(scale_switch=False)
-    start = time.perf_counter() - (0.0 if retry_after is None else retry_after.scalar("wall_time"))
-    return _solve(point, lubricant, settings, relaxation, start)
-
-
-def _solve(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, relaxation: Relaxation,
-           start: float) -> PointSolution:
-    scaling = scaling_for(point, lubricant)
+def _problem(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, scaling: Scaling) -> Problem:
+    """The dimensionless problem of a point on the settings' domain (default_domain when not set)."""
     if settings.domain_x is None or settings.domain_y is None:
         domain_x, domain_y = default_domain(scaling)
     else:
         domain_x, domain_y = settings.domain_x, settings.domain_y
-    problem = Problem(
+    return Problem(
         lam=scaling.lam,
         deflection_coefficient=scaling.deflection_coefficient,
         ellipticity=scaling.ellipticity,
@@ -317,173 +117,371 @@ def _solve(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, 
         domain_x=domain_x,
         domain_y=domain_y,
     )
-    shapes = grid.hierarchy_shapes(settings.grid, settings.nodes_y, settings.coarsest_grid)
-    solver = MultigridSolver(problem, shapes, relaxation)
-    mode, reason = thermal_choice(settings.thermal, point, lubricant)
-    coupled = mode != "off" or lubricant.rheology == "ree_eyring"
-    top = len(solver.levels) - 1
-    summaries: list[LevelSummary] = []
-    history = _History(cycles=settings.cycles_per_level)
-    state = None
-    converged = False
-    if mode != "off" and top > 0 and solver.levels[top - 1].nx >= MIN_COARSE_THERMAL_GRID:
-        # thermal full multigrid: the coupled problem one grid coarser first, its film state interpolated and
-        # frozen on the finest grid; `reduced` stops there (one film-state evaluation for the outputs), `full`
-        # goes on coupling on the finest grid from that state (below 65^2 both couple on the finest grid)
-        finest, message = _full_multigrid(solver, scaling, settings, summaries, 0, top - 1)
-        if not message:
-            converged, message = _cycle(solver, finest, settings, history, settings.max_cycles, None)
-            coarse_state, converged, message = _couple(solver, finest, point, lubricant, scaling, settings, mode,
-                                                       history)
-            if coarse_state is not None and not message.startswith("diverged"):
-                return Stage(point, lubricant, settings, scaling, solver, mode, reason, summaries, history,
-                             coarse_state, time.perf_counter() - start)
-            state = coarse_state
-        level = solver.levels[finest]
-    else:
-        finest, message = _full_multigrid(solver, scaling, settings, summaries, 0, top)
-        level = solver.levels[finest]
-        best: list = [math.inf, level.pressure.copy(), level.film.copy(), solver.h0]
-        if not message:
-            converged, message = _cycle(solver, finest, settings, history, settings.max_cycles,
-                                        None if coupled else best)
-            if coupled and not message.startswith("diverged"):
-                state, converged, message = _couple(solver, finest, point, lubricant, scaling, settings, mode, history)
-        if not coupled and not converged:
-            # report the best iterate, not the last (it may be running away)
-            _, level.pressure, level.film, solver.h0 = best
-            solver.update_film(level)
-    return _report(point, lubricant, scaling, solver, level, summaries, converged, message, start, history, state,
-                   mode, reason)
 
 
-def finish_point(stage: Stage) -> PointSolution:
-    """The fine stage of a thermal full-multigrid solve: the coarse solution and film state interpolated and
-    frozen on the finest grid, its pressure converged; `reduced` evaluates the film state once there, `full`
-    couples again on the finest grid. A finest grid that runs away reports the converged coarse solution."""
-    start = time.perf_counter() - stage.elapsed
-    solver, summaries, history, coarse_state = stage.solver, stage.summaries, stage.history, stage.coarse_state
-    point, lubricant, scaling, settings, mode = stage.point, stage.lubricant, stage.scaling, stage.settings, stage.mode
-    top = len(solver.levels) - 1
-    finest = top - 1
-    coarse = solver.levels[finest]
-    # the coarse level, now with its film state (its dT_max and mu give the fine grid's error estimates)
-    summaries[-1] = with_film_state(summarise(coarse), coarse, coarse_state, scaling, point.load,
-                                    lubricant.inlet_temperature)
-    snapshot = (coarse.pressure.copy(), solver.h0)
-    frozen, converged, message = _start_fine_grid(solver, top, coarse_state, settings, history)
-    if message.startswith("diverged"):
-        # the finest grid ran away: report the converged coarse-grid solution, flagged
-        solver.reset_rhs(coarse)
-        coarse.pressure, solver.h0 = snapshot
-        _freeze_film_state(solver, finest, coarse_state)
-        state = coarse_state
-        message = f"finest grid: {message}; the result is the {coarse.nx}^2 solution"
-        converged = False
-    else:
-        finest = top
-        if mode == "reduced":
+def _finite(level: Level) -> bool:
+    return bool(np.isfinite(level.pressure).all() and np.isfinite(level.film).all() and np.isfinite(level.eps).all())
+
+
+def _balanced(loads: list[float], settings: SolverSettings) -> bool:
+    """The load error averaged over the last two cycles is within tolerance."""
+    return len(loads) >= 2 and abs(0.5 * (loads[-1] + loads[-2])) < settings.load_tolerance
+
+
+def _at_algebraic_floor(changes: list[float], loads: list[float], settings: SolverSettings) -> bool:
+    """The iteration has reached its algebraic floor: the pressure change per cycle stopped falling
+    (by less than 20 % over two cycles) below 10x the tolerance, and the load error averaged over the last
+    two cycles is within tolerance. The floor is a period-2 flicker of the nodes at the pressure spike and on
+    the cavitation boundary (a few 1e-4 of the pressure); h_c and h_min are then steady to about 1e-5.
+    """
+    if len(changes) < 5:
+        return False
+    stalled = changes[-1] > FLOOR_STALL * changes[-3]
+    small = changes[-1] < FLOOR_BAND * settings.tolerance
+    return stalled and small and _balanced(loads, settings)
+
+
+def _pressure_settled(history: History, settings: SolverSettings) -> bool:
+    """Between film-state updates the pressure stays within its algebraic floor (_at_algebraic_floor's bound:
+    the last four changes per cycle below 10x the tolerance, the load error of the last two cycles within
+    tolerance), though two cycles per update are too few to see it stall."""
+    changes = history.changes[-4:]
+    return len(changes) == 4 and max(changes) < FLOOR_BAND * settings.tolerance and _balanced(history.loads, settings)
+
+
+def _at_thermal_floor(changes: list[float], h_c: list[float], rise: float, h_c_error: float = 0.0) -> bool:
+    """The outer loop has reached its algebraic floor: over the last THERMAL_FLOOR_WINDOW outer iterations
+    (of this grid) the largest temperature change stopped falling (the smallest change of the last half is
+    above half the smallest of the first half), stays below 1 % of the temperature rise, and h_c is steady
+    to 5e-4 or to half its estimated discretisation error `h_c_error` (relative), if larger (the error is
+    1e-3 to 6e-3 on 129^2-257^2). What is left is a period-2 flicker of a few nodes where a layer velocity
+    changes sign between iterations (the upwind direction of the energy equation switches; under-relaxing the
+    temperature only scales it): e.g. the heaviest face gear point of cases/hard, 0.43 K at the inlet edge with
+    a 98 K rise.
+    """
+    n = THERMAL_FLOOR_WINDOW
+    if len(changes) < n:
+        return False
+    recent, films = changes[-n:], h_c[-n:]
+    half = n // 2
+    stalled = min(recent[half:]) > THERMAL_FLOOR_STALL * min(recent[:half])
+    small = max(recent) < THERMAL_FLOOR_FRACTION * max(rise, MIN_RISE)
+    spread = max(THERMAL_FLOOR_H_C, THERMAL_FLOOR_ERROR_SHARE * h_c_error)
+    steady = (max(films) - min(films)) <= spread * abs(films[-1])
+    return stalled and small and steady
+
+
+def _h_c_error(h_c: float, coarse_h_c: float) -> float:
+    """|Richardson estimate| of the relative error of h_c (m) from h_c one grid coarser (m); 0 without it."""
+    return abs(richardson_error(h_c, coarse_h_c, ORDER)) if math.isfinite(coarse_h_c) and h_c != 0.0 else 0.0
+
+
+class PointSolve:
+    """One contact point's solve: its inputs, the multigrid solver, the thermal model chosen and why, and the
+    bookkeeping every step adds to (level summaries, history). `begin` runs the solve up to the end of its
+    coarse thermal stage and returns itself (picklable) when a fine stage follows, else the solution;
+    `finish` runs the fine stage."""
+
+    def __init__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
+                 relaxation: Relaxation = Relaxation(), elapsed: float = 0.0):
+        """`elapsed`: s already spent on this point (a first attempt that ran away), counted in its wall time."""
+        self.point, self.lubricant, self.settings = point, lubricant, settings
+        self.scaling = scaling_for(point, lubricant)
+        shapes = grid.hierarchy_shapes(settings.grid, settings.nodes_y, settings.coarsest_grid)
+        self.solver = MultigridSolver(_problem(point, lubricant, settings, self.scaling), shapes, relaxation)
+        self.mode, self.reason = thermal_choice(settings.thermal, point, lubricant)
+        self.summaries: list[LevelSummary] = []
+        self.history = History(cycles=settings.cycles_per_level)
+        self.coarse_state: FilmState | None = None  # the film state of the coarse thermal stage
+        self.elapsed = elapsed  # s spent up to the last pause (a solve paused between stages has no clock)
+        self._clock = time.perf_counter() - elapsed
+
+    @property
+    def coupled(self) -> bool:
+        """The film state is iterated with the pressure (thermal, or an isothermal Ree-Eyring film)."""
+        return self.mode != "off" or self.lubricant.rheology == "ree_eyring"
+
+    # ------------------------------------------------------------------ stages
+    def begin(self) -> PointSolution | PointSolve:
+        """The solve up to the end of its coarse thermal stage (self, to be finished), or the whole solve when
+        it has no separate fine stage or the coarse stage failed."""
+        top = len(self.solver.levels) - 1
+        if self.mode != "off" and top > 0 and self.solver.levels[top - 1].nx >= MIN_COARSE_THERMAL_GRID:
+            return self._coarse_thermal_stage(top - 1)
+        return self._solve_finest(top)
+
+    def finish(self) -> PointSolution:
+        """The fine stage of a thermal full-multigrid solve: the coarse solution and film state interpolated
+        and frozen on the finest grid, its pressure converged; `reduced` evaluates the film state once there,
+        `full` couples again on the finest grid. A finest grid that runs away reports the converged coarse
+        solution."""
+        self._clock = time.perf_counter() - self.elapsed
+        solver, top = self.solver, len(self.solver.levels) - 1
+        coarse = solver.levels[top - 1]
+        # the coarse level, now with its film state (its dT_max and mu give the fine grid's error estimates)
+        self.summaries[-1] = with_film_state(summarise(coarse), coarse, self.coarse_state, self.scaling,
+                                             self.point.load, self.lubricant.inlet_temperature)
+        saved = solver.snapshot(top - 1)
+        frozen, status = self._start_fine_grid(top)
+        if status.diverged:
+            solver.restore(top - 1, saved)
+            solver.set_film_state(top - 1, self.coarse_state.temperature, self.coarse_state.viscosity_factor)
+            message = f"finest grid: {status.message}; the result is the {coarse.nx}^2 solution"
+            return self.report(top - 1, Status(Outcome.DIVERGED, message), self.coarse_state)
+        if self.mode == "reduced":
             fine = solver.levels[top]
-            model = _film_model(fine, point, lubricant, scaling, settings, mode)
-            state = model.update(fine.pressure * scaling.p_h, fine.film * scaling.film_scale, frozen.temperature)
+            state = self._film_model(fine).update(fine.pressure * self.scaling.p_h,
+                                                  fine.film * self.scaling.film_scale, frozen.temperature)
         else:
-            state, converged, message = _couple(solver, top, point, lubricant, scaling, settings, mode, history,
-                                                frozen, summaries[-1].h_c)
-        summaries.append(summarise(solver.levels[top]))
-    return _report(point, lubricant, scaling, solver, solver.levels[finest], summaries, converged, message, start,
-                   history, state, mode, stage.reason)
+            state, status = self.couple(top, frozen, self.summaries[-1].h_c)
+        self.summaries.append(summarise(solver.levels[top]))
+        return self.report(top, status, state)
+
+    def _coarse_thermal_stage(self, coarse: int) -> PointSolution | PointSolve:
+        """Thermal full multigrid, first stage: the coupled problem one grid coarser than the finest (`reduced`
+        stops after the fine stage's single film-state evaluation, `full` couples again there). The isothermal
+        pressure is cycled first; its tolerance is not required, the coupled loop goes on from where it got."""
+        index, status = self.start(coarse)
+        state = None
+        if status.converged:
+            self.cycle(index, self.settings.max_cycles)
+            state, status = self.couple(index)
+            if state is not None and not status.diverged:
+                self.coarse_state = state
+                self.elapsed = time.perf_counter() - self._clock
+                return self
+        return self.report(index, status, state)
+
+    def _solve_finest(self, top: int) -> PointSolution:
+        """Full multigrid to the finest grid, cycles to tolerance there, then (thermal or Ree-Eyring films) the
+        outer loop there. An isothermal Newtonian solve that does not converge reports its best iterate."""
+        index, status = self.start(top)
+        best = None if self.coupled else _Best(math.inf, self.solver.snapshot(index))
+        state = None
+        if status.converged:
+            status = self.cycle(index, self.settings.max_cycles, best)
+            if self.coupled and not status.diverged:
+                state, status = self.couple(index)
+        if best is not None and not status.converged:
+            self.solver.restore(index, best.iterate)  # the best iterate, not the last (it may be running away)
+        return self.report(index, status, state)
+
+    # ------------------------------------------------------------------- steps
+    def start(self, last: int) -> tuple[int, Status]:
+        """Full multigrid from the Hertz start on the coarsest grid up to level `last`; appends a summary per
+        level. Returns the finest level that stayed sound (a level that runs away is undone) and the status."""
+        solver, settings = self.solver, self.settings
+        solver.start_from_hertz(self._central_film_estimate())
+        for _ in range(settings.cycles_per_level):
+            solver.cycle(0)
+        self.summaries.append(summarise(solver.levels[0]))
+        saved = solver.snapshot(0)
+        for index in range(1, last + 1):
+            solver.interpolate_up(index)
+            for _ in range(settings.cycles_per_level):
+                solver.cycle(index)
+            level = solver.levels[index]
+            runaway = abs(solver.force_error(level)) > DIVERGED_LOAD_ERROR * solver.problem.load_integral
+            if not _finite(level) or runaway:
+                solver.restore(index - 1, saved)
+                return index - 1, Status(Outcome.DIVERGED,
+                                         f"diverged during the full-multigrid start on the {level.nx}^2 grid")
+            saved = solver.snapshot(index)
+            self.summaries.append(summarise(level))
+        return last, CONVERGED
+
+    def _central_film_estimate(self) -> float:
+        """The Hamrock & Dowson (1977) central film, dimensionless."""
+        s = self.scaling
+        h_c = hamrock_dowson_central(s.hamrock_u, s.hamrock_g, s.hamrock_w, s.ellipticity) * s.hertz.radius_x
+        return h_c / s.film_scale
+
+    def cycle(self, index: int, max_cycles: int, best: _Best | None = None) -> Status:
+        """V-cycles on level `index` until the tolerances are met (or the algebraic floor is reached), at most
+        `max_cycles`. `best` (if given) keeps the best iterate for reporting a solve that does not converge."""
+        solver, settings, history = self.solver, self.settings, self.history
+        level = solver.levels[index]
+        load_integral = solver.problem.load_integral
+        previous = level.pressure.copy()
+        for extra in itertools.count():
+            change = float(np.abs(level.pressure - previous).sum() / max(np.abs(level.pressure).sum(), 1e-300))
+            load_error = solver.force_error(level) / load_integral
+            residual = solver.residual(level)
+            positive = level.pressure > 0.0
+            if extra > 0 or not history.changes:
+                history.changes.append(change if extra > 0 else math.nan)
+                history.residuals.append(float(np.abs(residual[positive]).mean()) if positive.any() else 0.0)
+                history.loads.append(load_error)
+            if abs(load_error) > DIVERGED_LOAD_ERROR:
+                return Status(Outcome.DIVERGED,
+                              f"diverged at cycle {history.cycles} on the finest grid (load error {load_error:.2e})")
+            if best is not None:
+                score = (change if extra > 0 else 1.0) + abs(load_error)
+                if score < best.score:
+                    best.score, best.iterate = score, solver.snapshot(index)
+            if extra > 0 and change < settings.tolerance and abs(load_error) < settings.load_tolerance:
+                return CONVERGED
+            if extra > 0 and _at_algebraic_floor(history.changes, history.loads, settings):
+                history.floor = change
+                return CONVERGED
+            if extra == max_cycles:
+                return Status(Outcome.NOT_CONVERGED, (
+                    f"not converged after {history.cycles} cycles on the finest grid: pressure change {change:.2e} "
+                    f"(tolerance {settings.tolerance:.0e}), load error {load_error:.2e} "
+                    f"(tolerance {settings.load_tolerance:.0e})"))
+            previous = level.pressure.copy()
+            solver.cycle(index)
+            history.cycles += 1
+            if not _finite(level):
+                return Status(Outcome.DIVERGED,
+                              f"diverged at cycle {history.cycles} on the finest grid (non-finite pressure or film)")
+
+    def couple(self, index: int, initial: FilmState | None = None,
+               coarse_h_c: float = math.nan) -> tuple[FilmState | None, Status]:
+        """Outer loop of the film state and the pressure on level `index`, from `initial` (default: the inlet
+        temperature and a Newtonian film). If the iteration runs away, the last finite iterate (at worst the
+        entry state) is restored and reported with the reason. coarse_h_c: the dimensionless h_c one grid
+        coarser, for the discretisation error the thermal floor is judged against."""
+        solver, settings, history, scaling = self.solver, self.settings, self.history, self.scaling
+        level = solver.levels[index]
+        model = self._film_model(level)
+        temperature = model.initial_temperature() if initial is None else initial.temperature
+        factor = np.ones_like(temperature) if initial is None else initial.viscosity_factor
+        state = initial
+        last_finite = (solver.snapshot(index), initial)
+        first = len(history.thermal_changes)  # this grid's outer iterations start here
+        status = CONVERGED
+        for outer in range(settings.max_thermal_iterations):
+            update = model.update(level.pressure * scaling.p_h, level.film * scaling.film_scale, temperature)
+            new = temperature + THERMAL_RELAXATION * (update.temperature - temperature)
+            thermal_change = float(np.abs(new - temperature).max())
+            temperature = new
+            v = VISCOSITY_RELAXATION
+            factor = factor ** (1.0 - v) * update.viscosity_factor**v  # eta*/eta relaxed in log space
+            if not (np.isfinite(temperature).all() and np.isfinite(factor).all()):
+                status = Status(Outcome.DIVERGED, f"diverged in the film temperature at outer iteration {outer + 1}")
+                break
+            state = replace(update, temperature=temperature, viscosity_factor=factor)
+            solver.set_film_state(index, state.temperature, state.viscosity_factor)
+            status = self.cycle(index, CYCLES_PER_THERMAL_UPDATE)
+            history.thermal_changes.append(thermal_change)
+            history.thermal_h_c.append(solver.central_film(level) * scaling.film_scale)
+            if status.diverged:
+                break
+            last_finite = (solver.snapshot(index), state)
+            rise = float(temperature.max() - self.lubricant.inlet_temperature)
+            if outer > 0 and status.converged and thermal_change < settings.thermal_tolerance * max(rise, MIN_RISE):
+                return state, CONVERGED
+            coarse_error = _h_c_error(history.thermal_h_c[-1], coarse_h_c * scaling.film_scale)
+            if ((status.converged or _pressure_settled(history, settings))
+                    and _at_thermal_floor(history.thermal_changes[first:], history.thermal_h_c[first:], rise,
+                                          coarse_error)):
+                history.thermal_floor = thermal_change
+                return state, CONVERGED
+        if status.diverged:
+            return self._last_finite(index, model, initial, *last_finite), status
+        return state, Status(Outcome.NOT_CONVERGED, (
+            f"thermal loop not converged after {settings.max_thermal_iterations} outer iterations: temperature "
+            f"change {history.thermal_changes[-1]:.2e} K (tolerance {settings.thermal_tolerance:.0e} of the rise), "
+            f"last pressure change {history.changes[-1]:.2e}"))
+
+    def _last_finite(self, index: int, model: FilmThermalModel, initial: FilmState | None, iterate: Iterate,
+                     state: FilmState | None) -> FilmState | None:
+        """Restore the last finite iterate of the outer loop on level `index` with its film state; returns the
+        state to report (an interpolated entry state evaluated on this grid)."""
+        solver = self.solver
+        solver.restore(index, iterate)
+        if state is None:
+            solver.set_film_state(index, None, None)
+            return None
+        solver.set_film_state(index, state.temperature, state.viscosity_factor)
+        if state is initial:  # an interpolated state: evaluate it on this grid for the outputs
+            level = solver.levels[index]
+            return model.update(level.pressure * self.scaling.p_h, level.film * self.scaling.film_scale,
+                                initial.temperature)
+        return state
+
+    def _start_fine_grid(self, index: int) -> tuple[FilmState, Status]:
+        """Interpolate the coarse solution and film state to the finest grid, freeze the state on every grid and
+        converge the pressure against it. Returns (frozen state, status)."""
+        solver, coarse_state = self.solver, self.coarse_state
+        solver.interpolate_up(index)
+        frozen = replace(coarse_state, temperature=solver.prolong_layers(index, coarse_state.temperature),
+                         viscosity_factor=np.exp(solver.prolong_layers(index, np.log(coarse_state.viscosity_factor))))
+        solver.set_film_state(index, frozen.temperature, frozen.viscosity_factor)
+        return frozen, self.cycle(index, self.settings.max_cycles)
+
+    def _film_model(self, level: Level) -> FilmThermalModel:
+        point, scaling = self.point, self.scaling
+        layers = self.settings.thermal_layers if self.mode != "off" else EYRING_LAYERS
+        return FilmThermalModel(level.x * scaling.b, level.y * scaling.a, layers, self.lubricant, point.body_1,
+                                point.body_2, np.asarray(point.velocity_1), np.asarray(point.velocity_2), scaling.b,
+                                solve_energy=self.mode != "off")
+
+    # ------------------------------------------------------------------ report
+    def report(self, index: int, status: Status, state: FilmState | None) -> PointSolution:
+        """The PointSolution of level `index`; a film that closes (h_min <= 0) is never reported as converged."""
+        level = self.solver.levels[index]
+        if level.film.min() <= 0.0:
+            message = "the film closes (h_min <= 0: solid contact, outside the EHL model)"
+            message += "; " + status.message if status.message else ""
+            status = Status(Outcome.DIVERGED if status.diverged else Outcome.FILM_CLOSED, message)
+        return point_solution(self, level, status, state, time.perf_counter() - self._clock)
+
+    def __getstate__(self) -> dict:
+        """Between stages the solve travels to another process: its clock does not (see `elapsed`)."""
+        return {k: v for k, v in self.__dict__.items() if k != "_clock"}
 
 
-def _report(point, lubricant, scaling, solver, level, summaries, converged, message, start, history, state, mode,
-            reason) -> PointSolution:
-    if level.film.min() <= 0.0:
-        converged = False
-        message = ("the film closes (h_min <= 0: solid contact, outside the EHL model)" + ("; " + message if message
-                                                                                           else ""))
-    wall = time.perf_counter() - start
-    return point_solution(point, lubricant, scaling, solver, level, summaries, converged, message, wall, history,
-                           state, mode, reason)
+def _completed(begun: PointSolution | PointSolve) -> PointSolution:
+    """A begun solve finished in this process."""
+    return begun.finish() if isinstance(begun, PointSolve) else begun
 
 
-def _film_model(level: Level, point, lubricant, scaling, settings, mode) -> FilmThermalModel:
-    layers = settings.thermal_layers if mode != "off" else EYRING_LAYERS
-    return FilmThermalModel(level.x * scaling.b, level.y * scaling.a, layers, lubricant, point.body_1, point.body_2,
-                            np.asarray(point.velocity_1), np.asarray(point.velocity_2), scaling.b,
-                            solve_energy=mode != "off")
+@dataclass(frozen=True)
+class StagedSolver:
+    """The EHL solver as parallel.solve_all runs it: whole (`__call__`), or in stages that may run in
+    different processes with the same result (`begin`, `finish`, `needs_retry`, `with_retry`).
+
+    Convergence policy: a solve that runs away is repeated once with the other Gauss-Seidel / Jacobi switch
+    (the ellipse-scaled one first, then Venner's circle value; multigrid.Level), and the retry is reported.
+    """
+
+    def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
+        first = _completed(self.begin(point, lubricant, settings))
+        if not self.needs_retry(first):
+            return first
+        return self.with_retry(first, _completed(self.begin(point, lubricant, settings, first)))
+
+    def begin(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
+              retry_after: PointSolution | None = None) -> PointSolution | PointSolve:
+        """The first stage (PointSolve.begin). `retry_after`: the first attempt, which ran away: this one uses
+        Venner's switch as is, and its wall time counts the first's."""
+        if retry_after is None:
+            return PointSolve(point, lubricant, settings).begin()
+        return PointSolve(point, lubricant, settings, Relaxation(scale_switch=False),
+                          elapsed=retry_after.scalar("wall_time")).begin()
+
+    def finish(self, stage: PointSolve) -> PointSolution:
+        """The second stage (PointSolve.finish)."""
+        return stage.finish()
+
+    def needs_retry(self, solution: PointSolution) -> bool:
+        """The first attempt ran away: repeat it with Venner's switch."""
+        return solution.outcome is Outcome.DIVERGED
+
+    def with_retry(self, first: PointSolution, retry: PointSolution) -> PointSolution:
+        """The retry's solution, noted, if it did better than running away; else the first attempt's."""
+        if retry.outcome is Outcome.DIVERGED:
+            return first
+        note = f"converged after a retry with Venner's switch (first attempt: {first.message})"
+        return replace(retry, models={**retry.models, "solver": retry.models["solver"] + "; " + note})
 
 
-def _start_fine_grid(solver, index, coarse_state, settings, history):
-    """Interpolate the coarse solution and film state to the finest grid, freeze the state on every grid and
-    converge the pressure against it. Returns (frozen state, converged, message)."""
-    solver.interpolate_up(index)
-    frozen = FilmState(**{**coarse_state.__dict__,
-                          "temperature": _prolong_layers(solver, index, coarse_state.temperature),
-                          "viscosity_factor": np.exp(_prolong_layers(solver, index,
-                                                                     np.log(coarse_state.viscosity_factor)))})
-    _freeze_film_state(solver, index, frozen)
-    converged, message = _cycle(solver, index, settings, history, settings.max_cycles, None)
-    return frozen, converged, message
+STAGED = StagedSolver()
 
 
-def _prolong_layers(solver: MultigridSolver, index: int, field: np.ndarray) -> np.ndarray:
-    """Each layer of `field` (nz, ny, nx) of level `index - 1` interpolated to level `index`."""
-    return np.stack([solver.transfers[index].prolong(layer) for layer in field])
-
-
-def _couple(solver, index, point, lubricant, scaling, settings, mode, history, initial: FilmState | None = None,
-            coarse_h_c: float = math.nan):
-    """Outer loop of the film state and the pressure on level `index`, from `initial` (default: the inlet
-    temperature and a Newtonian film); returns (film state, converged, message). If the iteration runs away,
-    the last finite iterate (at worst the entry state) is restored and reported with the reason. coarse_h_c:
-    the dimensionless h_c one grid coarser, for the discretisation error the thermal floor is judged against."""
-    level = solver.levels[index]
-    model = _film_model(level, point, lubricant, scaling, settings, mode)
-    temperature = model.initial_temperature() if initial is None else initial.temperature
-    factor = np.ones_like(temperature) if initial is None else initial.viscosity_factor
-    state = initial
-    last_finite = (level.pressure.copy(), level.film.copy(), solver.h0, initial)
-    first = len(history.thermal_changes)  # this grid's outer iterations start here
-    for outer in range(settings.max_thermal_iterations):
-        update = model.update(level.pressure * scaling.p_h, level.film * scaling.film_scale, temperature)
-        w = THERMAL_RELAXATION
-        new = temperature + w * (update.temperature - temperature)
-        thermal_change = float(np.abs(new - temperature).max())
-        temperature = new
-        v = VISCOSITY_RELAXATION
-        factor = factor ** (1.0 - v) * update.viscosity_factor**v  # eta*/eta relaxed in log space
-        candidate = FilmState(**{**update.__dict__, "temperature": temperature, "viscosity_factor": factor})
-        if not (np.isfinite(temperature).all() and np.isfinite(factor).all()):
-            message = f"diverged in the film temperature at outer iteration {outer + 1}"
-            break
-        state = candidate
-        _freeze_film_state(solver, index, state)
-        met, message = _cycle(solver, index, settings, history, CYCLES_PER_THERMAL_UPDATE, None)
-        history.thermal_changes.append(thermal_change)
-        history.thermal_h_c.append(grid.bilinear_at(level.film, level.x, level.y, 0.0, 0.0) * scaling.film_scale)
-        if message.startswith("diverged"):
-            break
-        last_finite = (level.pressure.copy(), level.film.copy(), solver.h0, state)
-        rise = float(temperature.max() - lubricant.inlet_temperature)
-        if outer > 0 and met and thermal_change < settings.thermal_tolerance * max(rise, 1.0):
-            return state, True, ""
-        if ((met or _pressure_settled(history, settings))
-                and _at_thermal_floor(history.thermal_changes[first:], history.thermal_h_c[first:], rise,
-                                      _h_c_error(history.thermal_h_c[-1], coarse_h_c * scaling.film_scale))):
-            history.thermal_floor = thermal_change
-            return state, True, ""
-    if message.startswith("diverged"):
-        level.pressure, level.film, solver.h0, state = last_finite  # report the last finite iterate
-        if state is not None:
-            _freeze_film_state(solver, index, state)
-            if state is initial:  # an interpolated state: evaluate it on this grid for the outputs
-                state = model.update(level.pressure * scaling.p_h, level.film * scaling.film_scale,
-                                     initial.temperature)
-        else:
-            level.temperature = level.viscosity_factor = level.temperature_factor = None
-            solver.update_film(level)
-        return state, False, message
-    return state, False, (
-        f"thermal loop not converged after {settings.max_thermal_iterations} outer iterations: temperature change "
-        f"{history.thermal_changes[-1]:.2e} K (tolerance {settings.thermal_tolerance:.0e} of the rise), last "
-        f"pressure change {history.changes[-1]:.2e}"
-    )
+def solve_point(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
+    """Solve the EHL problem of one contact point (thermal model and rheology as the settings say), retrying
+    once a solve that runs away (StagedSolver)."""
+    return STAGED(point, lubricant, settings)
