@@ -9,10 +9,11 @@ from __future__ import annotations
 
 import json
 import os
-from pathlib import Path
 import signal
 import traceback
-from typing import Any, Iterable, Sequence
+from collections.abc import Iterable, Sequence
+from pathlib import Path
+from typing import Any
 
 import click
 
@@ -25,8 +26,9 @@ from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.results import PointResult, Result, ResultFileError, read_result, write_result
 from facegear_tehl.schema import CaseError
 from facegear_tehl.solution import PointSolution
-from facegear_tehl.sweep import (check_tolerance, parse_grids, report_tables, run_sweep, summary_lines, with_thermal,
-                                 write_csv)
+from facegear_tehl.sweep import check_tolerance, parse_grids, report, run_sweep, with_thermal, write_csv
+from facegear_tehl.tables import COST, Column, cell, format_pairs, format_table, yes_no
+from facegear_tehl.units import PERCENT, display
 
 EXIT_ERROR, EXIT_BAD_INPUT, EXIT_NOT_CONVERGED = 1, 2, 3
 
@@ -42,7 +44,7 @@ class _Tehl(click.Group):
         except (CaseError, ResultFileError) as exc:
             click.echo(f"error: {exc}", err=True)
             ctx.exit(EXIT_BAD_INPUT)
-        except Exception as exc:
+        except Exception as exc:  # noqa: BLE001 - any other error: one line and exit 1 (--debug: the traceback)
             if ctx.params.get("debug"):
                 traceback.print_exc()
             click.echo(f"error: {type(exc).__name__}: {exc}", err=True)
@@ -152,8 +154,7 @@ def sweep(
     for warning in result.warnings:
         click.echo(f"warning: {warning}", err=True)
     csv = write_csv(result.sweep, target.with_suffix(".csv"))
-    click.echo("\n\n".join(format_table(headers, rows) for headers, rows in report_tables(result.sweep)))
-    click.echo("\n".join(["", *summary_lines(result.sweep, result.sweep_scalars)]))
+    click.echo(report(result.sweep, result.sweep_scalars))
     click.echo(f"result: {target}, {csv} (status {result.status})")
     _exit_on_status(ctx, result)
 
@@ -166,12 +167,14 @@ def validate(case_file: str) -> None:
     points = contact_analysis(case).points
     if case.gear is None:
         point = points[0]
-        kind = (f"plain contact (p_hertz {point.hertz.p_max * 1e-6:.0f} MPa, a {point.hertz.a * 1e6:.1f} µm, "
-                f"b {point.hertz.b * 1e6:.1f} µm)")
+        length = display("m")
+        kind = (f"plain contact (p_hertz {display('Pa').text(point.hertz.p_max, '.0f')}, "
+                f"a {length.text(point.hertz.a, '.1f')}, b {length.text(point.hertz.b, '.1f')})")
     else:
-        p_hertz = [p.hertz.p_max * 1e-6 for p in points]
+        pressure = display("Pa")
+        p_hertz = [pressure(p.hertz.p_max) for p in points]
         kind = (f"face gear pair ({len(points)} points {points[0].name}..{points[-1].name}, "
-                f"p_hertz {min(p_hertz):.0f}..{max(p_hertz):.0f} MPa)")
+                f"p_hertz {min(p_hertz):.0f}..{max(p_hertz):.0f} {pressure.label})")
     lubricant = case.lubricant
     click.echo(
         f"ok: {case.name}: {kind}; grid {case.solver.grid}x{case.solver.nodes_y}; models: viscosity "
@@ -258,19 +261,18 @@ def info_text(result: Result) -> str:
     if result.message:
         header.append(("message", result.message.replace("\n", "; ")))
     header += [("warning", warning) for warning in result.warnings]
-    width = max(len(key) for key, _ in header)
-    lines = [f"{key:<{width}}  {value}" for key, value in header]
     points = list(result.points.values())
     names = list(dict.fromkeys(key for p in points for key in p.scalars))
-    rows = [["converged", "", *("yes" if p.converged else "no" for p in points)]]
+    rows = [["converged", "", *(yes_no(p.converged) for p in points)]]
     for key in names:
         units = next(p.units[key] for p in points if key in p.units)
-        rows.append([key, units, *(f"{p.scalars[key]:.6g}" if key in p.scalars else "-" for p in points)])
-    lines += ["", format_table(["scalar", "units", *(p.name for p in points)], rows)]
+        rows.append([key, units, *(cell(p.scalars.get(key), ".6g", "-") for p in points)])
+    lines = [format_pairs(header), "", format_table(["scalar", "units", *(p.name for p in points)], rows)]
     if result.heat and "point" in result.heat:
         lines += ["", "heat budget:", heat_budget_table(result)]
     if result.contact_scalars:
-        contact_rows = [[key, result.contact_units[key], f"{value:.6g}"] for key, value in result.contact_scalars.items()]
+        contact_rows = [[key, result.contact_units[key], cell(value, ".6g", "-")]
+                        for key, value in result.contact_scalars.items()]
         lines += ["", format_table(["contact", "units", "value"], contact_rows)]
     return "\n".join(lines)
 
@@ -279,37 +281,33 @@ def _listed(value: Any) -> str:
     return ",".join(map(str, value)) if isinstance(value, list) else str(value)
 
 
-# Summary columns: header, scalar key, factor from SI, format.
+# Summary columns, then the error estimates: column, the quantity it estimates the error of.
 _SUMMARY = (
-    ("h_c µm", "h_c", 1e6, "{:.4g}"),
-    ("h_min µm", "h_min", 1e6, "{:.4g}"),
-    ("p_max MPa", "p_max", 1e-6, "{:.1f}"),
-    ("p_hertz MPa", "p_hertz", 1e-6, "{:.1f}"),
-    ("dT_max K", "dT_max", 1.0, "{:.1f}"),
-    ("mu", "mu", 1.0, "{:.4f}"),
-    ("load error", "load_error", 1.0, "{:.1e}"),
-    ("cycles", "iterations", 1.0, "{:.0f}"),
-    ("work units", "work_units", 1.0, "{:.1f}"),
-    ("wall time s", "wall_time", 1.0, "{:.2f}"),
+    Column("h_c", "h_c", "m"),
+    Column("h_min", "h_min", "m"),
+    Column("p_max", "p_max", "Pa", ".1f"),
+    Column("p_hertz", "p_hertz", "Pa", ".1f"),
+    Column("dT_max", "dT_max", "K", ".1f"),
+    Column("mu", "mu", spec=".4f"),
+    Column("load error", "load_error", spec=".1e"),
+    *COST,
 )
-# Error-estimate columns: header, scalar key, the quantity it estimates the error of.
 _ERROR_ESTIMATES = (("err h_c %", "error_estimate_h_c", "h_c"), ("err h_min %", "error_estimate_h_min", "h_min"),
                     ("err dT_max %", "error_estimate_dT_max", "dT_max"), ("err mu %", "error_estimate_mu", "mu"))
 
-
-# Heat-budget columns: header, /heat column, factor from SI, format.
+# Heat-budget columns, keys of the /heat table.
 _HEAT = (
-    ("mu", "mu", 1.0, "{:.4f}"),
-    ("mu Xu", "mu_xu", 1.0, "{:.4f}"),
-    ("P W", "friction_power", 1.0, "{:.1f}"),
-    ("gamma_1", "partition_1", 1.0, "{:.3f}"),
-    ("P_ss,1 W", "steady_power_1", 1.0, "{:.3g}"),
-    ("P_ss,2 W", "steady_power_2", 1.0, "{:.3g}"),
-    ("flash K", "flash_temperature", 1.0, "{:.1f}"),
-    ("surface dT K", "surface_rise_max", 1.0, "{:.1f}"),
-    ("Q_f mJ", "frictional_heat", 1e3, "{:.3g}"),
-    ("Q_oil mJ", "oil_film_heat", 1e3, "{:.3g}"),
-    ("Q_oil/Q_f %", "oil_to_friction_ratio", 100.0, "{:.2f}"),
+    Column("mu", "mu", spec=".4f"),
+    Column("mu Xu", "mu_xu", spec=".4f"),
+    Column("P", "friction_power", "W", ".1f"),
+    Column("gamma_1", "partition_1", spec=".3f"),
+    Column("P_ss,1", "steady_power_1", "W", ".3g"),
+    Column("P_ss,2", "steady_power_2", "W", ".3g"),
+    Column("flash", "flash_temperature", "K", ".1f"),
+    Column("surface dT", "surface_rise_max", "K", ".1f"),
+    Column("Q_f", "frictional_heat", "J", ".3g"),
+    Column("Q_oil", "oil_film_heat", "J", ".3g"),
+    Column("Q_oil/Q_f", "oil_to_friction_ratio", spec=".2f", unit=PERCENT),
 )
 
 
@@ -317,23 +315,16 @@ def heat_budget_table(result: Result) -> str:
     """One row per point of the /heat table: friction, heat power and its partition, steady-state power per
     gear, flash temperature, frictional and oil-film heat; '-' where a column is missing."""
     heat = result.heat
-    rows = []
-    for i, name in enumerate(heat["point"].values):
-        row = [str(name)]
-        row += [fmt.format(heat[key].values[i] * factor) if key in heat else "-" for _, key, factor, fmt in _HEAT]
-        rows.append(row)
-    return format_table(["point", *(h for h, *_ in _HEAT)], rows)
+    rows = [[str(name), *(c.text(heat[c.key].values[i] if c.key in heat else None) for c in _HEAT)]
+            for i, name in enumerate(heat["point"].values)]
+    return format_table(["point", *(c.header for c in _HEAT)], rows)
 
 
 def summary_table(points: Iterable[PointResult]) -> str:
     """One row per point: convergence, film, pressure, load balance and cost; '-' where a value is missing."""
-    rows = []
-    for p in points:
-        row = [p.name, "yes" if p.converged else "no"]
-        row += [fmt.format(p.scalars[key] * factor) if key in p.scalars else "-" for _, key, factor, fmt in _SUMMARY]
-        row += [_error_percent(p, key, of) for _, key, of in _ERROR_ESTIMATES]
-        rows.append(row)
-    headers = ["point", "converged", *(h for h, *_ in _SUMMARY), *(h for h, *_ in _ERROR_ESTIMATES)]
+    rows = [[p.name, yes_no(p.converged), *(c.text(p.scalars.get(c.key)) for c in _SUMMARY),
+             *(_error_percent(p, key, of) for _, key, of in _ERROR_ESTIMATES)] for p in points]
+    headers = ["point", "converged", *(c.header for c in _SUMMARY), *(h for h, *_ in _ERROR_ESTIMATES)]
     return format_table(headers, rows)
 
 
@@ -346,18 +337,7 @@ def _error_percent(point: PointResult, key: str, of: str) -> str:
         if not point.scalars.get(of):
             return "-"
         value = value / point.scalars[of]
-    return f"{100.0 * abs(value):.2f}"
-
-
-def format_table(headers: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
-    """Plain-text table: first column left-aligned, the others right-aligned."""
-    widths = [max(len(str(cell)) for cell in column) for column in zip(headers, *rows)]
-
-    def line(cells: Sequence[str]) -> str:
-        first, *rest = cells
-        return "  ".join([f"{first:<{widths[0]}}", *(f"{c:>{w}}" for c, w in zip(rest, widths[1:]))]).rstrip()
-
-    return "\n".join([line(headers), line(["-" * w for w in widths]), *(line(r) for r in rows)])
+    return cell(PERCENT(abs(value)), ".2f", "-")
 
 
 def _report_progress(solution: PointSolution, done: int, total: int) -> None:

@@ -23,12 +23,13 @@ Grids are independent solves (each with its own full-multigrid start); they run 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
 import math
 import os
-from pathlib import Path
 import secrets
-from typing import Mapping, Sequence
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, replace
+from itertools import pairwise
+from pathlib import Path
 
 import numpy as np
 
@@ -39,13 +40,13 @@ from facegear_tehl.results import RunResult
 from facegear_tehl.run import ehl_solver
 from facegear_tehl.schema import CaseError, check
 from facegear_tehl.solution import Field, PointSolution
+from facegear_tehl.tables import COST, cell, format_table, yes_no
+from facegear_tehl.units import PERCENT, display
 
 SAFETY_FACTOR = 1.25  # Roache (1994), grid convergence index of a three-grid study
 MIN_ORDER = 0.5  # below this observed order no extrapolation is given (Eça & Hoekstra 2014)
 QUANTITIES = ("p_max", "h_c", "h_min", "dT_max", "mu")
 """Point scalars the sweep tabulates, when the solver gives them (dT_max and mu: thermal solver)."""
-# Display of a quantity: (units shown, factor from SI, decimals of its value).
-_DISPLAY = {"m": ("µm", 1e6, 4), "Pa": ("MPa", 1e-6, 1), "K": ("K", 1.0, 2), "1": ("-", 1.0, 5)}
 
 
 @dataclass(frozen=True)
@@ -146,7 +147,7 @@ def check_grids(grids: Sequence[int], case: Case) -> tuple[int, ...]:
             raise CaseError(key, grid, exc.expected) from None
     shown = ",".join(str(grid) for grid in grids)
     check(len(grids) >= 3, key, shown, "at least three grids (the observed order needs three)")
-    check(all(b - 1 == 2 * (a - 1) for a, b in zip(grids, grids[1:])), key, shown,
+    check(all(b - 1 == 2 * (a - 1) for a, b in pairwise(grids)), key, shown,
           "ascending grids, each refining the previous by 2 (n - 1 doubles), e.g. 33,65,129")
     return tuple(int(grid) for grid in grids)
 
@@ -293,34 +294,33 @@ def write_csv(table: Mapping[str, Field], path: str | Path) -> Path:
     return target
 
 
-def report_tables(table: Mapping[str, Field]) -> list[tuple[list[str], list[list[str]]]]:
-    """(headers, rows) of the printed report of a /sweep table: the cost of each grid, then each
-    quantity's convergence, in display units."""
+def report(table: Mapping[str, Field], scalars: Mapping[str, float]) -> str:
+    """The printed report of a /sweep table and its scalars: the cost of each grid, each quantity's
+    convergence in display units, then a line per quantity (grid within the tolerance, extrapolated value)."""
     grids = [f"{g:.0f}" for g in table["grid"].values]
-    cost = [("cycles", "iterations", ".0f"), ("work units", "work_units", ".1f"), ("wall time s", "wall_time", ".2f")]
-    cost_rows = [
-        [grid, "yes" if table["converged"].values[i] else "no", *(_cell(table[key].values[i], fmt) for _, key, fmt in cost)]
-        for i, grid in enumerate(grids)
-    ]
-    tables = [(["grid", "converged", *(header for header, *_ in cost)], cost_rows)]
+    cost_rows = [[grid, yes_no(table["converged"].values[i]), *(c.text(table[c.key].values[i], "") for c in COST)]
+                 for i, grid in enumerate(grids)]
+    tables = [format_table(["grid", "converged", *(c.header for c in COST)], cost_rows)]
     for name in tabulated(table):
-        units, factor, digits = _DISPLAY.get(table[name].units, (table[name].units, 1.0, 4))
-        columns = [(name, factor, f".{digits}f"), (f"{name}_change", 100.0, "+.2f"), (f"{name}_order", 1.0, ".2f"),
-                   (f"{name}_extrapolated", factor, f".{digits + 1}f"),
-                   (f"{name}_uncertainty", factor, f".{digits + 1}f"), (f"{name}_error", 100.0, "+.2f")]
-        rows = [[grid, *(_cell(table[key].values[i] * scale, fmt) for key, scale, fmt in columns)]
+        unit = display(table[name].units)
+        value, extra = f".{unit.decimals}f", f".{unit.decimals + 1}f"
+        columns = [(name, unit, value), (f"{name}_change", PERCENT, "+.2f"), (f"{name}_order", display("1"), ".2f"),
+                   (f"{name}_extrapolated", unit, extra), (f"{name}_uncertainty", unit, extra),
+                   (f"{name}_error", PERCENT, "+.2f")]
+        rows = [[grid, *(cell(shown(table[key].values[i]), spec) for key, shown, spec in columns)]
                 for i, grid in enumerate(grids)]
-        tables.append(([f"{name} [{units}]", "value", "change %", "order", "extrapolated", "± GCI", "error %"], rows))
-    return tables
+        headers = [f"{name} [{unit.label}]", "value", "change %", "order", "extrapolated", "± GCI", "error %"]
+        tables.append(format_table(headers, rows))
+    return "\n\n".join(tables) + "\n\n" + "\n".join(_summary_lines(table, scalars))
 
 
-def summary_lines(table: Mapping[str, Field], scalars: Mapping[str, float]) -> list[str]:
+def _summary_lines(table: Mapping[str, Field], scalars: Mapping[str, float]) -> list[str]:
     """Per quantity of a /sweep table: the first grid within the tolerance, and the extrapolated value of
     the three finest grids."""
-    tolerance = 100.0 * scalars["tolerance"]
+    tolerance = PERCENT(scalars["tolerance"])
     lines = []
     for name in tabulated(table):
-        units, factor, digits = _DISPLAY.get(table[name].units, (table[name].units, 1.0, 4))
+        unit = display(table[name].units)
         grid = scalars.get(f"{name}_converged_grid")
         within = f"within {tolerance:g} % from grid {grid:.0f} on" if grid else f"not within {tolerance:g} %"
         best, spread = table[f"{name}_extrapolated"].values[-1], table[f"{name}_uncertainty"].values[-1]
@@ -329,8 +329,9 @@ def summary_lines(table: Mapping[str, Field], scalars: Mapping[str, float]) -> l
             reason = "no change between the two coarser" if math.isnan(order) else f"observed order {order:.2f}"
             extrapolated = f"no extrapolated value from the three finest grids ({reason})"
         else:
-            extrapolated = (f"extrapolated {best * factor:.{digits + 1}f} ± {spread * factor:.{digits + 1}f} {units} "
-                            f"(order {_cell(order, '.2f') or 'not defined'})")
+            spec = f".{unit.decimals + 1}f"
+            extrapolated = (f"extrapolated {unit(best):{spec}} ± {unit(spread):{spec}} {unit.label} "
+                            f"(order {cell(order, '.2f') or 'not defined'})")
         lines.append(f"{name}: {within}; {extrapolated}")
     return lines
 
@@ -338,7 +339,3 @@ def summary_lines(table: Mapping[str, Field], scalars: Mapping[str, float]) -> l
 def tabulated(table: Mapping[str, Field]) -> list[str]:
     """The quantities a /sweep table holds, in its order."""
     return [name for name in table if f"{name}_order" in table]
-
-
-def _cell(value: float, fmt: str) -> str:
-    return "" if math.isnan(value) else f"{value:{fmt}}"
