@@ -16,7 +16,8 @@ import pytest
 
 from facegear_tehl.case import Case, load_case
 from facegear_tehl.cli import tehl
-from facegear_tehl.plots import PlotReport, _map, _section, _section_directions, _style, plot_file
+from facegear_tehl.plots import PlotReport, plot_file
+from facegear_tehl.plots.fields import _map, _section, _section_directions, _style
 from facegear_tehl.points import contact_analysis
 from facegear_tehl.results import RunResult, read_result, write_result
 from facegear_tehl.run import run_case

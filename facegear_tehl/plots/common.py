@@ -1,0 +1,62 @@
+"""What every figure family shares: the report of files written and figures skipped, the output folder,
+figures, titles and legends."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+
+from facegear_tehl.results import PointResult, Result
+
+
+@dataclass
+class PlotReport:
+    """Files written, and one line per figure (type or point) not drawn, saying why."""
+
+    written: list[Path] = field(default_factory=list)
+    skipped: list[str] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class Output:
+    """Where and how figures are saved, and the report of what was written or skipped."""
+
+    folder: Path
+    fmt: str
+    dpi: int
+    report: PlotReport
+
+    def save(self, figure: Figure, stem: str) -> None:
+        path = self.folder / f"{stem}.{self.fmt}"
+        self.folder.mkdir(parents=True, exist_ok=True)
+        figure.savefig(path, dpi=self.dpi)
+        self.report.written.append(path)
+
+    def skip(self, what: str, reason: str) -> None:
+        self.report.skipped.append(f"skipped {what}: {reason}")
+
+
+def title(result: Result, subject: str, point: PointResult | None = None) -> str:
+    """'<case>, <point>: <subject>', flagged when the point did not converge."""
+    where = f", {point.name}" if point is not None else ""
+    state = "" if point is None or point.converged else " (not converged)"
+    return f"{result.case_name}{where}: {subject}{state}"
+
+
+def figure(width: float = 7.5, height: float = 5.0) -> Figure:
+    """A figure with constrained layout, rendered by the Agg canvas (no pyplot state)."""
+    return Figure(figsize=(width, height), layout="constrained")
+
+
+def legend(ax: Axes, **options) -> None:
+    """A legend when the axes hold labelled artists."""
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(**options)
+
+
+def body_names(result: Result) -> tuple[str, str]:
+    """Bodies 1 and 2: pinion and face gear in a gear case (one with a /contact path)."""
+    return ("pinion", "face gear") if result.contact else ("body 1", "body 2")

@@ -1,0 +1,143 @@
+"""Convergence (no figure of the paper): per-cycle histories of every point, the film on the multigrid levels
+and, for a sweep file, the error against the extrapolated value per grid and per wall time."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+from matplotlib.ticker import FormatStrFormatter, LogLocator, MaxNLocator, NullFormatter, NullLocator
+
+from facegear_tehl.plots.common import Output, figure, legend, title
+from facegear_tehl.results import PointResult, Result
+from facegear_tehl.solution import Field
+from facegear_tehl.units import PERCENT, display
+
+
+def draw_convergence(result: Result, points: Sequence[PointResult], out: Output) -> None:
+    """Per-cycle histories of every point and the film on the multigrid levels; the /sweep table if any."""
+    histories = list(dict.fromkeys(k for p in points for k in p.history if k.endswith("_history")))
+    levels = [p for p in points if {"level_nodes", "level_h_c"} <= p.history.keys()]
+    if histories or levels:
+        out.save(_convergence_figure(result, points, histories, levels), "convergence")
+    else:
+        out.skip("convergence", "no per-cycle histories in the file")
+    sweep = result.sweep
+    if not sweep:
+        out.skip("convergence sweep", "no /sweep table in the file (written by tehl sweep)")
+    elif "grid" not in sweep or not _sweep_errors(sweep):
+        out.skip("convergence sweep", "the /sweep table has no grid column or no finite *_error column")
+    else:
+        out.save(_sweep_figure(result, sweep), "sweep_error")
+
+
+def _convergence_figure(result: Result, points: Sequence[PointResult], histories: Sequence[str],
+                        levels: Sequence[PointResult]) -> Figure:
+    """One panel per history, then the levels panel, two columns."""
+    count = len(histories) + bool(levels)
+    columns = 2 if count > 1 else 1
+    rows = math.ceil(count / columns)
+    fig = figure(width=5.0 * columns + 0.5, height=3.4 * rows + 0.6)
+    axes = fig.subplots(rows, columns, squeeze=False).ravel()
+    for ax, key in zip(axes, histories):
+        _history_panel(ax, points, key)
+    if levels:
+        _levels_panel(axes[len(histories)], levels)
+    for ax in axes[count:]:
+        ax.remove()
+    fig.suptitle(title(result, "convergence per cycle"))
+    return fig
+
+
+def _history_panel(ax: Axes, points: Sequence[PointResult], key: str) -> None:
+    """One per-cycle history of every point: errors and changes as magnitudes on a log axis, films in µm."""
+    first = next(p.history[key] for p in points if key in p.history)
+    film = first.units == "m"
+    shown = display(first.units)
+    name = key.removesuffix("_history").replace("_", " ")
+    for p in points:
+        if key in p.history:
+            values = np.asarray(p.history[key].values, dtype=float)
+            if film:
+                ax.plot(np.arange(len(values)), shown(values), "o-", markersize=3, label=p.name)
+            else:
+                values = np.abs(values)
+                ax.semilogy(np.arange(len(values)), np.where(values > 0.0, values, np.nan), "o-", markersize=3,
+                            label=p.name)
+    units = shown.label if film else first.units
+    ax.set_ylabel(f"{name} ({units})" if film else f"|{name}|" + ("" if units in ("", "1") else f" ({units})"))
+    ax.set_title(first.description or name, fontsize="medium", wrap=True)
+    ax.set_xlabel("outer iteration" if "outer iteration" in first.description else "cycle")
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))
+    ax.grid(alpha=0.3, which="both")
+    legend(ax, fontsize="small", ncols=2)
+
+
+def _levels_panel(ax: Axes, points: Sequence[PointResult]) -> None:
+    """h_c on each full-multigrid level relative to the finest: the discretisation error at a glance."""
+    for p in points:
+        nodes = np.asarray(p.history["level_nodes"].values)
+        h_c = np.asarray(p.history["level_h_c"].values)
+        ax.plot(nodes, PERCENT(h_c / h_c[-1] - 1.0), "o-", markersize=3, label=p.name)
+    ax.set_xscale("log", base=2)
+    ax.set_xticks(nodes, [f"{n:.0f}" for n in nodes])
+    ax.xaxis.set_minor_locator(NullLocator())
+    ax.axhline(0.0, color="black", linewidth=0.6)
+    ax.set_title(points[0].history["level_h_c"].description or "central film on the multigrid levels",
+                 fontsize="medium", wrap=True)
+    ax.set_xlabel("nodes per side")
+    ax.set_ylabel(f"h_c / h_c(finest) − 1 ({PERCENT.label})")
+    ax.grid(alpha=0.3)
+    legend(ax, fontsize="small", ncols=2)
+
+
+def _sweep_errors(sweep: Mapping[str, Field]) -> dict[str, np.ndarray]:
+    """|relative error| per grid of each swept quantity (columns `<quantity>_error`; NaN where undefined)."""
+    errors = {
+        name.removesuffix("_error"): np.abs(np.asarray(column.values, dtype=float))
+        for name, column in sweep.items()
+        if name.endswith("_error") and np.asarray(column.values).dtype.kind == "f"
+    }
+    return {name: error for name, error in errors.items() if np.any(np.isfinite(error) & (error > 0.0))}
+
+
+def _sweep_figure(result: Result, sweep: Mapping[str, Field]) -> Figure:
+    """Error vs grid and error vs wall time, log-log (work-precision)."""
+    errors = _sweep_errors(sweep)
+    grids = np.asarray(sweep["grid"].values, dtype=float)
+    abscissae = [("grid", "nodes per side")] + ([("wall_time", "wall time (s)")] if "wall_time" in sweep else [])
+    fig = figure(width=5.0 * len(abscissae) + 0.5, height=4.2)
+    axes = fig.subplots(1, len(abscissae), squeeze=False)[0]
+    for ax, (key, label) in zip(axes, abscissae):
+        x = np.asarray(sweep[key].values, dtype=float)
+        for name, error in errors.items():
+            keep = np.isfinite(error) & (error > 0.0)
+            ax.plot(x[keep], PERCENT(error[keep]), "o-", label=name)
+        ax.set_yscale("log")
+        if key == "grid":
+            ax.set_xscale("log", base=2)
+            ax.set_xticks(x, [f"{n:.0f}" for n in x])
+            ax.xaxis.set_minor_locator(NullLocator())
+        else:
+            ax.set_xscale("log")
+            ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+            ax.xaxis.set_major_formatter(FormatStrFormatter("%g"))
+            ax.xaxis.set_minor_formatter(NullFormatter())
+            _label_grids(ax, x, grids, errors)
+        ax.set_xlabel(label)
+        ax.set_ylabel(f"|error| vs extrapolated value ({PERCENT.label})")
+        ax.grid(alpha=0.3, which="both")
+        legend(ax, fontsize="small")
+    fig.suptitle(title(result, "grid sweep: error vs grid and vs cost"))
+    return fig
+
+
+def _label_grids(ax: Axes, x: np.ndarray, grids: np.ndarray, errors: Mapping[str, np.ndarray]) -> None:
+    """Name the grid of each point of the first error curve (on the cost axis the grids are not in order)."""
+    error = PERCENT(next(iter(errors.values())))
+    for xi, yi, n in zip(x, error, grids):
+        if np.isfinite(yi) and yi > 0.0:
+            ax.annotate(f"{n:.0f}²", (xi, yi), textcoords="offset points", xytext=(5, 4), fontsize="small")
