@@ -9,6 +9,7 @@ import pytest
 from facegear_tehl.case import load_case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.solve import solve_point
+from facegear_tehl.solution import Outcome
 from facegear_tehl.ehl.thermal import gupta_reduction, thermal_choice
 
 SLIDING = "cases/ball_on_disc_sliding.yaml"
@@ -56,6 +57,24 @@ def test_ree_eyring_tends_to_newtonian():
     assert thinned.scalar("mu") < eyring.scalar("mu")
 
 
+def test_isothermal_ree_eyring_dissipation_equals_the_work_of_the_wall_tractions():
+    """Energy conservation of the isothermal film (thermal off, Ree-Eyring, SRR 1): the power dissipated by shear,
+    iiint tau . gamma_dot dV, equals the work the surfaces do on the film, -(F_1 . u_1 + F_2 . u_2), with F_i the
+    traction on body i (the pressure work, int p div(q) dA, vanishes for an incompressible film and is small for
+    Dowson-Higginson). Measured: 0.11 % at 65^2, 0.04 % at 129^2 (it falls with the grid); 0.5 % bound."""
+    point, lub, settings = plain(SLIDING)
+    sol = solve_point(point, lub, dataclasses.replace(settings, thermal="off"))
+    assert sol.converged
+    x, y = sol.axes["x"].values, sol.axes["y"].values
+    area = (x[1] - x[0]) * (y[1] - y[0])
+    f = sol.fields
+    traction_1 = np.array([f["shear_stress_1_x"].values.sum(), f["shear_stress_1_y"].values.sum()]) * area
+    traction_2 = -np.array([f["shear_stress_2_x"].values.sum(), f["shear_stress_2_y"].values.sum()]) * area
+    work = -(traction_1 @ np.asarray(point.velocity_1) + traction_2 @ np.asarray(point.velocity_2))
+    assert work > 0.0
+    assert sol.scalar("dissipated_power") == pytest.approx(work, rel=5e-3)
+
+
 def test_hard_thermal_case_converges_or_says_why_never_nan():
     # Slide-to-roll ratio 2 (surface 2 at rest) at p_h ~ 2 GPa.
     point, lub, settings = plain(SLIDING, slide_roll_ratio=2.0, load=551.0)
@@ -64,12 +83,15 @@ def test_hard_thermal_case_converges_or_says_why_never_nan():
     for f in sol.fields.values():
         assert np.isfinite(f.values).all()
     assert all(math.isfinite(v) for v, _ in sol.scalars.values())
-    # converged: an open film and no message; else the message names the reason, and a closed film as such
+    # converged: an open film and no message; else the message names the reason, and a closed film as such,
+    # without a film (a negative film is never reported as a result)
     if sol.converged:
         assert sol.message == "" and sol.scalar("h_min") > 0.0
     else:
         assert sol.message.startswith(("thermal loop not converged", "not converged", "diverged", "the film closes"))
-        assert ("film closes" in sol.message) == (sol.scalar("h_min") <= 0.0)
+        closed = "film closes" in sol.message
+        assert closed == (sol.outcome is Outcome.FILM_CLOSED or "h_min" not in sol.scalars)
+        assert closed == (not sol.fields) and (closed or sol.scalar("h_min") > 0.0)
 
 
 @pytest.mark.xfail(strict=True, reason="SRR 2 at p_h 2 GPa on 65^2: the outer thermal loop stalls with a 35 K change "
@@ -133,18 +155,18 @@ def test_thermal_floor_is_a_stalled_small_change_with_a_steady_film():
 
     flicker = [0.45, 0.42, 0.45, 0.42, 0.44, 0.43, 0.45, 0.42]
     steady = [1.2669e-6] * 8
-    assert _at_thermal_floor(flicker, steady, rise=98.0)
-    assert not _at_thermal_floor(flicker[:7], steady[:7], rise=98.0)  # too few iterations to judge
+    assert _at_thermal_floor(flicker, steady, bound=0.01 * 98.0)
+    assert not _at_thermal_floor(flicker[:7], steady[:7], bound=0.01 * 98.0)  # too few iterations to judge
     falling = [0.45 * 0.5**k for k in range(8)]
-    assert not _at_thermal_floor(falling, steady, rise=98.0)
-    assert not _at_thermal_floor([10 * c for c in flicker], steady, rise=98.0)  # 4.5 K of a 98 K rise: too large
+    assert not _at_thermal_floor(falling, steady, bound=0.01 * 98.0)
+    assert not _at_thermal_floor([10 * c for c in flicker], steady, bound=0.01 * 98.0)  # 4.5 K of a 98 K rise: too large
     drifting = [1.9887e-7 * (1 + 0.002 * k) for k in range(8)]
-    assert not _at_thermal_floor(flicker, drifting, rise=142.0)
+    assert not _at_thermal_floor(flicker, drifting, bound=0.01 * 142.0)
     # a film flickering by 5.4e-4 (S3 on 257 x 65): steady only against a grid error of h_c above 1.1e-3
     alternating = [1.55154e-6, 1.55070e-6] * 4
-    assert not _at_thermal_floor(flicker, alternating, rise=98.0)
-    assert not _at_thermal_floor(flicker, alternating, rise=98.0, h_c_error=1.0e-3)
-    assert _at_thermal_floor(flicker, alternating, rise=98.0, h_c_error=1.7e-3)
+    assert not _at_thermal_floor(flicker, alternating, bound=0.01 * 98.0)
+    assert not _at_thermal_floor(flicker, alternating, bound=0.01 * 98.0, h_c_error=1.0e-3)
+    assert _at_thermal_floor(flicker, alternating, bound=0.01 * 98.0, h_c_error=1.7e-3)
 
 
 def test_error_estimates_of_dT_max_and_mu_come_from_the_coarse_thermal_stage():

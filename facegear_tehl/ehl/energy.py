@@ -206,15 +206,25 @@ def wall_heat_flux(temperature: np.ndarray, film: np.ndarray,
     return q1, q2
 
 
+def _depth_weights(layers: int, film: np.ndarray) -> np.ndarray:
+    """Simpson weights across the film times the film thickness h (m): the integral over z of a layer field."""
+    return simpson_weights(layers)[:, None, None] * film[None, :, :]
+
+
+def dissipated_power(state: FilmState, film: np.ndarray, dx: float, dy: float) -> float:
+    """Power dissipated by shear in the film, \\iiint tau . gamma_dot dV (W), on a (ny, nx) grid with film h (m)
+    and spacings dx, dy (m); with or without the energy equation (an isothermal Ree-Eyring film too)."""
+    return float((state.dissipation * _depth_weights(state.temperature.shape[0], film)).sum() * dx * dy)
+
+
 def energy_budget(state: FilmState, film: np.ndarray, dx: float, dy: float, rho_c: np.ndarray,
                   t_inlet: float) -> dict[str, float]:
     """The film's energy balance of a film state on a (ny, nx) grid with film h (m), spacings dx, dy (m),
-    volumetric heat capacity rho c per layer (J/(m^3 K)) and inlet temperature (K): the power dissipated by
-    shear, the heat generated (dissipation + compression), conducted into the solids and convected out of the
-    domain by the oil (enthalpy flux rho c (T - T_0) u h through its boundary), W; and the relative imbalance
+    volumetric heat capacity rho c per layer (J/(m^3 K)) and inlet temperature (K): the heat generated
+    (dissipation + compression), conducted into the solids and convected out of the domain by the oil (enthalpy
+    flux rho c (T - T_0) u h through its boundary), W; and the relative imbalance
     (generated - conducted - convected)/generated."""
-    depth = simpson_weights(state.temperature.shape[0])[:, None, None] * film[None, :, :]
-    dissipated = float((state.dissipation * depth).sum() * dx * dy)
+    depth = _depth_weights(state.temperature.shape[0], film)
     generated = float(((state.dissipation + state.compression) * depth).sum() * dx * dy)
     conducted = float((state.heat_flux_1 + state.heat_flux_2).sum() * dx * dy)
     excess = rho_c * (state.temperature - t_inlet) * depth
@@ -223,5 +233,5 @@ def energy_budget(state: FilmState, film: np.ndarray, dx: float, dy: float, rho_
                       - (excess[:, 0, :] * state.velocity_y[:, 0, :]).sum()) * dx
     convected = float(out)
     imbalance = (generated - conducted - convected) / generated if generated > 0.0 else 0.0
-    return {"dissipated_power": dissipated, "heat_generated": generated, "heat_conducted": conducted,
-            "heat_convected": convected, "energy_balance_error": imbalance}
+    return {"heat_generated": generated, "heat_conducted": conducted, "heat_convected": convected,
+            "energy_balance_error": imbalance}

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from facegear_tehl.ehl import grid
-from facegear_tehl.ehl.energy import energy_budget
+from facegear_tehl.ehl.energy import dissipated_power, energy_budget
 from facegear_tehl.ehl.friction import friction_coefficients
 from facegear_tehl.ehl.layers import simpson_weights
 from facegear_tehl.ehl.multigrid import Level
@@ -89,15 +89,25 @@ def inlet_gap_ratio(level: Level, scaling: Scaling, radius_x: float, radius_y: f
     return gap / h_c
 
 
+# Scalars that describe the film: not reported when the film closes (a negative film is never a result).
+FILM_SCALARS = ("h_c", "h_min", "x_h_min", "y_h_min", "p_max", "error_estimate_h_c", "error_estimate_h_min",
+                "algebraic_floor", "inlet_gap_ratio")
+
+
 def point_solution(solve: PointSolve, level: Level, status: Status, state: FilmState | None,
                    wall: float) -> PointSolution:
-    """The PointSolution of a finished solve reported on `level`: scalars with units, fields, histories, models."""
+    """The PointSolution of a finished solve reported on `level`: scalars with units, fields, histories, models.
+    A film that closed (h_min <= 0) gives no fields and no film scalars: only the point, its cost, histories
+    and the reason."""
     scaling = solve.scaling
     scalars = _film_scalars(solve, level, wall)
     fields = {
         "pressure": Field(level.pressure * scaling.p_h, "Pa", "film pressure"),
         "film_thickness": Field(level.film * scaling.film_scale, "m", "film thickness"),
     }
+    if level.film.min() <= 0.0:
+        scalars = {k: v for k, v in scalars.items() if k not in FILM_SCALARS}
+        fields, state = {}, None
     if state is not None:
         state_scalars, state_fields = _film_state_outputs(solve, level, state)
         scalars.update(state_scalars)
@@ -169,10 +179,11 @@ def _film_state_outputs(solve: PointSolve, level: Level, state: FilmState
         "dT_mid_max": (float(temperature[middle].max() - t_in), "K"),
         "dT_surface_1_max": (float(temperature[0].max() - t_in), "K"),
         "dT_surface_2_max": (float(temperature[-1].max() - t_in), "K"),
-        "thermal_iterations": (float(len(solve.history.thermal_changes)), "1"),
+        "thermal_iterations": (float(solve.history.outer), "1"),
         "error_estimate_dT_max": (estimate(summaries, level, dT_max, "dT_max", ORDER_DT_MAX), "1"),
         "error_estimate_mu": (estimate(summaries, level, mu, "mu", ORDER), "1"),
         "thermal_floor": (solve.history.thermal_floor, "K"),
+        "viscosity_floor": (solve.history.viscosity_floor, "1"),
         "thermal_layers": (float(temperature.shape[0]), "1"),
     }
     fields = {
@@ -182,12 +193,12 @@ def _film_state_outputs(solve: PointSolve, level: Level, state: FilmState
         "temperature_surface_1": Field(temperature[0], "K", "surface temperature of body 1"),
         "temperature_surface_2": Field(temperature[-1], "K", "surface temperature of body 2"),
     }
+    film, dx, dy = level.film * scaling.film_scale, level.hx * scaling.b, level.hy * scaling.a
+    scalars["dissipated_power"] = (dissipated_power(state, film, dx, dy), "W")
     if solve.mode != "off":
-        p_h = scaling.p_h
-        rho_c = (lubricant.density_at(np.broadcast_to(level.pressure * p_h, temperature.shape), temperature)
+        rho_c = (lubricant.density_at(np.broadcast_to(level.pressure * scaling.p_h, temperature.shape), temperature)
                  * lubricant.specific_heat)
-        budget = energy_budget(state, level.film * scaling.film_scale, level.hx * scaling.b, level.hy * scaling.a,
-                               rho_c, t_in)
+        budget = energy_budget(state, film, dx, dy, rho_c, t_in)
         scalars.update({k: (v, "1" if k == "energy_balance_error" else "W") for k, v in budget.items()})
         fields["heat_flux_1"] = Field(state.heat_flux_1, "W/m^2", "heat flux from the film into body 1")
         fields["heat_flux_2"] = Field(state.heat_flux_2, "W/m^2", "heat flux from the film into body 2")
@@ -217,6 +228,10 @@ def _histories(solve: PointSolve) -> dict[str, Field]:
     if history.thermal_changes:
         records["thermal_change_history"] = Field(np.array(history.thermal_changes), "K",
                                                   "largest layer-temperature change per outer iteration")
+    if history.viscosity_changes:
+        records["viscosity_change_history"] = Field(np.array(history.viscosity_changes), "1",
+                                                    "largest change of ln(eta*/eta) per outer iteration")
+    if history.thermal_h_c:
         records["thermal_h_c_history"] = Field(np.array(history.thermal_h_c), "m", "central film per outer iteration")
     return records
 

@@ -73,7 +73,11 @@ class History:
     loads: list[float] = field(default_factory=list)  # relative load error per cycle
     floor: float = math.nan  # pressure change at an accepted algebraic floor
     thermal_floor: float = math.nan  # K, temperature change at an accepted thermal floor
+    viscosity_floor: float = math.nan  # change of ln(eta*/eta) at an accepted floor of an isothermal Ree-Eyring film
+    outer: int = 0  # outer iterations of film state and pressure (all grids)
     thermal_changes: list[float] = field(default_factory=list)  # K, largest layer-temperature change per update
+    viscosity_changes: list[float] = field(default_factory=list)  # largest change of ln(eta*/eta) per update
+    # (an isothermal Ree-Eyring film, whose state is eta*/eta alone)
     thermal_h_c: list[float] = field(default_factory=list)  # m, central film per outer iteration
 
 
@@ -149,10 +153,11 @@ def _pressure_settled(history: History, settings: SolverSettings) -> bool:
     return len(changes) == 4 and max(changes) < FLOOR_BAND * settings.tolerance and _balanced(history.loads, settings)
 
 
-def _at_thermal_floor(changes: list[float], h_c: list[float], rise: float, h_c_error: float = 0.0) -> bool:
+def _at_thermal_floor(changes: list[float], h_c: list[float], bound: float, h_c_error: float = 0.0) -> bool:
     """The outer loop has reached its algebraic floor: over the last THERMAL_FLOOR_WINDOW outer iterations
-    (of this grid) the largest temperature change stopped falling (the smallest change of the last half is
-    above half the smallest of the first half), stays below 1 % of the temperature rise, and h_c is steady
+    (of this grid) the change of the film state stopped falling (the smallest change of the last half is
+    above half the smallest of the first half), stays below `bound` (thermal: 1 % of the temperature rise, K;
+    isothermal Ree-Eyring: FLOOR_BAND times the tolerance on ln(eta*/eta)), and h_c is steady
     to 5e-4 or to half its estimated discretisation error `h_c_error` (relative), if larger (the error is
     1e-3 to 6e-3 on 129^2-257^2). What is left is a period-2 flicker of a few nodes where a layer velocity
     changes sign between iterations (the upwind direction of the energy equation switches; under-relaxing the
@@ -165,7 +170,7 @@ def _at_thermal_floor(changes: list[float], h_c: list[float], rise: float, h_c_e
     recent, films = changes[-n:], h_c[-n:]
     half = n // 2
     stalled = min(recent[half:]) > THERMAL_FLOOR_STALL * min(recent[:half])
-    small = max(recent) < THERMAL_FLOOR_FRACTION * max(rise, MIN_RISE)
+    small = max(recent) < bound
     spread = max(THERMAL_FLOOR_H_C, THERMAL_FLOOR_ERROR_SHARE * h_c_error)
     steady = (max(films) - min(films)) <= spread * abs(films[-1])
     return stalled and small and steady
@@ -269,7 +274,8 @@ class PointSolve:
     # ------------------------------------------------------------------- steps
     def start(self, last: int) -> tuple[int, Status]:
         """Full multigrid from the Hertz start on the coarsest grid up to level `last`; appends a summary per
-        level. Returns the finest level that stayed sound (a level that runs away is undone) and the status."""
+        level. Returns the finest level that stayed sound (a level that runs away is undone) and the status.
+        """
         solver, settings = self.solver, self.settings
         solver.start_from_hertz(self._central_film_estimate())
         for _ in range(settings.cycles_per_level):
@@ -349,7 +355,7 @@ class PointSolve:
         factor = np.ones_like(temperature) if initial is None else initial.viscosity_factor
         state = initial
         last_finite = (solver.snapshot(index), initial)
-        first = len(history.thermal_changes)  # this grid's outer iterations start here
+        first = len(history.thermal_h_c)  # this grid's outer iterations start here
         status = CONVERGED
         for outer in range(settings.max_thermal_iterations):
             update = model.update(level.pressure * scaling.p_h, level.film * scaling.film_scale, temperature)
@@ -357,6 +363,7 @@ class PointSolve:
             thermal_change = float(np.abs(new - temperature).max())
             temperature = new
             v = VISCOSITY_RELAXATION
+            previous_factor = factor
             factor = factor ** (1.0 - v) * update.viscosity_factor**v  # eta*/eta relaxed in log space
             if not (np.isfinite(temperature).all() and np.isfinite(factor).all()):
                 status = Status(Outcome.DIVERGED, f"diverged in the film temperature at outer iteration {outer + 1}")
@@ -364,26 +371,41 @@ class PointSolve:
             state = replace(update, temperature=temperature, viscosity_factor=factor)
             solver.set_film_state(index, state.temperature, state.viscosity_factor)
             status = self.cycle(index, CYCLES_PER_THERMAL_UPDATE)
-            history.thermal_changes.append(thermal_change)
+            history.outer += 1
+            if model.solve_energy:
+                history.thermal_changes.append(thermal_change)
+                changes = history.thermal_changes
+            else:  # an isothermal Ree-Eyring film: its state is eta*/eta alone
+                history.viscosity_changes.append(float(np.abs(np.log(factor / previous_factor)).max()))
+                changes = history.viscosity_changes
             history.thermal_h_c.append(solver.central_film(level) * scaling.film_scale)
             if status.diverged:
                 break
             last_finite = (solver.snapshot(index), state)
-            rise = float(temperature.max() - self.lubricant.inlet_temperature)
-            if outer > 0 and status.converged and thermal_change < settings.thermal_tolerance * max(rise, MIN_RISE):
+            if model.solve_energy:
+                rise = max(float(temperature.max() - self.lubricant.inlet_temperature), MIN_RISE)
+                tolerance, floor_bound = settings.thermal_tolerance * rise, THERMAL_FLOOR_FRACTION * rise
+            else:
+                tolerance, floor_bound = settings.thermal_tolerance, FLOOR_BAND * settings.thermal_tolerance
+            if outer > 0 and status.converged and changes[-1] < tolerance:
                 return state, CONVERGED
             coarse_error = _h_c_error(history.thermal_h_c[-1], coarse_h_c * scaling.film_scale)
             if ((status.converged or _pressure_settled(history, settings))
-                    and _at_thermal_floor(history.thermal_changes[first:], history.thermal_h_c[first:], rise,
-                                          coarse_error)):
-                history.thermal_floor = thermal_change
+                    and _at_thermal_floor(changes[first:], history.thermal_h_c[first:], floor_bound, coarse_error)):
+                if model.solve_energy:
+                    history.thermal_floor = changes[-1]
+                else:
+                    history.viscosity_floor = changes[-1]
                 return state, CONVERGED
         if status.diverged:
             return self._last_finite(index, model, initial, *last_finite), status
+        what = ("thermal loop not converged after {} outer iterations: temperature change {:.2e} K (tolerance {:.0e} "
+                "of the rise)" if model.solve_energy else
+                "Ree-Eyring loop not converged after {} outer iterations: largest change of ln(eta*/eta) {:.2e} "
+                "(tolerance {:.0e})")
         return state, Status(Outcome.NOT_CONVERGED, (
-            f"thermal loop not converged after {settings.max_thermal_iterations} outer iterations: temperature "
-            f"change {history.thermal_changes[-1]:.2e} K (tolerance {settings.thermal_tolerance:.0e} of the rise), "
-            f"last pressure change {history.changes[-1]:.2e}"))
+            what.format(settings.max_thermal_iterations, changes[-1], settings.thermal_tolerance)
+            + f", last pressure change {history.changes[-1]:.2e}"))
 
     def _last_finite(self, index: int, model: FilmThermalModel, initial: FilmState | None, iterate: Iterate,
                      state: FilmState | None) -> FilmState | None:
@@ -412,11 +434,9 @@ class PointSolve:
         return frozen, self.cycle(index, self.settings.max_cycles)
 
     def _film_model(self, level: Level) -> FilmThermalModel:
-        point, scaling = self.point, self.scaling
         layers = self.settings.thermal_layers if self.mode != "off" else EYRING_LAYERS
-        return FilmThermalModel(level.x * scaling.b, level.y * scaling.a, layers, self.lubricant, point.body_1,
-                                point.body_2, np.asarray(point.velocity_1), np.asarray(point.velocity_2), scaling.b,
-                                solve_energy=self.mode != "off")
+        return FilmThermalModel(level.x * self.scaling.b, level.y * self.scaling.a, layers, self.lubricant,
+                                self.point, solve_energy=self.mode != "off")
 
     # ------------------------------------------------------------------ report
     def report(self, index: int, status: Status, state: FilmState | None) -> PointSolution:

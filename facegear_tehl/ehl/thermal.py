@@ -10,7 +10,7 @@ equation needs (temperature and eta*/eta per layer, flow.py):
    x with the x component of each surface's velocity (face gear surfaces move within 2 deg of x). A surface
    nearly at rest (Pe < 1) is given the effusivity of Pe = 1, where the high-Péclet kernel would otherwise
    diverge: a bounded, conservative estimate.
-The film's interior layers and the surfaces are iterated `inner` times with under-relaxed surfaces.
+The film's interior layers and the surfaces are iterated INNER_ITERATIONS times with under-relaxed surfaces.
 
 `thermal_choice` picks the thermal model of `solver.thermal: auto` from the thermal loading number and the
 slide-to-roll ratio (Gupta et al. 1992), and says why.
@@ -28,7 +28,18 @@ from facegear_tehl.lubricant import Lubricant, density_ratio, temperature_coeffi
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.materials import Solid
 
+# Continuation in temperature: a Newtonian film under heavy sliding would otherwise overshoot by thousands of
+# kelvin in its first update, before the viscosity has dropped; with 50 K the face gear points (rises of
+# 15-100 K) need at most two limited updates.
 MAX_TEMPERATURE_STEP = 50.0  # K, largest temperature change of one update
+INNER_ITERATIONS = 2  # film-interior and surface passes per update: the outer loop iterates them again anyway
+# Under-relaxation of the surface temperatures between inner passes: they follow the wall heat flux of the same
+# pass through the Jaeger kernel, whose gain grows as the solid slows (~ 1/sqrt(speed)); 0.6 is the value the
+# thermal model was built and validated with (an empirical choice: no sweep of it is recorded).
+SURFACE_RELAXATION = 0.6
+ENERGY_SWEEPS = 8  # column sweeps of the energy equation per pass: 30 gave S1 of the face gear case to 1e-4 in
+# h_c and dT_max, in 10 % more time (the outer loop re-solves the temperature anyway)
+ENERGY_SWEEP_TOLERANCE = 1e-3  # K, largest change between sweeps at which a pass stops sweeping
 
 
 @dataclass(frozen=True)
@@ -51,28 +62,27 @@ class FilmState:
 class FilmThermalModel:
     """Across-film state on a uniform (ny, nx) grid with node coordinates x, y (m)."""
 
-    def __init__(self, x: np.ndarray, y: np.ndarray, layers: int, lubricant: Lubricant, body_1: Solid,
-                 body_2: Solid, velocity_1: np.ndarray, velocity_2: np.ndarray, half_width: float,
-                 solve_energy: bool, inner: int = 2, surface_relaxation: float = 0.6):
+    def __init__(self, x: np.ndarray, y: np.ndarray, layers: int, lubricant: Lubricant, point: ContactPoint,
+                 solve_energy: bool):
+        """`layers`: odd number of layer nodes across the film; `point` gives the solids, their surface velocities
+        and the Hertz half-width; `solve_energy`: False for an isothermal (Ree-Eyring) film."""
         if layers < 3 or layers % 2 == 0:
             raise ValueError(f"layers across the film must be odd and >= 3, got {layers}")
         self.x, self.y = x, y
         self.dx, self.dy = float(x[1] - x[0]), float(y[1] - y[0])
         self.layers = layers
         self.lubricant = lubricant
-        self.velocity_1 = np.asarray(velocity_1, dtype=float)
-        self.velocity_2 = np.asarray(velocity_2, dtype=float)
+        self.velocity_1 = np.asarray(point.velocity_1, dtype=float)
+        self.velocity_2 = np.asarray(point.velocity_2, dtype=float)
         self.solve_energy = solve_energy
-        self.inner = inner
-        self.surface_relaxation = surface_relaxation
         self.law = lubricant.law_parameters()
         self.t_inlet = lubricant.inlet_temperature
         self.tau0 = lubricant.eyring_stress if lubricant.rheology == "ree_eyring" else math.inf
         self.matrix = jaeger.influence_matrix(x.size, self.dx)
         self._stress = None  # surface-1 shear stress of the last update: the warm start of the next
-        self.effusivity = tuple(
-            self._effusivity(body, float(v[0]), half_width) for body, v in ((body_1, self.velocity_1), (body_2, self.velocity_2))
-        )
+        half_width = point.hertz.b
+        self.effusivity = tuple(self._effusivity(body, float(v[0]), half_width)
+                                for body, v in ((point.body_1, self.velocity_1), (point.body_2, self.velocity_2)))
 
     @staticmethod
     def _effusivity(body: Solid, speed: float, half_width: float) -> float:
@@ -110,7 +120,7 @@ class FilmThermalModel:
         p_layers = np.ascontiguousarray(np.broadcast_to(p, shape))
         conductivity = lub.conductivity_at(p)  # (ny, nx): one k per column (p is constant across the film)
         change = 0.0
-        for _ in range(self.inner if self.solve_energy else 1):
+        for _ in range(INNER_ITERATIONS if self.solve_energy else 1):
             eta = lub.viscosity * viscosity_ratio(p_layers, temperature, self.law).reshape(shape)
             rheology.shear_state(p, film, np.ascontiguousarray(grad_x), np.ascontiguousarray(grad_y), eta,
                                  self.velocity_1, self.velocity_2, self.tau0, warm, viscosity_factor, dissipation,
@@ -124,13 +134,11 @@ class FilmThermalModel:
             before = temperature.copy()
             beta = temperature_coefficient(p_layers, temperature, self.law).reshape(shape)
             sensitivity = dissipation * beta * thinning  # -d(dissipation)/dT at fixed shear rate
-            # at most 8 sweeps: the outer loop re-solves the temperature anyway (30 gave the same S1 of the face
-            # gear case to 1e-4 in h_c and dT_max, in 10 % more time)
             energy.sweep_film_temperature(temperature, velocity_x, velocity_y, dissipation, sensitivity,
                                           compression_coefficient, rho_c, conductivity, film, self.dx,
-                                          self.dy, self.t_inlet, 8, 1e-3)
+                                          self.dy, self.t_inlet, ENERGY_SWEEPS, ENERGY_SWEEP_TOLERANCE)
             q1, q2 = energy.wall_heat_flux(temperature, film, conductivity)
-            w = self.surface_relaxation
+            w = SURFACE_RELAXATION
             temperature[0] += w * (self._surface(q1, 0, float(self.velocity_1[0])) - temperature[0])
             temperature[-1] += w * (self._surface(q2, 1, float(self.velocity_2[0])) - temperature[-1])
             np.clip(temperature, start - MAX_TEMPERATURE_STEP, start + MAX_TEMPERATURE_STEP, out=temperature)
