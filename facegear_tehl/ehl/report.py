@@ -156,6 +156,7 @@ def _film_scalars(solve: PointSolve, level: Level, wall: float) -> dict[str, tup
         "error_estimate_h_min": (estimate(summaries, level, h_min_start, "h_min", ORDER), "1"),
         "grid": (float(level.nx), "1"),
         "grid_y": (float(level.ny), "1"),
+        "coarsest_grid": (float(solve.coarsest), "1"),
         "algebraic_floor": (history.floor, "1"),
         "inlet_gap_ratio": (inlet_gap_ratio(level, scaling, point.radius_x, point.radius_y,
                                             fine.h_c * film_scale), "1"),
@@ -249,6 +250,9 @@ def _models(solve: PointSolve) -> dict[str, str]:
         "thermal_reason": solve.reason,
         "solver": "FAS multigrid, line GS / Jacobi distributive (Venner & Lubrecht 2000), FFT deflection",
     }
+    if solve.start_notes:
+        models["solver"] += (f"; full-multigrid start from the {solve.coarsest} x {solve.coarsest} grid (chosen by the "
+                             f"solver: the start ran away from {'; from '.join(solve.start_notes)})")
     if mode != "off":
         models["thermal_solids"] = "Jaeger (1942) high-Peclet moving heat source per surface"
         a, b = lubricant.conductivity_pressure_coefficient, lubricant.conductivity_pressure_saturation

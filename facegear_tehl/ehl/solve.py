@@ -188,8 +188,9 @@ class PointSolve:
     `finish` runs the fine stage."""
 
     def __init__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
-                 relaxation: Relaxation = Relaxation(), elapsed: float = 0.0):
-        """`elapsed`: s already spent on this point (a first attempt that ran away), counted in its wall time."""
+                 relaxation: Relaxation = Relaxation(), elapsed: float = 0.0, escalate_start: bool = False):
+        """`elapsed`: s already spent on this point (a first attempt that ran away), counted in its wall time;
+        `escalate_start`: a start that runs away begins again from a finer coarsest grid (start())."""
         self.point, self.lubricant, self.settings = point, lubricant, settings
         self.scaling = scaling_for(point, lubricant)
         shapes = grid.hierarchy_shapes(settings.grid, settings.nodes_y, settings.coarsest_grid)
@@ -198,6 +199,9 @@ class PointSolve:
         self.summaries: list[LevelSummary] = []
         self.history = History(cycles=settings.cycles_per_level)
         self.coarse_state: FilmState | None = None  # the film state of the coarse thermal stage
+        self.coarsest = settings.coarsest_grid  # nodes of the coarsest grid's shorter side (start())
+        self.start_notes: list[str] = []  # starts that ran away, from the coarsest grid they began on
+        self.escalate_start = escalate_start
         self.elapsed = elapsed  # s spent up to the last pause (a solve paused between stages has no clock)
         self._clock = time.perf_counter() - elapsed
 
@@ -212,8 +216,8 @@ class PointSolve:
         it has no separate fine stage or the coarse stage failed."""
         top = len(self.solver.levels) - 1
         if self.mode != "off" and top > 0 and self.solver.levels[top - 1].nx >= MIN_COARSE_THERMAL_GRID:
-            return self._coarse_thermal_stage(top - 1)
-        return self._solve_finest(top)
+            return self._coarse_thermal_stage()
+        return self._solve_finest()
 
     def finish(self) -> PointSolution:
         """The fine stage of a thermal full-multigrid solve: the coarse solution and film state interpolated
@@ -242,11 +246,11 @@ class PointSolve:
         self.summaries.append(summarise(solver.levels[top]))
         return self.report(top, status, state)
 
-    def _coarse_thermal_stage(self, coarse: int) -> PointSolution | PointSolve:
+    def _coarse_thermal_stage(self) -> PointSolution | PointSolve:
         """Thermal full multigrid, first stage: the coupled problem one grid coarser than the finest (`reduced`
         stops after the fine stage's single film-state evaluation, `full` couples again there). The isothermal
         pressure is cycled first; its tolerance is not required, the coupled loop goes on from where it got."""
-        index, status = self.start(coarse)
+        index, status = self.start(below_top=1)
         state = None
         if status.converged:
             self.cycle(index, self.settings.max_cycles)
@@ -257,10 +261,10 @@ class PointSolve:
                 return self
         return self.report(index, status, state)
 
-    def _solve_finest(self, top: int) -> PointSolution:
+    def _solve_finest(self) -> PointSolution:
         """Full multigrid to the finest grid, cycles to tolerance there, then (thermal or Ree-Eyring films) the
         outer loop there. An isothermal Newtonian solve that does not converge reports its best iterate."""
-        index, status = self.start(top)
+        index, status = self.start(below_top=0)
         best = None if self.coupled else _Best(math.inf, self.solver.snapshot(index))
         state = None
         if status.converged:
@@ -272,10 +276,36 @@ class PointSolve:
         return self.report(index, status, state)
 
     # ------------------------------------------------------------------- steps
-    def start(self, last: int) -> tuple[int, Status]:
+    def start(self, below_top: int) -> tuple[int, Status]:
+        """Full multigrid from the Hertz start up to `below_top` levels below the finest. With `escalate_start`
+        (the retry of a solve that ran away), a start that runs away is begun again from a coarsest grid twice as
+        fine (a heavy load's film and pressure spike are not
+        resolved by coarse grids: an a/b = 34 ellipse at p_h = 1.5 GPa, Moes M = 1.4e4, ran away from 17^2 and
+        33^2 and converged from 65^2 in 9 cycles), as long as the hierarchy keeps the levels asked for. Returns
+        the finest level that stayed sound (a level that runs away is undone) and the status."""
+        while True:
+            index, status = self._full_multigrid(len(self.solver.levels) - 1 - below_top)
+            finer = 2 * self.coarsest - 1
+            shapes = grid.hierarchy_shapes(self.settings.grid, self.settings.nodes_y, finer)
+            if (not (status.diverged and self.escalate_start) or finer > min(self.settings.grid, self.settings.nodes_y)
+                    or len(shapes) <= below_top):
+                return index, status
+            self._restart(shapes, status)
+
+    def _restart(self, shapes: list[tuple[int, int]], status: Status) -> None:
+        """A new hierarchy (coarsest grid first in `shapes`) after the start ran away with `status`; the work
+        done so far is kept in the count."""
+        work = self.solver.work_units
+        self.solver = MultigridSolver(self.solver.problem, shapes, self.solver.relaxation)
+        self.solver.work_units = work
+        self.start_notes.append(f"{self.coarsest} x {self.coarsest}: {status.message}")
+        self.coarsest = shapes[0][0] if shapes[0][0] <= shapes[0][1] else shapes[0][1]
+        self.summaries = []
+        self.history = History(cycles=self.settings.cycles_per_level)
+
+    def _full_multigrid(self, last: int) -> tuple[int, Status]:
         """Full multigrid from the Hertz start on the coarsest grid up to level `last`; appends a summary per
-        level. Returns the finest level that stayed sound (a level that runs away is undone) and the status.
-        """
+        level. Returns the finest level that stayed sound (a level that runs away is undone) and the status."""
         solver, settings = self.solver, self.settings
         solver.start_from_hertz(self._central_film_estimate())
         for _ in range(settings.cycles_per_level):
@@ -291,7 +321,7 @@ class PointSolve:
             if not _finite(level) or runaway:
                 solver.restore(index - 1, saved)
                 return index - 1, Status(Outcome.DIVERGED,
-                                         f"diverged during the full-multigrid start on the {level.nx}^2 grid")
+                                         f"diverged during the full-multigrid start on the {level.nx} x {level.ny} grid")
             saved = solver.snapshot(index)
             self.summaries.append(summarise(level))
         return last, CONVERGED
@@ -464,7 +494,8 @@ class StagedSolver:
     different processes with the same result (`begin`, `finish`, `needs_retry`, `with_retry`).
 
     Convergence policy: a solve that runs away is repeated once with the other Gauss-Seidel / Jacobi switch
-    (the ellipse-scaled one first, then Venner's circle value; multigrid.Level), and the retry is reported.
+    (the ellipse-scaled one first, then Venner's circle value; multigrid.Level) and a start that begins again
+    from a finer coarsest grid when it runs away (PointSolve.start); the retry is reported.
     """
 
     def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
@@ -476,11 +507,11 @@ class StagedSolver:
     def begin(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
               retry_after: PointSolution | None = None) -> PointSolution | PointSolve:
         """The first stage (PointSolve.begin). `retry_after`: the first attempt, which ran away: this one uses
-        Venner's switch as is, and its wall time counts the first's."""
+        Venner's switch as is and an escalating start, and its wall time counts the first's."""
         if retry_after is None:
             return PointSolve(point, lubricant, settings).begin()
         return PointSolve(point, lubricant, settings, Relaxation(scale_switch=False),
-                          elapsed=retry_after.scalar("wall_time")).begin()
+                          elapsed=retry_after.scalar("wall_time"), escalate_start=True).begin()
 
     def finish(self, stage: PointSolve) -> PointSolution:
         """The second stage (PointSolve.finish)."""
