@@ -24,8 +24,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-import numpy as np
 from numba import njit
+import numpy as np
 
 from facegear_tehl.ehl.layers import simpson_weights
 

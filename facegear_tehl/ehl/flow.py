@@ -3,7 +3,8 @@
 Across the film (zeta = z/h from surface 1 at 0 to surface 2 at 1) the viscosity eta*(zeta) (Newtonian, or the
 Ree-Eyring effective viscosity, with temperature) and the density rho(zeta) vary. With the layer integrals
 
-    F0 = \\int d zeta/eta*,  F1 = \\int zeta d zeta/eta*,  f0(zeta) = \\int_0^zeta d zeta'/eta*,  f1(zeta) = \\int_0^zeta zeta' d zeta'/eta*
+    F0 = \\int d zeta/eta*,  F1 = \\int zeta d zeta/eta*,
+    f0(zeta) = \\int_0^zeta d zeta'/eta*,  f1(zeta) = \\int_0^zeta zeta' d zeta'/eta*
     R0 = \\int rho d zeta,   R1 = \\int rho f1 d zeta,      R2 = \\int rho f0 d zeta
 
 the mass flux per unit width is m = -h^3 (F1 R2/F0 - R1) grad p + h [u_1 R0 + (u_2 - u_1) R2/F0]: the first term
@@ -19,12 +20,18 @@ The layer count is odd (Simpson's rule across the film; layers.py).
 
 from __future__ import annotations
 
-import numpy as np
 from numba import njit
+import numpy as np
 
 from facegear_tehl.ehl.layers import cumulative_stencil, simpson_weight
-from facegear_tehl.lubricant import (ROELANDS, density_ratio_at, roelands_pressure_factor_at, roelands_ratio,
-                                     roelands_temperature_factor_at, viscosity_ratio_at)
+from facegear_tehl.lubricant import (
+    ROELANDS,
+    density_ratio_at,
+    roelands_pressure_factor_at,
+    roelands_ratio,
+    roelands_temperature_factor_at,
+    viscosity_ratio_at,
+)
 
 
 @njit(cache=True, error_model="numpy")

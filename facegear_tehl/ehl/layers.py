@@ -7,8 +7,8 @@ h_c 0.9 % and mu 1.8 % off on the default nine layers (S1 of cases/facegear_110.
 
 from __future__ import annotations
 
-import numpy as np
 from numba import njit
+import numpy as np
 
 
 @njit(cache=True)

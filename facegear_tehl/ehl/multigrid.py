@@ -20,7 +20,6 @@ import numpy as np
 from facegear_tehl.ehl import flow, grid, reynolds
 from facegear_tehl.ehl.elastic import DeflectionOperator
 
-
 CIRCLE_SELF_COEFFICIENT = 8.0 * math.asinh(1.0) / math.pi**2  # C_d K_00/h for a circle on square cells
 
 
@@ -49,7 +48,8 @@ class Relaxation:
     """Parameters of the relaxation and the cycle (defaults: Venner & Lubrecht 2000)."""
 
     xi_switch: float = 0.3  # eps/h^2 above which a node is relaxed Gauss-Seidel (circular contact; see Level)
-    under_gs: float = 0.3  # under-relaxation of Gauss-Seidel changes (Venner & Lubrecht: 0.4; 0.3 keeps ellipses with k > 40 stable)
+    # under-relaxation of Gauss-Seidel changes (Venner & Lubrecht: 0.4; 0.3 keeps ellipses with k > 40 stable)
+    under_gs: float = 0.3
     under_jd: float = 0.15  # under-relaxation of Jacobi-distributive changes (Venner & Lubrecht: 0.2)
     pre_sweeps: int = 2
     post_sweeps: int = 1

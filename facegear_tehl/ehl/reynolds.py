@@ -21,8 +21,8 @@ physical Laplacian (w_x : w_y = 1/h_x^2 : 1/(k h_y)^2, 2 w_x + 2 w_y = 1): for a
 
 from __future__ import annotations
 
-import numpy as np
 from numba import njit
+import numpy as np
 
 BAND = 3  # half-width of the banded line Jacobian (columns i-3 .. i+3)
 PATTERN_REACH = 2 * BAND  # |d| range of the pattern-effect kernels (wedge reaches i - 2 and band 3, +1 spread)
@@ -83,7 +83,8 @@ def _wedge(qx, qy, j, i, sx, sy, rhx, rhy):
 @njit(cache=True)
 def _operator(p, qx, qy, eps, j, i, rhx, rhy, rhx2, rhy2k, sx, sy):
     xe, xw, xn, xs = _coefficients(eps, j, i, rhx2, rhy2k)
-    poiseuille = xe * p[j, i + 1] + xw * p[j, i - 1] + xn * p[j + 1, i] + xs * p[j - 1, i] - (xe + xw + xn + xs) * p[j, i]
+    poiseuille = (xe * p[j, i + 1] + xw * p[j, i - 1] + xn * p[j + 1, i] + xs * p[j - 1, i]
+                  - (xe + xw + xn + xs) * p[j, i])
     return poiseuille - _wedge(qx, qy, j, i, sx, sy, rhx, rhy)
 
 
@@ -213,7 +214,8 @@ def relax_lines(p, qx, qy, fx, fy, eps, f, hx, hy, px, py, sx, sy, e_gs, e_jd, w
             xe, xw, xn, xs = _coefficients(eps, j, i, rhx2, rhy2k)
             xsum = xe + xw + xn + xs
             src = pj if gs[j, i] else p
-            poiseuille = xe * src[j, i + 1] + xw * src[j, i - 1] + xn * src[j + 1, i] + xs * src[j - 1, i] - xsum * src[j, i]
+            poiseuille = (xe * src[j, i + 1] + xw * src[j, i - 1] + xn * src[j + 1, i] + xs * src[j - 1, i]
+                          - xsum * src[j, i])
             rhs[r] = f[j, i] - (poiseuille - _wedge(qx, qy, j, i, sx, sy, rhx, rhy))
             # Does the node couple to its line neighbours? (not across a cavitation boundary)
             coupled = pj[j, i] > 0.0
@@ -285,7 +287,8 @@ def relax_lines(p, qx, qy, fx, fy, eps, f, hx, hy, px, py, sx, sy, e_gs, e_jd, w
                 pj[j, i] = new
                 d0 = new - old
                 change += abs(d0)
-                if new > 0.0 and pj[j, i - 1] > 0.0 and pj[j, i + 1] > 0.0 and pj[j - 1, i] > 0.0 and pj[j + 1, i] > 0.0:
+                if (new > 0.0 and pj[j, i - 1] > 0.0 and pj[j, i + 1] > 0.0 and pj[j - 1, i] > 0.0
+                        and pj[j + 1, i] > 0.0):
                     if i > 1:
                         pj[j, i - 1] = max(pj[j, i - 1] - wx * d0, 0.0)
                     if i < nx - 2:

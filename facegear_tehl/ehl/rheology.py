@@ -21,8 +21,8 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 from numba import njit
+import numpy as np
 
 from facegear_tehl.ehl.layers import cumulative_step, simpson_weight
 
@@ -42,7 +42,9 @@ def _shear_rate(tx, ty, eta, tau0):
     d_amp = math.cosh(r) / eta  # d|gamma_dot|/d|tau|
     ratio = amp / te  # |gamma_dot|/|tau|
     nx, ny = tx / te, ty / te
-    return gx, gy, d_amp * nx * nx + ratio * (1.0 - nx * nx), (d_amp - ratio) * nx * ny, d_amp * ny * ny + ratio * (1.0 - ny * ny)
+    a = d_amp * nx * nx + ratio * (1.0 - nx * nx)
+    c = d_amp * ny * ny + ratio * (1.0 - ny * ny)
+    return gx, gy, a, (d_amp - ratio) * nx * ny, c
 
 
 @njit(cache=True, error_model="numpy")

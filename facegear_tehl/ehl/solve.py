@@ -29,8 +29,7 @@ import numpy as np
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import grid
 from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem, Relaxation
-from facegear_tehl.ehl.report import (ORDER, LevelSummary, point_solution, richardson_error, summarise,
-                                      with_film_state)
+from facegear_tehl.ehl.report import ORDER, LevelSummary, point_solution, richardson_error, summarise, with_film_state
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
 from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel, thermal_choice
 from facegear_tehl.film_formulas import hamrock_dowson_central
@@ -320,8 +319,8 @@ class PointSolve:
             runaway = abs(solver.force_error(level)) > DIVERGED_LOAD_ERROR * solver.problem.load_integral
             if not _finite(level) or runaway:
                 solver.restore(index - 1, saved)
-                return index - 1, Status(Outcome.DIVERGED,
-                                         f"diverged during the full-multigrid start on the {level.nx} x {level.ny} grid")
+                message = f"diverged during the full-multigrid start on the {level.nx} x {level.ny} grid"
+                return index - 1, Status(Outcome.DIVERGED, message)
             saved = solver.snapshot(index)
             self.summaries.append(summarise(level))
         return last, CONVERGED

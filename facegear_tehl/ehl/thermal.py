@@ -23,9 +23,9 @@ import math
 
 import numpy as np
 
+from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import energy, jaeger, rheology
 from facegear_tehl.lubricant import Lubricant, density_ratio, temperature_coefficient, viscosity_ratio
-from facegear_tehl.contact import ContactPoint
 from facegear_tehl.materials import Solid
 
 # Continuation in temperature: a Newtonian film under heavy sliding would otherwise overshoot by thousands of
@@ -162,7 +162,8 @@ class FilmThermalModel:
 
 def thermal_loading(point: ContactPoint, lubricant: Lubricant) -> float:
     """Thermal loading number L_th = beta eta_0 u_e^2/k_f (Gupta et al. 1992), with k_f = k_0 at p = 0."""
-    return lubricant.temperature_viscosity * lubricant.viscosity * point.entrainment_speed**2 / lubricant.thermal_conductivity
+    beta_eta = lubricant.temperature_viscosity * lubricant.viscosity
+    return beta_eta * point.entrainment_speed**2 / lubricant.thermal_conductivity
 
 
 def gupta_reduction(point: ContactPoint, lubricant: Lubricant) -> float:
