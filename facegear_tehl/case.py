@@ -7,9 +7,9 @@ Top-level blocks: `name`, `description`, one of `contact` (a plain elliptical co
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass, replace
 from pathlib import Path
+import re
 from typing import Any
 
 import yaml
@@ -78,7 +78,8 @@ class Case:
     def with_grid(self, grid: int) -> Case:
         """The same case on another finest grid (validated like the YAML key solver.grid)."""
         _check_grid(grid, "--grid")
-        check(grid >= self.solver.coarsest_grid, "--grid", grid, f"at least solver.coarsest_grid = {self.solver.coarsest_grid}")
+        check(grid >= self.solver.coarsest_grid, "--grid", grid,
+              f"at least solver.coarsest_grid = {self.solver.coarsest_grid}")
         grid_y = self.solver.grid_y
         if grid_y is not None:  # keep the case's aspect: grid_y refines (or coarsens) with grid, to coarsest_grid
             grid_y = max((grid_y - 1) * (grid - 1) // (self.solver.grid - 1) + 1, self.solver.coarsest_grid)

@@ -7,12 +7,12 @@ Exit codes: 0 ok; 1 unexpected error (or a point whose solve failed; its result 
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 import json
 import os
+from pathlib import Path
 import signal
 import traceback
-from collections.abc import Iterable, Sequence
-from pathlib import Path
 from typing import Any
 
 import click
@@ -116,7 +116,8 @@ def _exit_on_status(ctx: click.Context, result: Result) -> None:
 @click.option("--thermal", help="Thermal model, overrides solver.thermal: off | reduced | full | auto.")
 @click.option("--tol", "tolerance", type=float, default=0.01, show_default=True,
               help="Relative change to the next grid below which a quantity counts as grid-independent.")
-@click.option("-o", "--output", help="Sweep file, HDF5 (default: <case name>_sweep_<point>.h5); the CSV goes next to it.")
+@click.option("-o", "--output",
+              help="Sweep file, HDF5 (default: <case name>_sweep_<point>.h5); the CSV goes next to it.")
 @click.option("--jobs", type=int, help="Worker processes solving grids side by side (default: all cores).")
 @click.pass_context
 def sweep(

@@ -16,11 +16,11 @@ Thermal conductivity (ratio to k_0 at p = 0):
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
+import math
 
-import numpy as np
 from numba import njit
+import numpy as np
 
 # Roelands (1966): reference pressure and the asymptotic viscosity ln(eta_inf / Pa s) = -9.67.
 ROELANDS_PRESSURE = 1.96e8  # Pa

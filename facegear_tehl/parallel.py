@@ -6,14 +6,16 @@ solver is passed in: a `StagedSolver` (the EHL solver) is run in stages (a therm
 coarse and fine stage are separate tasks), so that five points on two workers do not leave one worker idle
 while the other solves the fifth point whole: S1-S5 of the face gear case, thermal full 129^2, 1.73x faster
 on two workers than on one (1.68x with whole points). A solve that raises is returned as a failed
-`PointSolution` (outcome FAILED, the error as its message, no data); the other tasks still run. With one job, or one task, everything runs in this process (no pool).
+`PointSolution` (outcome FAILED, the error as its message, no data); the other tasks still run. With one
+job, or one task, everything runs in this process (no pool).
 
 Workers are forked on Linux: they inherit the imported modules and the Numba kernels, which this process
 compiles (or loads from Numba's on-disk cache) first by solving the first task on its coarsest grid, so
 that no worker compiles and each solve's wall time is the solve alone. The solver starts no threads of
 its own (no Numba `parallel`, single-threaded `scipy.fft`; OpenBLAS stops its threads around a fork) and
-the workers open no HDF5 file, so forking is safe. Elsewhere workers are spawned and load the kernels from the on-disk cache (`cache=True`; its
-files are written by rename, so workers compiling at the same time do not corrupt it).
+the workers open no HDF5 file, so forking is safe. Elsewhere workers are spawned and load the kernels
+from the on-disk cache (`cache=True`; its files are written by rename, so workers compiling at the same
+time do not corrupt it).
 
 Every solve, in this process or a worker, runs with one BLAS thread: OpenBLAS adds in another order with
 more threads, so this keeps the results bit-identical whatever `jobs` (and whatever the machine's core
@@ -35,10 +37,10 @@ from typing import Callable, Iterator, Protocol, Sequence, runtime_checkable
 
 from threadpoolctl import threadpool_limits
 
-from facegear_tehl.settings import SolverSettings
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.schema import check
+from facegear_tehl.settings import SolverSettings
 from facegear_tehl.solution import Outcome, PointSolution
 
 Solver = Callable[[ContactPoint, Lubricant, SolverSettings], PointSolution]

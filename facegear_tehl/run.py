@@ -8,9 +8,9 @@ import math
 from typing import Sequence
 
 from facegear_tehl.case import Case
-from facegear_tehl.heat_budget import heat_budget
 from facegear_tehl.contact import ContactPoint
-from facegear_tehl.parallel import Progress, SolveTask, Solver, StagedSolver, solve_all
+from facegear_tehl.heat_budget import heat_budget
+from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
 from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.results import RunResult
 from facegear_tehl.solution import PointSolution

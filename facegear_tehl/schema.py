@@ -7,11 +7,11 @@ unknown keys are reported with a "did you mean" hint.
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping
 import dataclasses
 import difflib
 import math
 import reprlib
-from collections.abc import Iterable, Mapping
 from typing import Any
 
 

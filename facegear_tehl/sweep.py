@@ -15,26 +15,27 @@ one is); f* and U are not given when p < 0.5: the grids are then not in the asym
 Hoekstra 2014 use the same bound), and the correction, more than 2.4 times the last change, would amplify
 noise (p <= 0: the values do not converge). The error of each grid is taken against
 f* of the three finest grids: e = (f - f*)/|f*|. A grid whose solve did not converge gives no value: it
-enters no change, order or extrapolation (the errors are then against the three finest grids that converged). A quantity is converged to a tolerance from the first
-grid whose change to the next grid, and every later change, is below it.
+enters no change, order or extrapolation (the errors are then against the three finest grids that
+converged). A quantity is converged to a tolerance from the first grid whose change to the next grid, and
+every later change, is below it.
 
 Grids are independent solves (each with its own full-multigrid start); they run on worker processes.
 """
 
 from __future__ import annotations
 
-import math
-import os
-import secrets
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 from itertools import pairwise
+import math
+import os
 from pathlib import Path
+import secrets
 
 import numpy as np
 
 from facegear_tehl.case import THERMAL_MODELS, Case
-from facegear_tehl.parallel import Progress, SolveTask, Solver, StagedSolver, solve_all
+from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
 from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.results import RunResult
 from facegear_tehl.run import ehl_solver

@@ -54,7 +54,7 @@ def main() -> None:
         for model in MODELS:
             sol, wall = results[point.name, model]
 
-            def err(key):
+            def err(key, sol=sol, ref=ref, model=model):
                 if key not in sol.scalars or key not in ref.scalars or model == "full":
                     return "–"
                 return f"{100 * (sol.scalar(key) / ref.scalar(key) - 1):+.1f} %"

@@ -61,7 +61,8 @@ def _value(solution: PointSolution, key: str, factor: float, fmt: str) -> str:
 def markdown_table(rows: list[Row]) -> str:
     """The suite table: one row per solved point."""
     lines = [
-        "| case | point | converged | cycles | thermal iterations | wall time s | h_min nm | p_max GPa | p_h GPa | file |",
+        "| case | point | converged | cycles | thermal iterations | wall time s | h_min nm | p_max GPa | p_h GPa"
+        " | file |",
         "|---|---|---|---|---|---|---|---|---|---|",
     ]
     for row in rows:

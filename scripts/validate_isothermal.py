@@ -26,8 +26,8 @@ from facegear_tehl.film_formulas import (
 )
 
 
-def solve(m, l, d, angle, grid):
-    point, lub = contact_from_moes(m, l, d, entrainment_angle=angle)
+def solve(m, moes_l, d, angle, grid):
+    point, lub = contact_from_moes(m, moes_l, d, entrainment_angle=angle)
     sol = solve_point(point, lub, SolverSettings(grid=grid, domain_x=None, domain_y=None, thermal="off",
                                                  coarsest_grid=17, cycles_per_level=2, max_cycles=40,
                                                  tolerance=1e-4, load_tolerance=1e-4))
@@ -49,13 +49,13 @@ def main() -> None:
     print(f"Elliptical contacts ({n}^2, Barus, incompressible; Moes scaling H = h/R_x (2U)^-1/2):\n")
     print("| M | L | D = R_x/R_y | H_c solver | H_c NVM | diff | H_min solver | H_min HD | diff |")
     print("|---|---|---|---|---|---|---|---|---|")
-    for m, l in ((20.0, 10.0), (100.0, 10.0)):
+    for m, moes_l in ((20.0, 10.0), (100.0, 10.0)):
         for d in (1.0, 0.5, 0.2, 0.05):
-            sol, sc, hc, hmin = solve(m, l, d, 0.0, n)
-            nvm = nijenbanning_central(m, l, d)
+            sol, sc, hc, hmin = solve(m, moes_l, d, 0.0, n)
+            nvm = nijenbanning_central(m, moes_l, d)
             k_hd = 1.03 * (1.0 / d) ** 0.64
             hd = hamrock_dowson_minimum(sc.hamrock_u, sc.hamrock_g, sc.hamrock_w, k_hd) / math.sqrt(2 * sc.hamrock_u)
-            print(f"| {m:g} | {l:g} | {d:g} | {hc:.3f}{mark(sol)} | {nvm:.3f} | {100 * (hc / nvm - 1):+.1f} % | "
+            print(f"| {m:g} | {moes_l:g} | {d:g} | {hc:.3f}{mark(sol)} | {nvm:.3f} | {100 * (hc / nvm - 1):+.1f} % | "
                   f"{hmin:.3f} | {hd:.3f} | {100 * (hmin / hd - 1):+.1f} % |")
 
     print(f"\nSkewed entrainment, D = 0.2, M = 100, L = 10 ({n}^2): film relative to 0 deg\n")

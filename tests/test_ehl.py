@@ -116,8 +116,9 @@ def test_grid_convergence_257_to_513(m, limit):
 def test_inlet_gap_ratio_is_the_rigid_gap_at_the_upstream_boundary_in_films():
     """inlet_gap_ratio = (x_in^2/(2 R_x) + y_in^2/(2 R_y))/h_c at the point where the entrainment line leaves
     the domain upstream: for entrainment along x on the default domain, x_in = -4.5 b."""
-    from facegear_tehl.ehl.report import inlet_gap_ratio
     from types import SimpleNamespace
+
+    from facegear_tehl.ehl.report import inlet_gap_ratio
 
     level = SimpleNamespace(x=np.linspace(-4.5, 1.5, 5), y=np.linspace(-3.0, 3.0, 5))
     scaling = SimpleNamespace(wedge_x=1.0, wedge_y=0.0, a=2e-3, b=1e-3)

@@ -30,10 +30,10 @@ def test_nijenbanning_worked_example():
     assert h == pytest.approx(617.0e-9, rel=1e-3)
 
 
-@pytest.mark.parametrize("m, l, h", [(10, 10, 4.8324), (20, 10, 4.7081), (50, 5, 3.1540), (100, 10, 4.4965),
+@pytest.mark.parametrize("m, moes_l, h", [(10, 10, 4.8324), (20, 10, 4.7081), (50, 5, 3.1540), (100, 10, 4.4965),
                                      (200, 10, 4.3803), (500, 20, 6.5504), (1000, 10, 4.0346)])
-def test_nijenbanning_circular_table(m, l, h):
-    assert ff.nijenbanning_central(m, l, 1.0) == pytest.approx(h, rel=2e-4)
+def test_nijenbanning_circular_table(m, moes_l, h):
+    assert ff.nijenbanning_central(m, moes_l, 1.0) == pytest.approx(h, rel=2e-4)
 
 
 @pytest.mark.parametrize("d, h", [(0.5, 5.1459), (0.2, 5.7295), (0.1, 6.0538)])

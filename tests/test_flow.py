@@ -18,7 +18,10 @@ def test_constant_properties_are_exact(nz):
 def test_viscosity_linear_in_depth_against_quadrature():
     # Couette share R2/F0 for eta(z) = 1 + 3 z (exact by scipy quadrature), rho = 1.
     from scipy import integrate
-    eta = lambda z: 1.0 + 3.0 * z
+
+    def eta(z):
+        return 1.0 + 3.0 * z
+
     f0_exact = integrate.quad(lambda z: 1 / eta(z), 0, 1)[0]
     r2_exact = integrate.quad(lambda z: integrate.quad(lambda s: 1 / eta(s), 0, z)[0], 0, 1)[0]
     z = np.linspace(0, 1, 33)

@@ -15,7 +15,8 @@ import sys
 from typing import Any
 
 from click.testing import CliRunner
-from hypothesis import HealthCheck, assume, given, settings, strategies as st
+from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import strategies as st
 import pytest
 import yaml
 

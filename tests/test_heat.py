@@ -2,10 +2,10 @@
 
 import math
 
-import numpy as np
-import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+import numpy as np
+import pytest
 
 from facegear_tehl import heat
 from facegear_tehl.ehl.jaeger import surface_temperature_rise

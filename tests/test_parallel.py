@@ -173,7 +173,8 @@ def test_stages_run_on_the_workers_and_give_the_serial_outcomes():
     outcomes = dict(solve_each(tasks, StandIn(), jobs=2))
     assert sorted(outcomes) == [0, 1, 2, 3, 4]
     by_name = {tasks[i].point.name: solved for i, solved in outcomes.items()}
-    assert by_name["S2"].failed and by_name["S2"].solution.message == "failed: FloatingPointError: overflow in the first stage"
+    assert (by_name["S2"].failed
+            and by_name["S2"].solution.message == "failed: FloatingPointError: overflow in the first stage")
     s3 = by_name["S3"].solution
     assert s3.converged and s3.message == "retried after: diverged at cycle 3" and s3.scalar("retried") == 1.0
     assert "begun_in" not in by_name["S4"].solution.scalars  # whole after its first stage

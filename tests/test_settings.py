@@ -3,9 +3,9 @@ written, and `facegear_tehl.settings` loads without the gear geometry."""
 
 from __future__ import annotations
 
+from dataclasses import MISSING, fields
 import subprocess
 import sys
-from dataclasses import MISSING, fields
 
 import pytest
 import yaml

@@ -9,20 +9,28 @@ from dataclasses import replace
 import math
 
 from click.testing import CliRunner
-from hypothesis import given, strategies as st
+from hypothesis import given
+from hypothesis import strategies as st
 import numpy as np
 import pytest
+from test_parallel import assert_same_file
 
 from facegear_tehl.case import load_case
 from facegear_tehl.cli import tehl
 from facegear_tehl.results import NonFiniteError, RunResult, read_result, write_result
 from facegear_tehl.schema import CaseError
 from facegear_tehl.solution import Field
-from facegear_tehl.sweep import (SAFETY_FACTOR, check_grids, convergence, parse_grids, run_sweep, tabulated,
-                                 time_to_reach)
+from facegear_tehl.sweep import (
+    SAFETY_FACTOR,
+    check_grids,
+    convergence,
+    parse_grids,
+    run_sweep,
+    tabulated,
+    time_to_reach,
+)
 
 import synthetic
-from test_parallel import assert_same_file
 
 FACE_GEAR = synthetic.CASES / "facegear_110.yaml"
 GRIDS = (33, 65, 129, 257, 513)

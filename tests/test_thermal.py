@@ -9,8 +9,8 @@ import pytest
 from facegear_tehl.case import load_case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.solve import solve_point
-from facegear_tehl.solution import Outcome
 from facegear_tehl.ehl.thermal import gupta_reduction, thermal_choice
+from facegear_tehl.solution import Outcome
 
 SLIDING = "cases/ball_on_disc_sliding.yaml"
 
@@ -159,7 +159,8 @@ def test_thermal_floor_is_a_stalled_small_change_with_a_steady_film():
     assert not _at_thermal_floor(flicker[:7], steady[:7], bound=0.01 * 98.0)  # too few iterations to judge
     falling = [0.45 * 0.5**k for k in range(8)]
     assert not _at_thermal_floor(falling, steady, bound=0.01 * 98.0)
-    assert not _at_thermal_floor([10 * c for c in flicker], steady, bound=0.01 * 98.0)  # 4.5 K of a 98 K rise: too large
+    # 4.5 K of a 98 K rise: too large
+    assert not _at_thermal_floor([10 * c for c in flicker], steady, bound=0.01 * 98.0)
     drifting = [1.9887e-7 * (1 + 0.002 * k) for k in range(8)]
     assert not _at_thermal_floor(flicker, drifting, bound=0.01 * 142.0)
     # a film flickering by 5.4e-4 (S3 on 257 x 65): steady only against a grid error of h_c above 1.1e-3

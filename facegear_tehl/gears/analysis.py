@@ -12,9 +12,9 @@ y = n x x along the major axis, with n the common normal out of the pinion (body
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
+import math
 from types import MappingProxyType
 
 import numpy as np

@@ -14,8 +14,8 @@ differences: the lengthwise relative curvature comes from a near-cancellation):
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
+import math
 
 import numpy as np
 

@@ -29,8 +29,8 @@ the shaper point at that u_s. Its normal Rot(a_2, q phi_s) n points out of the s
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
+import math
 
 import numpy as np
 from scipy import optimize

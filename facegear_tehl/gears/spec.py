@@ -18,8 +18,8 @@ reaches below the pinion base circle, no contact under the given misalignment.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
+import math
 
 import numpy as np
 
@@ -209,9 +209,10 @@ def _check_feasible(spec: GearSpec, block: Block) -> None:
         samples = [path.state(s) for s in np.linspace(s_min, s_max, _PATH_CHECK_SAMPLES)]
     except (ContactError, ValueError, np.linalg.LinAlgError):
         key = _misalignment_key(spec, block)
-        raise CaseError(key, block.raw.get(key.rsplit(".", 1)[-1]), "a drive with a continuous pinion / face-gear contact") from None
-    check(s_min > -geo.r_p1 * math.sin(geo.pressure_angle), block.key_path("face_gear_addendum"), spec.face_gear_addendum,
-          "a face-gear addendum whose tip meets the pinion above its base circle")
+        raise CaseError(key, block.raw.get(key.rsplit(".", 1)[-1]),
+                        "a drive with a continuous pinion / face-gear contact") from None
+    check(s_min > -geo.r_p1 * math.sin(geo.pressure_angle), block.key_path("face_gear_addendum"),
+          spec.face_gear_addendum, "a face-gear addendum whose tip meets the pinion above its base circle")
     eps = contact_ratio(s_min, s_max, geo.base_pitch)
     check(1.0 <= eps < 2.0, block.key_path("pinion_addendum"), spec.pinion_addendum,
           f"addenda giving a contact ratio in [1, 2); these give {eps:.4f}")

@@ -25,8 +25,8 @@ shaft_angle_error = -d.)
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
+import math
 
 import numpy as np
 from scipy import optimize
@@ -231,12 +231,14 @@ def solve_contact(
             break
     system = _equations(geo, place, phi_1, x)
     residual = system.residual
-    if not np.all(np.isfinite(x)) or np.max(np.abs(residual[:3])) > 1e-9 * geo.z_P or np.max(np.abs(residual[3:])) > 1e-9:
+    if (not np.all(np.isfinite(x)) or np.max(np.abs(residual[:3])) > 1e-9 * geo.z_P
+            or np.max(np.abs(residual[3:])) > 1e-9):
         raise ContactError(f"no pinion / face-gear contact found at phi_1 = {phi_1:.6g} rad")
     rate = system.unknowns_rate()
     r1, n1, axis = system.pinion_point, system.pinion_normal, place.axis
     # dQ/dphi_1: rotation of the pinion point plus its motion over the flank (d theta_1, d u_1).
-    point_rate = np.cross(axis, r1 - system.pinion_centre) + geo.r_b1 * x[0] * np.cross(axis, n1) * rate[0] + axis * rate[1]
+    point_rate = (np.cross(axis, r1 - system.pinion_centre) + geo.r_b1 * x[0] * np.cross(axis, n1) * rate[0]
+                  + axis * rate[1])
     return ContactState(
         s=-geo.r_b1 * phi_1,
         phi_1=phi_1,

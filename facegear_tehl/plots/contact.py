@@ -5,9 +5,9 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+import numpy as np
 
 from facegear_tehl.plots.common import Output, body_names, figure, legend, title
 from facegear_tehl.results import Result

@@ -3,13 +3,13 @@ and, for a sweep file, the error against the extrapolated value per grid and per
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping, Sequence
+import math
 
-import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.ticker import FormatStrFormatter, LogLocator, MaxNLocator, NullFormatter, NullLocator
+import numpy as np
 
 from facegear_tehl.plots.common import Output, figure, legend, title
 from facegear_tehl.results import PointResult, Result

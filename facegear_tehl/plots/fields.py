@@ -3,16 +3,16 @@ and across the entrainment, in Hertzian coordinates x/b, y/a."""
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+import math
 
-import numpy as np
 from matplotlib import colormaps
 from matplotlib.axes import Axes
 from matplotlib.colors import LightSource, Normalize
 from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator
+import numpy as np
 from scipy.interpolate import RegularGridInterpolator
 
 from facegear_tehl.plots.common import Output, figure, legend, title

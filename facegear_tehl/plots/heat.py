@@ -5,8 +5,8 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 
-import numpy as np
 from matplotlib.axes import Axes
+import numpy as np
 
 from facegear_tehl.plots.common import Output, body_names, figure, legend, title
 from facegear_tehl.plots.over_points import heat_point_names

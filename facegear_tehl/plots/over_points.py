@@ -5,8 +5,8 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
 
-import numpy as np
 from matplotlib.axes import Axes
+import numpy as np
 
 from facegear_tehl.results import Result
 from facegear_tehl.units import MILLIMETRE

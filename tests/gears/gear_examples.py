@@ -50,7 +50,7 @@ def case_variant(folder: Path, **gear_keys: Any) -> Path:
     text = CASE_FILE.read_text()
     for key, value in gear_keys.items():
         line = f"  {key}: {value}\n"
-        text, found = re.subn(rf"^  {key}:.*\n", lambda _: line, text, count=1, flags=re.MULTILINE)
+        text, found = re.subn(rf"^  {key}:.*\n", lambda _, line=line: line, text, count=1, flags=re.MULTILINE)
         if not found:
             text = text.replace("\ngear:\n", "\ngear:\n" + line, 1)
     path = folder / "variant.yaml"

@@ -8,12 +8,13 @@ import math
 import numpy as np
 import pytest
 
-from gear_examples import CASE_FILE, EXAMPLE_A, MM, STEEL, analysis, assert_reference, case_variant, spec
 from facegear_tehl.case import load_case, parse_case
 from facegear_tehl.gears.analysis import PATH_UNITS, analyse_gear_pair
 from facegear_tehl.gears.report import contact_table
 from facegear_tehl.points import contact_analysis
 from facegear_tehl.schema import CaseError
+
+from gear_examples import CASE_FILE, EXAMPLE_A, MM, STEEL, analysis, assert_reference, case_variant, spec
 
 
 @pytest.mark.parametrize(
@@ -29,7 +30,8 @@ from facegear_tehl.schema import CaseError
         ({"pinion_speed": 0}, "gear.pinion_speed", "positive"),
         ({"shaft_angle": 180}, "gear.shaft_angle", "< 180"),
         ({"shaft_angle": 0}, "gear.shaft_angle", "> 0"),
-        ({"pinion_addendum": 0.5 * 6.35e-3, "face_gear_addendum": 0.5 * 6.35e-3}, "gear.pinion_addendum", "contact ratio in [1, 2)"),
+        ({"pinion_addendum": 0.5 * 6.35e-3, "face_gear_addendum": 0.5 * 6.35e-3}, "gear.pinion_addendum",
+         "contact ratio in [1, 2)"),
         ({"inner_radius": 0.5075, "outer_radius": 0.548}, "gear.inner_radius", "covering the contact path"),
         ({"outer_radius": 0.509}, "gear.outer_radius", "covering the contact path"),
         ({"outer_radius": 0.46, "inner_radius": 0.47}, "gear.outer_radius", "more than inner_radius"),
@@ -63,7 +65,8 @@ def test_defaults_and_units():
     assert gear.pinion_addendum == gear.face_gear_addendum == gear.module == 6.35e-3
     assert gear.points == ("S1", "S2", "S3", "S4", "S5") and gear.load_sharing == "iso_linear"
     assert gear.transition_side == "single"
-    assert gear.pressure_angle == pytest.approx(math.radians(25.0)) and gear.shaft_angle == pytest.approx(math.radians(110))
+    assert (gear.pressure_angle == pytest.approx(math.radians(25.0))
+            and gear.shaft_angle == pytest.approx(math.radians(110)))
     assert gear.pinion_speed == pytest.approx(3000 * 2 * math.pi / 60)
     assert gear.misalignment.is_zero
 
@@ -81,8 +84,8 @@ def test_shipped_case_reproduces_example_a():
     result = analyse_gear_pair(replace(gear, transition_side="single"), case.materials.body_1, case.materials.body_2)
     assert [p.name for p in result.points] == ["S1", "S2", "S3", "S4", "S5"]
     for point, rx, ry, p0, load in zip(result.points, ["18.914", "29.562", "34.751", "37.734", "47.941"],
-                                       ["14147", "14255", "14327", "14374", "14574"], ["556", "647", "598", "575", "355"],
-                                       ["2317", "6950", "6950", "6950", "2317"]):
+                                       ["14147", "14255", "14327", "14374", "14574"],
+                                       ["556", "647", "598", "575", "355"], ["2317", "6950", "6950", "6950", "2317"]):
         assert_reference(point.radius_x / MM, rx, f"{point.name} R_x")
         assert_reference(point.radius_y / MM, ry, f"{point.name} R_y")
         assert_reference(point.hertz.p_max / 1e6, p0, f"{point.name} p_h")

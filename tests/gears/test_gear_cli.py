@@ -7,8 +7,9 @@ from pathlib import Path
 from click.testing import CliRunner
 import pytest
 
-from gear_examples import case_variant
 from facegear_tehl.cli import tehl
+
+from gear_examples import case_variant
 
 CASES = Path(__file__).resolve().parents[2] / "cases"
 

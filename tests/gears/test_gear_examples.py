@@ -12,22 +12,27 @@ import math
 
 import numpy as np
 import pytest
+from scipy import optimize
 
-from gear_examples import EXAMPLE_A, EXAMPLE_B, MM, analysis, assert_reference, pair
-from facegear_tehl.gears.geometry import axial_section, singular_point, undercut_limit, pointing_limit
+from facegear_tehl.gears.geometry import axial_section, pointing_limit, singular_point, undercut_limit
 from facegear_tehl.gears.kinematics import surface_velocities
 from facegear_tehl.gears.tca import aligned_state
-from scipy import optimize
+
+from gear_examples import EXAMPLE_A, EXAMPLE_B, MM, analysis, assert_reference, pair
 
 # FACEGEAR.md §8, table A1 (g = 110 deg), columns in the printed units.
 A1_COLUMNS = ("s", "psi1", "rho1", "R2", "fg_neg", "fg_pos", "Rx", "Ry", "major_angle", "Ue", "Ue_prof", "Ue_len",
               "Vs_prof", "Vs_len", "SRR", "psi_e", "F", "a", "b", "p0")
 A1_ROWS = {
-    "S1": "-15.177 12.088 18.369 505.993 -202.1 290.1 18.914 14147 4.40 8.033 8.027 0.317 4.513 0.634 0.567 2.14 2317 10.709 0.1857 556",
-    "S2": "-5.003 3.984 28.543 507.297 -212.3 279.9 29.562 14255 6.83 9.711 9.711 0.105 1.488 0.209 0.155 6.22 6950 15.191 0.3376 647",
+    "S1": "-15.177 12.088 18.369 505.993 -202.1 290.1 18.914 14147 4.40 8.033 "
+          "8.027 0.317 4.513 0.634 0.567 2.14 2317 10.709 0.1857 556",
+    "S2": "-5.003 3.984 28.543 507.297 -212.3 279.9 29.562 14255 6.83 9.711 "
+          "9.711 0.105 1.488 0.209 0.155 6.22 6950 15.191 0.3376 647",
     "S3": "0 0 33.545 508.000 -217.3 274.9 34.751 14327 8.02 10.539 10.539 0 0 0 0 8.02 6950 15.109 0.3671 598",
-    "S4": "2.903 -2.312 36.449 508.426 -220.2 272.0 37.734 14374 8.71 11.019 11.019 0.061 0.863 0.121 0.079 9.03 6950 15.070 0.3830 575",
-    "S5": "13.077 -10.416 46.623 510.028 -230.4 261.8 47.941 14574 11.10 12.705 12.703 0.273 3.889 0.547 0.309 12.34 2317 10.386 0.3002 355",
+    "S4": "2.903 -2.312 36.449 508.426 -220.2 272.0 37.734 14374 8.71 11.019 "
+          "11.019 0.061 0.863 0.121 0.079 9.03 6950 15.070 0.3830 575",
+    "S5": "13.077 -10.416 46.623 510.028 -230.4 261.8 47.941 14574 11.10 12.705 "
+          "12.703 0.273 3.889 0.547 0.309 12.34 2317 10.386 0.3002 355",
 }
 
 
@@ -129,9 +134,11 @@ def test_example_a0_orthogonal():
     for column, printed in [("fg_neg", "-256.4"), ("fg_pos", "218.8"), ("Rx", "32.884"), ("Ry", "14220"),
                             ("Ue", "10.539"), ("a", "15.104"), ("b", "0.3571"), ("p0", "615")]:
         assert_reference(s3[column], printed, f"S3 {column}")
-    for column, printed in [("Rx", "18.499"), ("Ry", "14040"), ("Vs_prof", "4.720"), ("Vs_len", "0.668"), ("SRR", "0.582")]:
+    for column, printed in [("Rx", "18.499"), ("Ry", "14040"), ("Vs_prof", "4.720"), ("Vs_len", "0.668"),
+                            ("SRR", "0.582")]:
         assert_reference(s1[column], printed, f"S1 {column}")
-    for column, printed in [("Rx", "44.387"), ("Ry", "14469"), ("Vs_prof", "4.108"), ("Vs_len", "0.582"), ("SRR", "0.329")]:
+    for column, printed in [("Rx", "44.387"), ("Ry", "14469"), ("Vs_prof", "4.108"), ("Vs_len", "0.582"),
+                            ("SRR", "0.329")]:
         assert_reference(s5[column], printed, f"S5 {column}")
 
 

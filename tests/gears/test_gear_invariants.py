@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import math
 
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 import numpy as np
 import pytest
 
-from gear_examples import EXAMPLE_A, EXAMPLE_B, MM, STEEL, analysis, assert_reference, pair
 from facegear_tehl.gears.curvature import (
     closed_form_relative_curvature,
     face_gear_shape_operator,
@@ -29,6 +29,8 @@ from facegear_tehl.gears.kinematics import surface_velocities
 from facegear_tehl.gears.tca import ContactPath, aligned_state
 from facegear_tehl.hertz import hertz_contact
 from facegear_tehl.materials import reduced_modulus
+
+from gear_examples import EXAMPLE_A, EXAMPLE_B, MM, STEEL, analysis, assert_reference, pair
 
 W1 = 3000.0 * 2 * math.pi / 60  # rad/s, example A pinion speed
 GEARS = {
@@ -103,7 +105,8 @@ def test_pitch_point_and_cones(shaft_angle):
     g = math.radians(shaft_angle)
     point = geo.pitch_point
     assert np.linalg.norm(np.cross(point, geo.a2)) == pytest.approx(geo.module * geo.face_gear_teeth / 2, rel=1e-14)
-    assert geo.z_P == pytest.approx(geo.module / 2 * (geo.face_gear_teeth + geo.shaper_teeth * math.cos(g)) / math.sin(g))
+    assert geo.z_P == pytest.approx(
+        geo.module / 2 * (geo.face_gear_teeth + geo.shaper_teeth * math.cos(g)) / math.sin(g))
     # Pinion pitch cone: the line from the apex O_1 through P, and the relative rotation axis W1 a_1 + W2 a_2.
     generator = point - geo.pinion_apex
     cone = math.atan2(np.linalg.norm(np.cross(generator, K_AXIS)), generator @ K_AXIS)
@@ -148,7 +151,8 @@ def test_generation_is_a_line_contact(name):
         expected = math.atan(rho_s / (geo.z_P * math.tan(geo.pressure_angle)))
         assert beta_c == pytest.approx(expected, rel=1e-12)
     if name == "A110":
-        beta_p = math.degrees(math.atan(geo.r_ps * math.sin(geo.pressure_angle) / (geo.z_P * math.tan(geo.pressure_angle))))
+        beta_p = math.degrees(
+            math.atan(geo.r_ps * math.sin(geo.pressure_angle) / (geo.z_P * math.tan(geo.pressure_angle))))
         assert_reference(beta_p, "9.0")
 
 
@@ -202,7 +206,8 @@ def test_three_curvature_routes_agree(name):
         direct = shape_operator_direct(geo, state.theta_s, state.phi_s)
         assert np.max(np.abs(forms - direct)) < 1e-8 * np.max(np.abs(forms))
         closed_face_gear, closed_relative = closed_form_relative_curvature(geo, s)
-        assert np.max(np.abs(_tangent_matrix(forms, state) - closed_face_gear)) < 1e-8 * np.max(np.abs(closed_face_gear))
+        assert (np.max(np.abs(_tangent_matrix(forms, state) - closed_face_gear))
+                < 1e-8 * np.max(np.abs(closed_face_gear)))
         relative = _tangent_matrix(forms - pinion_shape_operator(state), state)
         assert np.max(np.abs(relative - closed_relative)) < 1e-8 * np.max(np.abs(closed_relative))
         # The small principal relative curvature (1/R_y) comes from a near-cancellation: check it too.

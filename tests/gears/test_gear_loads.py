@@ -5,9 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from gear_examples import EXAMPLE_A, pair
 from facegear_tehl.gears.loads import LOAD_SHARING_MODELS, TRANSITION_SIDES, TRANSITION_TOLERANCE, load_share
 from facegear_tehl.gears.tca import MESHING_POINTS, ContactPath, meshing_points
+
+from gear_examples import EXAMPLE_A, pair
 
 GEO = pair(EXAMPLE_A)
 S_MIN, S_MAX = ContactPath(GEO).limits()

@@ -13,11 +13,12 @@ import math
 import numpy as np
 import pytest
 
-from gear_examples import EXAMPLE_A, EXAMPLE_B, MM, STEEL, assert_reference, pair, spec
 from facegear_tehl.gears.analysis import analyse_gear_pair
 from facegear_tehl.gears.geometry import axial_section
 from facegear_tehl.gears.kinematics import surface_velocities
 from facegear_tehl.gears.tca import ContactPath, Misalignment, aligned_state, solve_contact
+
+from gear_examples import EXAMPLE_A, EXAMPLE_B, MM, STEEL, assert_reference, pair, spec
 
 ARCSEC = math.pi / (180 * 3600)
 GEARS = {
