@@ -14,7 +14,6 @@ from click.testing import CliRunner
 import h5py
 import numpy as np
 import pytest
-from test_parallel import assert_same_file
 
 from facegear_tehl.case import parse_case
 from facegear_tehl.cli import tehl
@@ -23,6 +22,7 @@ from facegear_tehl.results import non_finite_entries, read_result, write_result
 from facegear_tehl.schema import CaseError
 
 import synthetic
+from test_parallel import assert_same_file
 
 ROOT = Path(__file__).resolve().parents[1]
 HARD_CASES = sorted((ROOT / "cases" / "hard").glob("*.yaml"))

@@ -13,7 +13,6 @@ from hypothesis import given
 from hypothesis import strategies as st
 import numpy as np
 import pytest
-from test_parallel import assert_same_file
 
 from facegear_tehl.case import load_case
 from facegear_tehl.cli import tehl
@@ -31,6 +30,7 @@ from facegear_tehl.sweep import (
 )
 
 import synthetic
+from test_parallel import assert_same_file
 
 FACE_GEAR = synthetic.CASES / "facegear_110.yaml"
 GRIDS = (33, 65, 129, 257, 513)
