@@ -88,6 +88,9 @@ def run(
     from facegear_tehl.run import run_case
 
     run_result = run_case(case, grid=grid, points=names, progress=_report_progress, jobs=workers)
+    for warning in run_result.warnings:
+        if warning not in analysis.warnings:  # what the run found (a grid the solver chose, ...)
+            click.echo(f"warning: {warning}", err=True)
     target.parent.mkdir(parents=True, exist_ok=True)
     write_result(run_result, target)
     result = read_result(target)

@@ -13,7 +13,13 @@ from facegear_tehl.heat_budget import heat_budget
 from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
 from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.results import RunResult
-from facegear_tehl.solution import PointSolution
+from facegear_tehl.settings import SolverSettings
+from facegear_tehl.solution import Outcome, PointSolution
+
+# A film too thin for the grid it was asked on closes there (h_min <= 0): the point is solved again on a grid
+# twice as fine along each axis, up to MAX_REFINED_GRID nodes along x (the hard cases of Moes M = 5000 close
+# their film on 129^2 and 257^2 and converge on 513^2; a 1025 x 1025 solve takes about a minute here).
+MAX_REFINED_GRID = 1025
 
 
 def ehl_solver() -> StagedSolver:
@@ -50,7 +56,14 @@ def run_case(
         selected = select_points(selected, points)
         overrides["points"] = [p.name for p in selected]
     tasks = [SolveTask(point, case.lubricant, case.solver) for point in selected]
-    solved, failed = solve_all(tasks, solver or ehl_solver(), jobs=jobs, progress=progress)
+    solver = solver or ehl_solver()
+    solved, failed = solve_all(tasks, solver, jobs=jobs, progress=progress)
+    solved, refined = _refine_closed_films(tasks, list(solved), solver, jobs, progress)
+    warnings = analysis.warnings + tuple(
+        f"{name}: the film closed on the {asked} grid; solved on {grid} (chosen by the solver)"
+        for name, (asked, grid) in refined.items())
+    if refined:
+        overrides["refined_grid"] = {name: grid for name, (_, grid) in refined.items()}
     solutions, heat_table = heat_budget(selected, [_with_path_coordinate(s, p) for s, p in zip(solved, selected)],
                                         case.lubricant)
     return RunResult(
@@ -60,9 +73,41 @@ def run_case(
         failed=tuple(selected[index].name for index in failed),
         contact=analysis.path,
         contact_scalars=analysis.scalars,
-        warnings=analysis.warnings,
+        warnings=warnings,
         overrides=overrides,
     )
+
+
+def _refine_closed_films(tasks: list[SolveTask], solved: list[PointSolution], solver: Solver | StagedSolver,
+                         jobs: int | None, progress: Progress | None
+                         ) -> tuple[list[PointSolution], dict[str, tuple[str, str]]]:
+    """Every point whose film closed, solved again on grids twice as fine until its film stays open or the grid
+    would pass MAX_REFINED_GRID; returns the solutions and, per refined point, (grid asked, grid solved on)."""
+    refined: dict[str, tuple[str, str]] = {}
+    asked = {task.point.name: _shape(task.settings) for task in tasks}
+    while True:
+        closed = [i for i, s in enumerate(solved) if s.outcome is Outcome.FILM_CLOSED
+                  and 2 * tasks[i].settings.grid - 1 <= MAX_REFINED_GRID]
+        if not closed:
+            return solved, refined
+        finer = [replace(tasks[i], settings=_refined(tasks[i].settings)) for i in closed]
+        again, _ = solve_all(finer, solver, jobs=jobs, progress=progress)
+        for i, task, solution in zip(closed, finer, again):
+            tasks[i] = task
+            note = f"grid {_shape(task.settings)} chosen by the solver (the film closed on {asked[task.point.name]})"
+            solved[i] = replace(solution, models={**solution.models,
+                                                  "solver": solution.models.get("solver", "") + "; " + note})
+            refined[task.point.name] = (asked[task.point.name], _shape(task.settings))
+
+
+def _refined(settings: SolverSettings) -> SolverSettings:
+    """The settings on a grid twice as fine along each axis."""
+    grid_y = None if settings.grid_y is None else 2 * settings.grid_y - 1
+    return replace(settings, grid=2 * settings.grid - 1, grid_y=grid_y)
+
+
+def _shape(settings: SolverSettings) -> str:
+    return f"{settings.grid} x {settings.nodes_y}"
 
 
 def _with_path_coordinate(solution: PointSolution, point: ContactPoint) -> PointSolution:
