@@ -56,9 +56,7 @@ def run_case(
         selected = select_points(selected, points)
         overrides["points"] = [p.name for p in selected]
     tasks = [SolveTask(point, case.lubricant, case.solver) for point in selected]
-    solver = solver or ehl_solver()
-    solved, failed = solve_all(tasks, solver, jobs=jobs, progress=progress)
-    solved, refined = _refine_closed_films(tasks, list(solved), solver, jobs, progress)
+    solved, failed, refined = solve_refining(tasks, solver or ehl_solver(), jobs=jobs, progress=progress)
     warnings = analysis.warnings + tuple(
         f"{name}: the film closed on the {asked} grid; solved on {grid} (chosen by the solver)"
         for name, (asked, grid) in refined.items())
@@ -78,18 +76,22 @@ def run_case(
     )
 
 
-def _refine_closed_films(tasks: list[SolveTask], solved: list[PointSolution], solver: Solver | StagedSolver,
-                         jobs: int | None, progress: Progress | None
-                         ) -> tuple[list[PointSolution], dict[str, tuple[str, str]]]:
-    """Every point whose film closed, solved again on grids twice as fine until its film stays open or the grid
-    would pass MAX_REFINED_GRID; returns the solutions and, per refined point, (grid asked, grid solved on)."""
+def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *, jobs: int | None = None,
+                   progress: Progress | None = None
+                   ) -> tuple[list[PointSolution], tuple[int, ...], dict[str, tuple[str, str]]]:
+    """`parallel.solve_all`, then every point that reported no open film (its film closed, or the solve ran away
+    with it closed) solved again on grids twice as fine until it does or the grid would pass MAX_REFINED_GRID
+    (a finer grid also lets the retry's start begin on a finer coarsest grid). Returns the solutions in task
+    order, the indices of those that raised, and per refined point (grid asked, grid solved on)."""
+    tasks = list(tasks)
+    solved, failed = solve_all(tasks, solver, jobs=jobs, progress=progress)
     refined: dict[str, tuple[str, str]] = {}
     asked = {task.point.name: _shape(task.settings) for task in tasks}
     while True:
-        closed = [i for i, s in enumerate(solved) if s.outcome is Outcome.FILM_CLOSED
-                  and 2 * tasks[i].settings.grid - 1 <= MAX_REFINED_GRID]
+        closed = [i for i, s in enumerate(solved)
+                  if _no_open_film(s) and 2 * tasks[i].settings.grid - 1 <= MAX_REFINED_GRID]
         if not closed:
-            return solved, refined
+            return solved, failed, refined
         finer = [replace(tasks[i], settings=_refined(tasks[i].settings)) for i in closed]
         again, _ = solve_all(finer, solver, jobs=jobs, progress=progress)
         for i, task, solution in zip(closed, finer, again):
@@ -98,6 +100,11 @@ def _refine_closed_films(tasks: list[SolveTask], solved: list[PointSolution], so
             solved[i] = replace(solution, models={**solution.models,
                                                   "solver": solution.models.get("solver", "") + "; " + note})
             refined[task.point.name] = (asked[task.point.name], _shape(task.settings))
+
+
+def _no_open_film(solution: PointSolution) -> bool:
+    """The solve reported no film: it closed (FILM_CLOSED), or the solve ran away with it closed."""
+    return solution.outcome in (Outcome.FILM_CLOSED, Outcome.DIVERGED) and "h_min" not in solution.scalars
 
 
 def _refined(settings: SolverSettings) -> SolverSettings:

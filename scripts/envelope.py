@@ -475,10 +475,13 @@ def draw_map(rows: Sequence[Row], path: Path, grid: int, grid_y: int | None) -> 
 
 
 # ----------------------------------------------------------------------------------------------------- main
-def solve_cases(cases: Sequence[EnvelopeCase], grid: int, grid_y: int | None, jobs: int) -> tuple[list[Row], float]:
-    """Every case solved by the parallel runner (progress on stderr); the rows and the total wall time, s."""
-    from facegear_tehl.parallel import SolveTask, solve_all
-    from facegear_tehl.run import ehl_solver
+def solve_cases(cases: Sequence[EnvelopeCase], grid: int, grid_y: int | None,
+                jobs: int) -> tuple[list[Row], float, dict[str, tuple[str, str]]]:
+    """Every case solved as `tehl run` solves its points (the parallel runner; a film that closes is solved
+    again on a finer grid the solver chooses; progress on stderr); the rows, the total wall time (s) and the
+    cases solved on a finer grid (grid asked, grid solved on)."""
+    from facegear_tehl.parallel import SolveTask
+    from facegear_tehl.run import ehl_solver, solve_refining
 
     tasks = [SolveTask(c.point(), c.lubricant(), c.settings(grid, grid_y)) for c in cases]
 
@@ -487,9 +490,9 @@ def solve_cases(cases: Sequence[EnvelopeCase], grid: int, grid_y: int | None, jo
               f"{_cell(solution, 'wall_time', 1.0, '.1f')} s", file=sys.stderr, flush=True)
 
     start = time.perf_counter()
-    solutions, _ = solve_all(tasks, ehl_solver(), jobs=jobs, progress=progress)
+    solutions, _, refined = solve_refining(tasks, ehl_solver(), jobs=jobs, progress=progress)
     elapsed = time.perf_counter() - start
-    return [Row(c, s, check_solution(s)) for c, s in zip(cases, solutions, strict=True)], elapsed
+    return [Row(c, s, check_solution(s)) for c, s in zip(cases, solutions, strict=True)], elapsed, refined
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -517,10 +520,12 @@ def main(argv: Sequence[str] | None = None) -> int:
                   f"W = {point.load:10.4g} N  {c.model}")
         print(f"{len(cases)} cases")
         return 0
-    rows, total = solve_cases(cases, args.grid, args.grid_y, args.jobs)
+    rows, total, refined = solve_cases(cases, args.grid, args.grid_y, args.jobs)
     print(markdown_table(rows))
     print()
     print(summary(rows, total, args.grid, args.grid_y))
+    for name, (asked, solved_on) in refined.items():
+        print(f"- {name}: no open film on {asked}; solved on {solved_on} (chosen by the solver)")
     if args.save:
         write_csv(rows, args.save / "envelope.csv")
     if args.map:
