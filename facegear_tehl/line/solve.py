@@ -14,19 +14,27 @@ along +x (entrainment u_e = (u_1 + u_2)/2 > 0, inlet at x < 0). Load per unit le
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
+import math
 
 import numpy as np
 from threadpoolctl import threadpool_limits
 
 from facegear_tehl.line.elastic import hertz_line, influence_matrix, load_weights
-from facegear_tehl.line.film import IsothermalNewtonian
+from facegear_tehl.line.film import GeneralizedFilm, IsothermalNewtonian
 from facegear_tehl.line.newton import NewtonResult, newton
 from facegear_tehl.line.reynolds import ReynoldsSystem
+from facegear_tehl.line.thermal import eyring_columns, film_flow, solve_energy
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.materials import Solid, reduced_modulus
 
+RATE_RELAXATION = 0.5  # geometric under-relaxation of the Ree-Eyring shear rates between outer iterations
+MIN_RELAXATION = 0.05
+MAX_BACKOFFS = 4  # consecutive halvings of a film-state update after which a failing pressure solve stops the run
+STRESS_TOLERANCE = 1e-3  # relative change of the Ree-Eyring shear stress per outer iteration, to stop
+# largest temperature change applied per outer iteration, K: the viscosity changes by exp(beta 25) ~ 2-10 per
+# step, which the pressure Newton follows; an isothermal Newtonian start with sliding heats by 1e4-1e5 K.
+MAX_TEMPERATURE_STEP = 25.0  # smallest under-relaxation of the temperature update
 DEFAULT_DOMAIN = (-4.0, 1.5)  # x/b: inlet and outlet ends (Venner & Lubrecht 2000 use -4 .. 1.5 for line contacts)
 COARSEST_NODES = 101  # first grid of the sequence: cheap (ms per Newton step) yet resolves the Hertz zone by 40
 # Piezoviscous continuation (eta_bar^s, s from 0 to 1) if Newton fails from the Hertz start on the coarsest grid:
@@ -176,13 +184,17 @@ def solve_line(
     max_iterations: int = 150,
     thermal_tolerance: float = 1e-3,
     max_outer_iterations: int = 60,
+    relaxation: float = 0.7,
 ) -> LineSolution:
     """Steady EHL of a line contact (reduced radius `radius`, m; load `load_per_length`, N/m; entrainment
     speed u_e, m/s; slide-to-roll ratio (u_1 - u_2)/u_e). `nodes` equally spaced nodes over `domain` (x/b).
 
     thermal=False: isothermal at the inlet temperature, Newtonian (lubricant.rheology 'newtonian') or
     Ree-Eyring (generalized Reynolds, `film.py`). thermal=True: energy equation across the film with `layers`
-    cells, heat into the solids by the Jaeger moving-source integral (`thermal.py`).
+    cells, heat into the solids by the Jaeger moving-source integral (`thermal.py`); the film temperature is
+    iterated (under-relaxed by `relaxation`) until it changes by less than thermal_tolerance x max(rise, 1 K).
+    The isothermal Newtonian solution (grid sequence) is the start of the thermal or non-Newtonian iteration,
+    which then runs on the finest grid only.
     """
     if entrainment_speed <= 0.0:
         raise ValueError(f"entrainment speed must be positive, got {entrainment_speed}")
@@ -194,13 +206,14 @@ def solve_line(
         levels = [_Level(uniform_nodes(n, domain), second_order) for n in _grid_sequence(nodes)]
         def start(level: _Level) -> np.ndarray:
             return _hertz_start(level, radius, b, u_grp, g_grp, w_grp)
-        newtonian_isothermal = (not thermal) and lubricant.rheology == "newtonian"
-        if newtonian_isothermal:
-            coefficients = IsothermalNewtonian(lubricant, p_h, lam)
-            level, result, note = _solve_sequence(levels, coefficients, start, tolerance, max_iterations)
+        coefficients = IsothermalNewtonian(lubricant, p_h, lam)
+        level, result, note = _solve_sequence(levels, coefficients, start, tolerance, max_iterations)
+        if (not thermal and lubricant.rheology == "newtonian") or not result.converged:
             return _isothermal_solution(level, result, note, radius, b, p_h, load_per_length, lubricant,
                                         entrainment_speed, slide_roll_ratio)
-        raise NotImplementedError("thermal / non-Newtonian line contact: see thermal.py")
+        outer = _FilmIteration(level, result, note, radius, b, p_h, load_per_length, lubricant, body_1, body_2,
+                               entrainment_speed, slide_roll_ratio, layers, thermal)
+        return outer.run(tolerance, max_iterations, thermal_tolerance, max_outer_iterations, relaxation)
 
 
 def _isothermal_solution(level: _Level, result: NewtonResult, note: str, radius: float, b: float, p_h: float,
@@ -225,3 +238,162 @@ def _isothermal_solution(level: _Level, result: NewtonResult, note: str, radius:
         converged=result.converged, iterations=result.iterations, residual=result.residual,
         friction=friction, message=message,
     )
+
+
+class _FilmIteration:
+    """Outer iteration of the film state (temperature field, Ree-Eyring ratio eta*/eta) and the pressure on the
+    finest grid: pressure (Newton, generalized Reynolds at the frozen state) -> Ree-Eyring columns -> energy
+    equation -> under-relaxed temperature, until the temperature settles."""
+
+    def __init__(self, level: _Level, result: NewtonResult, note: str, radius: float, b: float, p_h: float,
+                 load: float, lubricant: Lubricant, body_1: Solid, body_2: Solid, u_e: float, srr: float,
+                 layers: int, thermal: bool):
+        if thermal and not abs(srr) < 2.0:
+            raise ValueError(f"slide-to-roll ratio {srr}: the thermal model needs both surfaces moving (|SRR| < 2)")
+        self.level, self.system = level, level.system
+        self.u = result.u
+        self.iterations = result.iterations
+        self.note = note
+        self.radius, self.b, self.p_h, self.load = radius, b, p_h, load
+        self.lubricant, self.body_1, self.body_2 = lubricant, body_1, body_2
+        self.u_1 = u_e * (1.0 + 0.5 * srr)
+        self.u_2 = u_e * (1.0 - 0.5 * srr)
+        self.thermal = thermal
+        n = level.x.size
+        self.temperature = np.full((n, layers), lubricant.inlet_temperature)
+        self.eyring = lubricant.eyring_stress if lubricant.rheology == "ree_eyring" else math.inf
+        self.rate = None if not math.isfinite(self.eyring) else np.zeros((n, layers))
+        self.x = level.x * b
+
+    def _state(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        p_bar = self.system.pressure(self.u)
+        h_bar = self.system.film(p_bar, float(self.u[-1]))
+        return p_bar, h_bar, p_bar * self.p_h, h_bar * self.b * self.b / self.radius
+
+    def _update_rate(self, p: np.ndarray, h: np.ndarray) -> np.ndarray | None:
+        """Shear rate of every layer (Ree-Eyring) at the current pressure, film and temperature."""
+        if self.rate is None:
+            return None
+        eta = self.lubricant.viscosity_at(np.broadcast_to(p[:, None], self.temperature.shape), self.temperature)
+        rate, _ = eyring_columns(eta, h, np.gradient(p, self.x), self.u_2 - self.u_1, self.eyring)
+        return rate
+
+    def _advance_rate(self, p_bar: np.ndarray, p: np.ndarray, h: np.ndarray, weight: float) -> float:
+        """Move the Ree-Eyring shear rates towards those of the current pressure, film and temperature
+        (geometric under-relaxation by `weight`); return the largest change of the film's shear stress eta* rate
+        relative to its largest value (0 for a Newtonian film)."""
+        new = self._update_rate(p, h)
+        if new is None:
+            return 0.0
+        old = self.rate
+        floor = 1e-300  # keeps log() finite where a layer does not shear
+        self.rate = np.exp((1.0 - weight) * np.log(np.maximum(old, floor)) + weight * np.log(np.maximum(new, floor)))
+        tau_new = self._film().layer_laws(p_bar)[1] * self.rate
+        tau_old = self._film(old).layer_laws(p_bar)[1] * old
+        return float(np.abs(tau_new - tau_old).max() / np.abs(tau_new).max())
+
+    def _film(self, rate: np.ndarray | None = None) -> GeneralizedFilm:
+        return GeneralizedFilm(self.lubricant, self.p_h, self.b, self.radius, self.u_1, self.u_2,
+                               self.temperature, self.rate if rate is None else rate, self.eyring)
+
+    def run(self, tolerance: float, max_iterations: int, thermal_tolerance: float, max_outer: int,
+            relaxation: float) -> LineSolution:
+        energy = None
+        converged = False
+        change = previous = math.inf
+        omega, rate_weight = relaxation, RATE_RELAXATION
+        result = None
+        backoffs = 0
+        _, _, p, h = self._state()
+        self.rate = self._update_rate(p, h)
+        saved = (self.temperature, self.rate)
+        outer = 0
+        while outer < max_outer:
+            outer += 1
+            film = self._film()
+            result = newton(self.system, film, self.u, tolerance, max_iterations)
+            self.iterations += result.iterations
+            if not result.converged:
+                # the last film-state update was too large for the pressure: take half of it, damp harder
+                if backoffs >= MAX_BACKOFFS:
+                    break
+                backoffs += 1
+                self.temperature = 0.5 * (saved[0] + self.temperature)
+                if self.rate is not None:
+                    self.rate = np.sqrt(np.maximum(saved[1], 1e-300) * np.maximum(self.rate, 1e-300))
+                omega, rate_weight = max(MIN_RELAXATION, 0.5 * omega), max(MIN_RELAXATION, 0.5 * rate_weight)
+                continue
+            backoffs = 0
+            self.u = result.u
+            p_bar, h_bar, p, h = self._state()
+            saved = (self.temperature, self.rate)
+            stress_change = self._advance_rate(p_bar, p, h, rate_weight)
+            film = self._film()
+            if not self.thermal:
+                change = stress_change
+                if change < thermal_tolerance:
+                    converged = True
+                    break
+                continue
+            cells = film.integrals(p_bar)
+            flow = film_flow(cells, self.x, h, p, self.system.upwind, self._cavitated(film, p_bar, h_bar))
+            energy = solve_energy(self.x, h, p, cells, flow, self.temperature, self.lubricant, self.body_1,
+                                  self.body_2, self.u_1, self.u_2)
+            delta = energy.temperature - self.temperature
+            change = float(np.abs(delta).max())
+            rise = float(energy.temperature.max() - self.lubricant.inlet_temperature)
+            if change > previous:  # the iteration overshoots: damp it harder (adaptive under-relaxation)
+                omega = max(MIN_RELAXATION, 0.5 * omega)
+            else:
+                omega = min(relaxation, 1.25 * omega)
+            previous = change
+            self.temperature = self.temperature + omega * np.clip(delta, -MAX_TEMPERATURE_STEP,
+                                                                  MAX_TEMPERATURE_STEP)
+            if change < thermal_tolerance * max(rise, 1.0) and stress_change < STRESS_TOLERANCE:
+                converged = True
+                break
+        return self._solution(result, energy, converged and result.converged, outer, change)
+
+    def _cavitated(self, film: GeneralizedFilm, p_bar: np.ndarray, h_bar: np.ndarray) -> np.ndarray:
+        """Nodes past the pressure peak with P = 0 and an excess of outflow (film rupture)."""
+        balance = np.zeros(p_bar.size)
+        balance[1:-1] = self.system.flux_residual(p_bar, h_bar, film(p_bar))
+        scale = float(np.abs(balance).max()) or 1.0
+        past_peak = np.arange(p_bar.size) > int(np.argmax(p_bar))
+        return past_peak & (p_bar <= 1e-9) & (balance > 1e-9 * scale)
+
+    def _solution(self, result: NewtonResult | None, energy, converged: bool, outer: int,
+                  change: float) -> LineSolution:
+        p_bar, h_bar, p, h = self._state()
+        film = self._film()
+        cells = film.integrals(p_bar)
+        p_x = np.gradient(p, self.x)
+        tau_mid = cells.wall_stress(h, p_x) + 0.5 * p_x * h
+        friction = float(-np.trapezoid(tau_mid, self.x) / self.load)
+        kind = "thermal" if self.thermal else "isothermal Ree-Eyring"
+        if converged:
+            message = self.note + f"{kind}: converged in {outer} outer iterations"
+        elif result is not None and not result.converged:
+            message = self.note + f"{kind}: pressure not converged at outer iteration {outer}"
+        else:
+            message = self.note + f"{kind}: not converged after {outer} outer iterations (change {change:.2e})"
+        solution = LineSolution(
+            x=self.x, p=p, h=h,
+            h_c=float(np.interp(0.0, self.x, h)), h_min=float(h.min()), p_max=float(p.max()),
+            b=self.b, p_h=self.p_h, load_per_length=self.load,
+            converged=converged, iterations=self.iterations,
+            residual=result.residual if result is not None else math.inf,
+            friction=friction, thermal=self.thermal, outer_iterations=outer, message=message,
+        )
+        if energy is not None:
+            t0 = self.lubricant.inlet_temperature
+            solution.temperature = self.temperature
+            solution.z = (np.arange(self.temperature.shape[1]) + 0.5) / self.temperature.shape[1]
+            solution.surface_temperature_1 = energy.surface_1
+            solution.surface_temperature_2 = energy.surface_2
+            solution.dT_max = float(self.temperature.max() - t0)
+            solution.heat_balance = {
+                "generated": energy.generated, "to_solid_1": energy.to_solid_1, "to_solid_2": energy.to_solid_2,
+                "convected": energy.convected,
+            }
+        return solution
