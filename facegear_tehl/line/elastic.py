@@ -1,6 +1,6 @@
 r"""Elastic deflection of a line contact and the dry (Hertz) line-contact solution.
 
-Plane strain, two elastic half-spaces (Johnson, *Contact Mechanics*, 1985, eq. 2.25b): a pressure p(s) on the
+Plane strain, two elastic half-spaces (Johnson, *Contact Mechanics*, 1985, ch. 2): a pressure p(s) on the
 strip gives the combined normal surface displacement, up to a constant,
 
     v(x) = -(4/(pi E')) \int p(s) ln|x - s| ds,      E' = 2/[(1 - nu1^2)/E1 + (1 - nu2^2)/E2]
@@ -17,7 +17,8 @@ balance is \int P dX = pi/2.  The factor 4 p_h R/(E' b) = 1 makes the kernel coe
 
 Discretisation (this module): P piecewise linear between the nodes (hat functions, on any node spacing),
 integrated exactly against the logarithm, so that K @ P is the deflection of the interpolated pressure, not a
-quadrature of it.  For the Hertz semi-ellipse the identity (Johnson 1985, eq. 2.46 with the 2-D potential)
+quadrature of it.  For the Hertz semi-ellipse the classical identity (a semi-elliptical pressure flattens the
+parabolic gap: the Hertz line contact, Johnson 1985, ch. 4)
 
     -(1/pi) \int_{-1}^{1} sqrt(1 - S^2) ln|X - S| dS = -X^2/2 + (1 + 2 ln 2)/4,    |X| <= 1
 

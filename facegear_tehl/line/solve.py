@@ -5,8 +5,9 @@ Problem (Hertzian units of `elastic.py`: X = x/b, P = p/p_h, H = h R/b^2):
     film (`elastic.py`):                              H = H_0 + X^2/2 - (1/pi) int P ln|X - S| dS
     load:                                             int P dX = pi/2
 solved together by a damped Newton-Raphson iteration on all nodal pressures and H_0 (`newton.py`), with grid
-sequencing: the problem is first solved on a coarse grid from the Hertz pressure and the Ertel-Grubin film
-(Grubin 1949: H_c = 1.95 (U G)^{8/11} W'^{-1/11}, used only as a start), then interpolated to finer grids.
+sequencing: the problem is first solved on a coarse grid from a Hertz-like pressure and the larger of the
+Ertel-Grubin and Martin films (`_hertz_start`, used only as a start; piezoviscous continuation if Newton fails),
+then interpolated to finer grids. Thermal and Ree-Eyring films iterate on the finest grid (`_FilmIteration`).
 
 Conventions: body 1 at z = 0 moves at u_1 = u_e (1 + SRR/2), body 2 at z = h at u_2 = u_e (1 - SRR/2), both
 along +x (entrainment u_e = (u_1 + u_2)/2 > 0, inlet at x < 0). Load per unit length w' in N/m.
@@ -28,13 +29,13 @@ from facegear_tehl.line.thermal import eyring_columns, film_flow, solve_energy
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.materials import Solid, reduced_modulus
 
-RATE_RELAXATION = 0.5  # geometric under-relaxation of the Ree-Eyring shear rates between outer iterations
-MIN_RELAXATION = 0.05
+RATE_RELAXATION = 0.5  # geometric under-relaxation of the Ree-Eyring shear rates (halves a rate jump in log)
+MIN_RELAXATION = 0.05  # smallest under-relaxation of the temperature and rate updates (20 iterations per e-fold)
 MAX_BACKOFFS = 4  # consecutive halvings of a film-state update after which a failing pressure solve stops the run
 STRESS_TOLERANCE = 1e-3  # relative change of the Ree-Eyring shear stress per outer iteration, to stop
 # largest temperature change applied per outer iteration, K: the viscosity changes by exp(beta 25) ~ 2-10 per
 # step, which the pressure Newton follows; an isothermal Newtonian start with sliding heats by 1e4-1e5 K.
-MAX_TEMPERATURE_STEP = 25.0  # smallest under-relaxation of the temperature update
+MAX_TEMPERATURE_STEP = 25.0
 DEFAULT_DOMAIN = (-4.0, 1.5)  # x/b: inlet and outlet ends (Venner & Lubrecht 2000 use -4 .. 1.5 for line contacts)
 COARSEST_NODES = 101  # first grid of the sequence: cheap (ms per Newton step) yet resolves the Hertz zone by 40
 # Piezoviscous continuation (eta_bar^s, s from 0 to 1) if Newton fails from the Hertz start on the coarsest grid:
