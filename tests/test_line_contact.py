@@ -333,3 +333,20 @@ def test_thermal_sliding_energy_balance_and_flash_temperature():
     iso = solve_line(RADIUS, LOAD_08, speed, srr, EYRING_OIL, STEEL, STEEL, nodes=401)
     assert iso.converged
     assert 0.0 < hot.friction < iso.friction
+
+
+@pytest.mark.slow
+def test_thermal_grid_and_layer_convergence():
+    """Ree-Eyring, 2 m/s, SRR 0.3: h_c converges at order ~2 in the nodes (201/401/801: 590.8, 595.8, 597.1 nm)
+    and in the layers across the film (6/12/24 at 401 nodes: 594.8, 595.8, 596.1 nm); the friction and the
+    temperature rise change by less than 0.5 % between the finest two."""
+    def run(nodes, layers):
+        s = solve_line(RADIUS, LOAD_08, 2.0, 0.3, EYRING_OIL, STEEL, STEEL, nodes=nodes, thermal=True, layers=layers)
+        assert s.converged
+        return s
+
+    for runs in ([run(n, 12) for n in (201, 401, 801)], [run(401, m) for m in (6, 12, 24)]):
+        h = [r.h_c for r in runs]
+        assert math.log2(abs(h[1] - h[0]) / abs(h[2] - h[1])) > 1.5, h
+        assert runs[2].friction == pytest.approx(runs[1].friction, rel=5e-3)
+        assert runs[2].dT_max == pytest.approx(runs[1].dT_max, rel=5e-3)
