@@ -17,9 +17,11 @@ import numpy as np
 import pytest
 
 from facegear_tehl.ehl import grid
-from facegear_tehl.ehl.multigrid import MultigridSolver, Problem
+from facegear_tehl.ehl.multigrid import MultigridSolver
 from facegear_tehl.ehl.scaling import contact_from_moes, scaling_for
+from facegear_tehl.ehl.solve import problem_for
 from facegear_tehl.film_formulas import hamrock_dowson_central
+from facegear_tehl.settings import SolverSettings
 
 GRIDS = (33, 65, 129)
 COARSEST = 17
@@ -31,32 +33,11 @@ def full_multigrid_start(n: int) -> MultigridSolver:
     """The solver on an n x n finest grid after its full-multigrid start (as ehl/solve.py starts a solve)."""
     point, lubricant = contact_from_moes(20.0, 10.0)
     scaling = scaling_for(point, lubricant)
-    problem = Problem(
-        lam=scaling.lam,
-        deflection_coefficient=scaling.deflection_coefficient,
-        ellipticity=scaling.ellipticity,
-        geometry_y=scaling.geometry_y,
-        wedge_x=scaling.wedge_x,
-        wedge_y=scaling.wedge_y,
-        p_hertz=scaling.p_h,
-        law=lubricant.law_parameters(),
-        inlet_temperature=lubricant.inlet_temperature,
-        velocity_1=np.asarray(point.velocity_1) / point.entrainment_speed,
-        velocity_2=np.asarray(point.velocity_2) / point.entrainment_speed,
-        domain_x=(-4.5, 1.5),
-        domain_y=(-3.0, 3.0),
-    )
-    solver = MultigridSolver(problem, grid.hierarchy_shapes(n, n, COARSEST))
-    coarsest = solver.levels[0]
-    solver.reset_rhs(coarsest)
-    xx, yy = np.meshgrid(coarsest.x, coarsest.y)
-    coarsest.pressure = np.sqrt(np.maximum(1.0 - xx**2 - yy**2, 0.0))  # Hertz, zero on the boundary
-    solver.update_film(coarsest)
-    # H_0 such that the central film is Hamrock & Dowson's (1977) estimate
+    settings = SolverSettings(grid=n, coarsest_grid=COARSEST, domain_x=(-4.5, 1.5), domain_y=(-3.0, 3.0))
+    solver = MultigridSolver(problem_for(point, lubricant, settings, scaling), grid.hierarchy_shapes(n, n, COARSEST))
+    # Hertz pressure on the coarsest grid, H_0 such that the central film is Hamrock & Dowson's (1977) estimate
     central = hamrock_dowson_central(scaling.hamrock_u, scaling.hamrock_g, scaling.hamrock_w, scaling.ellipticity)
-    central *= scaling.hertz.radius_x / scaling.film_scale
-    solver.h0 = central - grid.bilinear_at(coarsest.film, coarsest.x, coarsest.y, 0.0, 0.0)
-    solver.update_film(coarsest)
+    solver.start_from_hertz(central * scaling.hertz.radius_x / scaling.film_scale)
     for _ in range(2):
         solver.cycle(0)
     for index in range(1, len(solver.levels)):

@@ -103,7 +103,7 @@ def default_domain(scaling: Scaling) -> tuple[tuple[float, float], tuple[float, 
     return (cx - DOMAIN_HALF_WIDTH, cx + DOMAIN_HALF_WIDTH), (cy - DOMAIN_HALF_WIDTH, cy + DOMAIN_HALF_WIDTH)
 
 
-def _problem(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, scaling: Scaling) -> Problem:
+def problem_for(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, scaling: Scaling) -> Problem:
     """The dimensionless problem of a point on the settings' domain (default_domain when not set)."""
     if settings.domain_x is None or settings.domain_y is None:
         domain_x, domain_y = default_domain(scaling)
@@ -205,7 +205,7 @@ class PointSolve:
         self.point, self.lubricant, self.settings = point, lubricant, settings
         self.scaling = scaling_for(point, lubricant)
         shapes = grid.hierarchy_shapes(settings.grid, settings.nodes_y, settings.coarsest_grid)
-        self.solver = MultigridSolver(_problem(point, lubricant, settings, self.scaling), shapes, relaxation)
+        self.solver = MultigridSolver(problem_for(point, lubricant, settings, self.scaling), shapes, relaxation)
         self.mode, self.reason = thermal_choice(settings.thermal, point, lubricant)
         self.summaries: list[LevelSummary] = []
         self.history = History(cycles=settings.cycles_per_level)
