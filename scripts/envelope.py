@@ -525,7 +525,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     print()
     print(summary(rows, total, args.grid, args.grid_y))
     for name, (asked, solved_on) in refined.items():
-        print(f"- {name}: no open film on {asked}; solved on {solved_on} (chosen by the solver)")
+        print(f"- {name}: {asked} did not resolve the film; solved on {solved_on} (chosen by the solver)")
     if args.save:
         write_csv(rows, args.save / "envelope.csv")
     if args.map:
