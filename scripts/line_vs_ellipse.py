@@ -11,7 +11,7 @@ length; the plane-strain line contact of that load has p_h = E' b_line/(4 R_x), 
 R_y/R_x), solved by `facegear_tehl.line.solve_line` on 801 and 1601 nodes over the elliptical solver's default
 inlet/outlet extent (-4.5 b, 1.5 b); the Richardson extrapolation of the two (order 2) is the reference.
 
-    python scripts/line_vs_ellipse.py [--grid 257]
+    python scripts/line_vs_ellipse.py [--grid 257] [--grid-y 65]
 """
 
 from __future__ import annotations
@@ -44,9 +44,11 @@ def ellipse_load(p_h: float, e_prime: float) -> float:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--grid", type=int, default=None, help="elliptical grid (default: SolverSettings())")
+    parser.add_argument("--grid", type=int, default=SolverSettings().grid, help="elliptical grid along x, the minor "
+                        "axis (default: SolverSettings())")
+    parser.add_argument("--grid-y", type=int, default=None, help="nodes along y, the major axis (default: --grid)")
     args = parser.parse_args()
-    settings = SolverSettings() if args.grid is None else SolverSettings(grid=args.grid)
+    settings = SolverSettings(grid=args.grid, grid_y=args.grid_y)
     e_prime = reduced_modulus(STEEL, STEEL)
     print(f"a/b = 100 ellipse (R_x = {RADIUS_X * 1e3:g} mm, R_y/R_x = {RADIUS_RATIO:g}) vs line contact, "
           f"elliptical grid {settings.grid} x {settings.nodes_y}\n")
