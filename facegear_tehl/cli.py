@@ -292,6 +292,7 @@ _SUMMARY = (
     Column("p_max", "p_max", "Pa", ".1f"),
     Column("p_hertz", "p_hertz", "Pa", ".1f"),
     Column("dT_max", "dT_max", "K", ".1f"),
+    Column("dT_min", "dT_min", "K", ".1f"),
     Column("mu", "mu", spec=".4f"),
     Column("load error", "load_error", spec=".1e"),
     *COST,

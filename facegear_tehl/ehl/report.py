@@ -172,11 +172,17 @@ def _film_state_outputs(solve: PointSolve, level: Level, state: FilmState
     temperature = state.temperature
     middle = temperature.shape[0] // 2
     dT_max = float(temperature.max() - t_in)
+    # the coldest film temperature relative to the inlet (negative where the oil cools by expansion in the
+    # outlet) and where it lies
+    _, j_min, i_min = np.unravel_index(np.argmin(temperature), temperature.shape)
     scalars = {
         "mu": (mu, "1"),
         "mu_1": (mu_1, "1"),
         "mu_2": (mu_2, "1"),
         "dT_max": (dT_max, "K"),
+        "dT_min": (float(temperature.min() - t_in), "K"),
+        "x_dT_min": (float(level.x[i_min]) * scaling.b, "m"),
+        "y_dT_min": (float(level.y[j_min]) * scaling.a, "m"),
         "dT_mid_max": (float(temperature[middle].max() - t_in), "K"),
         "dT_surface_1_max": (float(temperature[0].max() - t_in), "K"),
         "dT_surface_2_max": (float(temperature[-1].max() - t_in), "K"),
@@ -197,9 +203,7 @@ def _film_state_outputs(solve: PointSolve, level: Level, state: FilmState
     film, dx, dy = level.film * scaling.film_scale, level.hx * scaling.b, level.hy * scaling.a
     scalars["dissipated_power"] = (dissipated_power(state, film, dx, dy), "W")
     if solve.mode != "off":
-        rho_c = (lubricant.density_at(np.broadcast_to(level.pressure * scaling.p_h, temperature.shape), temperature)
-                 * lubricant.specific_heat)
-        budget = energy_budget(state, film, dx, dy, rho_c, t_in)
+        budget = energy_budget(state, film, dx, dy, t_in)
         scalars.update({k: (v, "1" if k == "energy_balance_error" else "W") for k, v in budget.items()})
         fields["heat_flux_1"] = Field(state.heat_flux_1, "W/m^2", "heat flux from the film into body 1")
         fields["heat_flux_2"] = Field(state.heat_flux_2, "W/m^2", "heat flux from the film into body 2")

@@ -3,14 +3,17 @@
 One `update` maps the current pressure and film to the across-film state that the generalised Reynolds
 equation needs (temperature and eta*/eta per layer, flow.py):
 1. Newtonian viscosity per layer, eta(p, T_k) (lubricant.py);
-2. shear stress, shear rate, velocity and dissipation across the film (rheology.py);
-3. (thermal models) the energy equation in the film (energy.py; conductivity k(p) of lubricant.py, one value
-   per column), coupled to the two solids by the high-Péclet moving heat source (jaeger.py):
+2. shear stress, shear rate, velocity and dissipation across the film (rheology.py), once per update;
+3. (thermal models) the energy equation in the film with the convection across the layers that continuity
+   requires (energy.py; conductivity k(p) of lubricant.py, one value per column), coupled to the two solids by
+   the high-Péclet moving heat source (jaeger.py) through the wall heat fluxes of the film's discrete balance:
    T_i = T_0 + (1/(sqrt(pi) B_i)) \\int q_i (x - s)^(-1/2) ds, B_i = sqrt(k_i rho_i c_i |u_ix|), applied along
    x with the x component of each surface's velocity (face gear surfaces move within 2 deg of x). A surface
    nearly at rest (Pe < 1) is given the effusivity of Pe = 1, where the high-Péclet kernel would otherwise
    diverge: a bounded, conservative estimate.
-The film's interior layers and the surfaces are iterated INNER_ITERATIONS times with under-relaxed surfaces.
+The surfaces (under-relaxed) and then the film's interior layers are iterated INNER_ITERATIONS times, so that
+the state returned solves the film's discrete energy equation for its own surfaces (its energy budget closes,
+energy.energy_budget).
 
 `thermal_choice` picks the thermal model of `solver.thermal: auto` from the thermal loading number and the
 slide-to-roll ratio (Gupta et al. 1992), and says why.
@@ -32,7 +35,7 @@ from facegear_tehl.materials import Solid
 # kelvin in its first update, before the viscosity has dropped; with 50 K the face gear points (rises of
 # 15-100 K) need at most two limited updates.
 MAX_TEMPERATURE_STEP = 50.0  # K, largest temperature change of one update
-INNER_ITERATIONS = 2  # film-interior and surface passes per update: the outer loop iterates them again anyway
+INNER_ITERATIONS = 2  # surface and film-interior passes per update: the outer loop iterates them again anyway
 # Under-relaxation of the surface temperatures between inner passes: they follow the wall heat flux of the same
 # pass through the Jaeger kernel, whose gain grows as the solid slows (~ 1/sqrt(speed)); 0.6 is the value the
 # thermal model was built and validated with (an empirical choice: no sweep of it is recorded).
@@ -57,6 +60,8 @@ class FilmState:
     heat_flux_2: np.ndarray  # (ny, nx) into solid 2, W/m^2
     compression: np.ndarray  # beta_T T (u . grad p), W/m^3
     change: float  # largest temperature change of this update, K
+    heat_capacity: np.ndarray | None = None  # rho c per layer node as the energy equation used it, J/(m^3 K)
+    # (None without the energy equation)
 
 
 class FilmThermalModel:
@@ -120,31 +125,41 @@ class FilmThermalModel:
         p_layers = np.ascontiguousarray(np.broadcast_to(p, shape))
         conductivity = lub.conductivity_at(p)  # (ny, nx): one k per column (p is constant across the film)
         change = 0.0
-        for _ in range(INNER_ITERATIONS if self.solve_energy else 1):
-            eta = lub.viscosity * viscosity_ratio(p_layers, temperature, self.law).reshape(shape)
-            rheology.shear_state(p, film, np.ascontiguousarray(grad_x), np.ascontiguousarray(grad_y), eta,
-                                 self.velocity_1, self.velocity_2, self.tau0, warm, viscosity_factor, dissipation,
-                                 velocity_x, velocity_y, stress_1, stress_2, thinning)
-            warm = True
-            expansivity = lub.thermal_expansion / (1.0 - lub.thermal_expansion * (temperature - self.t_inlet))
-            compression_coefficient = expansivity * (velocity_x * grad_x + velocity_y * grad_y)
-            if not self.solve_energy:
-                break
+        q1 = q2 = None
+        rho_c = None
+        # the shear state once per update, from the entry temperatures: the outer loop iterates it with the pressure
+        # (re-evaluating it here between the passes below couples the temperature of the inlet's stagnation layers
+        # to the velocity across the layers without the outer loop's relaxation: a period-2 flicker of 1-1.5 K on
+        # the 257 x 65 face gear points S2-S4)
+        eta = lub.viscosity * viscosity_ratio(p_layers, temperature, self.law).reshape(shape)
+        rheology.shear_state(p, film, np.ascontiguousarray(grad_x), np.ascontiguousarray(grad_y), eta,
+                             self.velocity_1, self.velocity_2, self.tau0, warm, viscosity_factor, dissipation,
+                             velocity_x, velocity_y, stress_1, stress_2, thinning)
+        expansivity = lub.thermal_expansion / (1.0 - lub.thermal_expansion * (temperature - self.t_inlet))
+        compression_coefficient = expansivity * (velocity_x * grad_x + velocity_y * grad_y)
+        if self.solve_energy:
             rho_c = lub.density * density_ratio(p_layers, temperature, self.law).reshape(shape) * lub.specific_heat
-            before = temperature.copy()
             beta = temperature_coefficient(p_layers, temperature, self.law).reshape(shape)
             sensitivity = dissipation * beta * thinning  # -d(dissipation)/dT at fixed shear rate
-            energy.sweep_film_temperature(temperature, velocity_x, velocity_y, dissipation, sensitivity,
-                                          compression_coefficient, rho_c, conductivity, film, self.dx,
-                                          self.dy, self.t_inlet, ENERGY_SWEEPS, ENERGY_SWEEP_TOLERANCE)
-            q1, q2 = energy.wall_heat_flux(temperature, film, conductivity)
+            fluxes = energy.transport_fluxes(velocity_x, velocity_y, rho_c, film, self.dx, self.dy)[:3]
+            kernel_args = (dissipation, sensitivity, temperature.copy(), compression_coefficient, conductivity, film,
+                           self.dx, self.dy, self.t_inlet)
+            q1, q2 = np.empty(p.shape), np.empty(p.shape)
             w = SURFACE_RELAXATION
-            temperature[0] += w * (self._surface(q1, 0, float(self.velocity_1[0])) - temperature[0])
-            temperature[-1] += w * (self._surface(q2, 1, float(self.velocity_2[0])) - temperature[-1])
-            np.clip(temperature, start - MAX_TEMPERATURE_STEP, start + MAX_TEMPERATURE_STEP, out=temperature)
-            change = float(np.abs(temperature - before).max())
+            for _ in range(INNER_ITERATIONS):
+                # the surfaces from the heat fluxes of the film as it stands, then the film's interior for them: the
+                # state returned solves the film's discrete energy equation for its own surfaces
+                before = temperature.copy()
+                energy.wall_fluxes(temperature, *fluxes, *kernel_args, q1, q2)
+                temperature[0] += w * (self._surface(q1, 0, float(self.velocity_1[0])) - temperature[0])
+                temperature[-1] += w * (self._surface(q2, 1, float(self.velocity_2[0])) - temperature[-1])
+                energy.sweep_columns(temperature, *fluxes, *kernel_args, ENERGY_SWEEPS, ENERGY_SWEEP_TOLERANCE)
+                np.clip(temperature, start - MAX_TEMPERATURE_STEP, start + MAX_TEMPERATURE_STEP, out=temperature)
+                change = float(np.abs(temperature - before).max())
+            energy.wall_fluxes(temperature, *fluxes, *kernel_args, q1, q2)
         self._stress = stress_1
-        q1, q2 = energy.wall_heat_flux(temperature, film, conductivity)
+        if q1 is None:  # no energy equation: the flux of the temperatures as they are
+            q1, q2 = energy.wall_heat_flux(temperature, film, conductivity)
         return FilmState(
             temperature=temperature,
             viscosity_factor=viscosity_factor,
@@ -157,6 +172,7 @@ class FilmThermalModel:
             heat_flux_2=q2,
             compression=compression_coefficient * temperature,
             change=change,
+            heat_capacity=rho_c,
         )
 
 
