@@ -85,7 +85,8 @@ def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
     """`parallel.solve_all`, then every point whose grid could not resolve its film (`_unresolved`) solved again
     on grids twice as fine until it can or the grid would pass MAX_REFINED_GRID (a finer grid also lets the
     retry's start begin on a finer coarsest grid). Returns the solutions in task
-    order, the indices of those that raised, and per refined point (grid asked, grid solved on)."""
+    order (a refined point's wall time counts its coarser attempts), the indices of those that raised, and per
+    refined point (grid asked, grid solved on)."""
     tasks = list(tasks)
     solved, failed = solve_all(tasks, solver, jobs=jobs, progress=progress)
     refined: dict[str, tuple[str, str]] = {}
@@ -101,8 +102,9 @@ def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
             tasks[i] = task
             note = (f"grid {_shape(task.settings)} chosen by the solver ({asked[task.point.name]} did not resolve "
                     f"the film)")
-            solved[i] = replace(solution, models={**solution.models,
-                                                  "solver": solution.models.get("solver", "") + "; " + note})
+            spent = solved[i].scalars.get("wall_time", (0.0, "s"))[0] + solution.scalars.get("wall_time", (0.0, "s"))[0]
+            solved[i] = replace(solution, scalars={**solution.scalars, "wall_time": (spent, "s")},
+                                models={**solution.models, "solver": solution.models.get("solver", "") + "; " + note})
             refined[task.point.name] = (asked[task.point.name], _shape(task.settings))
 
 

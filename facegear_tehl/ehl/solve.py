@@ -538,9 +538,10 @@ class StagedSolver:
         return solution.outcome is Outcome.DIVERGED
 
     def with_retry(self, first: PointSolution, retry: PointSolution) -> PointSolution:
-        """The retry's solution, noted, if it did better than running away; else the first attempt's."""
-        if retry.outcome is Outcome.DIVERGED:
-            return first
+        """The retry's solution, noted, if it did better than running away; else the first attempt's (the retry's
+        wall time counts both)."""
+        if retry.outcome is Outcome.DIVERGED:  # the first attempt's record, with the time both took
+            return replace(first, scalars={**first.scalars, "wall_time": retry.scalars["wall_time"]})
         note = f"converged after a retry with Venner's switch (first attempt: {first.message})"
         return replace(retry, models={**retry.models, "solver": retry.models["solver"] + "; " + note})
 
