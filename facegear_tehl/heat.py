@@ -9,6 +9,7 @@ Formulas (PHYSICS.md §5.3–5.6 and §6.1–6.2):
   Blok (1937) flash temperature dT_f = C q_0 sqrt(b)/(B_1 + B_2) with Jaeger's (1942) high-Péclet kernel
   Tian & Kennedy (1994) circular source;  Péclet number Pe = u b/(2 kappa)
   duty ratio t_c/T = b/(pi r) with t_c = 2b/v_t, T = 60/n;  Q_oil = sum c rho h dT dx dy;  Q_f = P t_c
+  (the seed paper's Q_f = mu F |v_s| t_c; the film's own dissipation over the Hertz ellipse, P_film t_c)
 """
 
 from __future__ import annotations
@@ -298,6 +299,25 @@ def oil_film_heat(
 def frictional_heat(power: float, dwell: float) -> float:
     """Frictional heat of one meshing point Q_f = P t_c, J (power P in W, dwell t_c in s)."""
     return power * dwell
+
+
+def seed_frictional_heat(mu: float, load: float, sliding_speed: float, dwell: float) -> float:
+    """Frictional heat of one meshing point as the seed paper defines it (§3.5), Q_f = mu F |v_s| t_c, J:
+    the friction power of the sliding alone, zero at the pitch point (v_s = 0). mu: friction coefficient;
+    load F, N; sliding_speed v_s, m/s; dwell t_c, s."""
+    return frictional_heat(friction_power(mu, load, sliding_speed), dwell)
+
+
+def in_hertz_ellipse(x: np.ndarray, y: np.ndarray, a: float, b: float) -> np.ndarray:
+    """Nodes (ny, nx) of a grid with node coordinates x (nx,) and y (ny,), m, on or inside the Hertz ellipse
+    (x/b)^2 + (y/a)^2 <= 1 centred on the contact (b: semi-axis along x, a: along y, m)."""
+    return (np.asarray(x)[None, :] / b) ** 2 + (np.asarray(y)[:, None] / a) ** 2 <= 1.0
+
+
+def power_in_region(power_density: np.ndarray, region: np.ndarray, dx: float, dy: float) -> float:
+    """Power of a density per unit area (W/m^2, (ny, nx)) summed over the nodes of `region` (a boolean mask
+    of the same shape), each node standing for its cell dx dy (m^2), W."""
+    return float(np.sum(np.asarray(power_density, dtype=float) * region) * dx * dy)
 
 
 @dataclass(frozen=True)

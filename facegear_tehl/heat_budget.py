@@ -8,10 +8,18 @@ From a solved point (the thermal / Ree-Eyring film's friction coefficient mu, te
   1/2 sum |q_p - q_s| dA / P;
 - gear cases: steady-state heat power per gear P_ss,i = P_i t_c/T with the duty ratio t_c/T = b/(pi r_i);
 - Blok's flash temperature (semi-elliptical flux), next to the largest surface temperature rise solved;
-- dwell t_c = 2b/|U_e|, frictional heat of the meshing point Q_f = P_film t_c with P_film the power dissipated
-  in the solved film (= mu F |v_s| up to the rolling traction; non-zero at the pitch point, where v_s = 0), heat
-  held by the oil film in the Hertz ellipse Q_oil = sum c rho h dT_mean dA (and over the whole domain), and
-  Q_oil/Q_f.
+- dwell t_c = 2b/|U_e|, and the frictional heat of the meshing point three ways: as the seed paper defines it
+  (§3.5), Q_f,seed = mu F |v_s| t_c (the sliding's friction power: zero at the pitch point, where v_s = 0); the
+  film's own dissipation inside the Hertz ellipse, Q_f,ellipse = P_film,ellipse t_c (sliding and rolling
+  traction: non-zero at the pitch point); and over the whole domain, Q_f = P_film t_c (it includes the heat
+  dissipated in the inlet's back flow, so it grows with the inlet length); the heat held by the oil film in the
+  Hertz ellipse Q_oil = sum c rho h dT_mean dA (and over the whole domain), and the ratios of Q_oil to each
+  Q_f. The in-ellipse figures are the ones the seed's ratio (about 1 %) can be compared with. On the default
+  case (257 x 65) Q_oil/Q_f,ellipse is 5.9 / 7.0 / 10.3 / 9.3 / 14.9 % at S1..S5 and Q_oil/Q_f,seed 6.2 / 8.5 /
+  - / 14.9 / 20.4 %. Lengthening the inlet from 4.5 b to 10.5 b at equal spacing (513 x 65) changes
+  Q_oil/Q_f,ellipse by +3.8 % at S1 and +8.5 % at S5 (Q_oil/Q_f,seed +4.0 %, +14 %; the whole-domain Q_oil/Q_f
+  by -8 % and -33 %): at S5 the film in the ellipse itself changes with the inlet (mu -20 %, h_c +4.3 %,
+  dT_max -8.5 %; the old energy equation showed the same, mu -17 %), which no definition of the ratio removes.
 """
 
 from __future__ import annotations
@@ -25,6 +33,11 @@ from facegear_tehl import heat
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.solution import Field, PointSolution
+
+# The seed's Q_f = mu F |v_s| t_c counts as zero below this share of the film's own in-ellipse heat: at the pitch
+# point |v_s| is a round-off residue (Q_f,seed/Q_f,ellipse = 6e-17 at S3 of the default case), and Q_oil/Q_f,seed
+# would be a meaningless 1e15; the smallest share of a sliding point there is 0.62 (S4).
+SEED_HEAT_FLOOR = 1e-6
 
 # /heat table columns: name -> (units, description)
 COLUMNS = {
@@ -43,18 +56,28 @@ COLUMNS = {
     "flash_temperature": ("K", "Blok flash temperature, semi-elliptical flux on the centre line"),
     "surface_rise_max": ("K", "largest surface temperature rise of the solved film, either body"),
     "dissipated_power": ("W", "power dissipated by shear in the solved film (sliding and rolling traction)"),
+    "dissipated_power_ellipse": ("W", "power dissipated by shear in the solved film inside the Hertz ellipse"),
     "dwell_time": ("s", "t_c = 2b/|U_e|"),
-    "frictional_heat": ("J", "frictional heat of the meshing point Q_f = P_film t_c (film dissipation)"),
+    "frictional_heat": ("J", "frictional heat of the meshing point Q_f = P_film t_c (film dissipation over the "
+                             "whole domain, inlet included)"),
+    "frictional_heat_seed": ("J", "frictional heat as the seed paper defines it, Q_f,seed = mu F |v_s| t_c "
+                                  "(zero at the pitch point)"),
+    "frictional_heat_ellipse": ("J", "the film's own frictional heat in the Hertz ellipse, Q_f,ellipse = "
+                                     "P_film,ellipse t_c"),
     "oil_film_heat": ("J", "heat held by the oil film in the Hertz ellipse, Q_oil = sum c rho h dT dA"),
     "oil_film_heat_domain": ("J", "the same summed over the whole computational domain (inlet included)"),
-    "oil_to_friction_ratio": ("1", "Q_oil/Q_f"),
+    "oil_to_friction_ratio": ("1", "Q_oil/Q_f (Q_f over the whole domain)"),
+    "oil_to_seed_friction_ratio": ("1", "Q_oil/Q_f,seed (left out where there is no sliding: Q_f,seed = 0)"),
+    "oil_to_ellipse_friction_ratio": ("1", "Q_oil/Q_f,ellipse: oil-film heat and film dissipation in the same "
+                                           "Hertz ellipse"),
     "distribution_difference": ("1", "share of P placed differently by the pressure and shear-power distributions"),
 }
 
 
 def point_budget(point: ContactPoint, solution: PointSolution, lubricant: Lubricant
                  ) -> tuple[dict[str, float], dict[str, Field]]:
-    """The budget of one solved point: (values of COLUMNS, SI; heat flux fields). Needs `mu` and the film state."""
+    """The budget of one solved point: (values of COLUMNS, SI; heat flux fields). Needs `mu` and the film state
+    (fields temperature_mean and dissipation_column)."""
     sc = solution.scalars
     mu = sc["mu"][0]
     b, a = sc["b"][0], sc["a"][0]
@@ -94,13 +117,19 @@ def point_budget(point: ContactPoint, solution: PointSolution, lubricant: Lubric
     dissipated = sc["dissipated_power"][0]
     q_f = heat.frictional_heat(dissipated, dwell)
     rise = t_mean - lubricant.inlet_temperature
-    inside = (x[None, :] / b) ** 2 + (y[:, None] / a) ** 2 <= 1.0
+    inside = heat.in_hertz_ellipse(x, y, a, b)
     film = np.maximum(film, 0.0)
     q_oil = heat.oil_film_heat(rho_c, film * inside, rise, dx, dy)
-    values.update({"dissipated_power": dissipated, "dwell_time": dwell, "frictional_heat": q_f,
-                   "oil_film_heat": q_oil,
+    dissipated_ellipse = heat.power_in_region(f["dissipation_column"].values, inside, dx, dy)
+    q_f_ellipse = heat.frictional_heat(dissipated_ellipse, dwell)
+    q_f_seed = heat.seed_frictional_heat(mu, point.load, point.sliding_speed, dwell)
+    values.update({"dissipated_power": dissipated, "dissipated_power_ellipse": dissipated_ellipse,
+                   "dwell_time": dwell, "frictional_heat": q_f, "frictional_heat_seed": q_f_seed,
+                   "frictional_heat_ellipse": q_f_ellipse, "oil_film_heat": q_oil,
                    "oil_film_heat_domain": heat.oil_film_heat(rho_c, film, rise, dx, dy),
-                   "oil_to_friction_ratio": q_oil / q_f})
+                   "oil_to_friction_ratio": q_oil / q_f, "oil_to_ellipse_friction_ratio": q_oil / q_f_ellipse})
+    if q_f_seed > SEED_HEAT_FLOOR * q_f_ellipse:  # the seed's ratio is undefined without sliding
+        values["oil_to_seed_friction_ratio"] = q_oil / q_f_seed
 
     by_pressure = heat.distribute_by_pressure(power, pressure)
     sliding = point.sliding  # u_1 - u_2; the film stress eta* du/dz does positive work on -sliding
@@ -126,7 +155,8 @@ def heat_budget(points: list[ContactPoint], solutions: list[PointSolution], lubr
     rows: list[tuple[str, dict[str, float]]] = []
     out = []
     for point, solution in zip(points, solutions):
-        if solution is None or "mu" not in solution.scalars or "temperature_mean" not in solution.fields:
+        if (solution is None or "mu" not in solution.scalars or "temperature_mean" not in solution.fields
+                or "dissipation_column" not in solution.fields):
             out.append(solution)
             continue
         values, fields = point_budget(point, solution, lubricant)

@@ -202,6 +202,10 @@ def _film_state_outputs(solve: PointSolve, level: Level, state: FilmState
     }
     film, dx, dy = level.film * scaling.film_scale, level.hx * scaling.b, level.hy * scaling.a
     scalars["dissipated_power"] = (dissipated_power(state, film, dx, dy), "W")
+    fields["dissipation_column"] = Field(
+        np.tensordot(simpson_weights(temperature.shape[0]), state.dissipation, axes=1) * film, "W/m^2",
+        "power dissipated by shear per unit area, the integral of tau . gamma_dot across the film (Simpson; its sum "
+        "times dx dy is dissipated_power)")
     if solve.mode != "off":
         budget = energy_budget(state, film, dx, dy, t_in)
         scalars.update({k: (v, "1" if k == "energy_balance_error" else "W") for k, v in budget.items()})
