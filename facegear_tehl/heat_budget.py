@@ -16,10 +16,11 @@ From a solved point (the thermal / Ree-Eyring film's friction coefficient mu, te
   Hertz ellipse Q_oil = sum c rho h dT_mean dA (and over the whole domain), and the ratios of Q_oil to each
   Q_f. The in-ellipse figures are the ones the seed's ratio (about 1 %) can be compared with. On the default
   case (257 x 65) Q_oil/Q_f,ellipse is 5.9 / 7.0 / 10.3 / 9.3 / 14.9 % at S1..S5 and Q_oil/Q_f,seed 6.2 / 8.5 /
-  - / 14.9 / 20.4 %. Lengthening the inlet from 4.5 b to 10.5 b at equal spacing (513 x 65) changes
-  Q_oil/Q_f,ellipse by +3.8 % at S1 and +8.5 % at S5 (Q_oil/Q_f,seed +4.0 %, +14 %; the whole-domain Q_oil/Q_f
+  - / 15.0 / 20.4 %. Lengthening the inlet from 4.5 b to 10.5 b at equal spacing (513 x 65) changes
+  Q_oil/Q_f,ellipse by +4.0 % at S1 and +8.7 % at S5 (Q_oil/Q_f,seed +4.3 %, +14 %; the whole-domain Q_oil/Q_f
   by -8 % and -33 %): at S5 the film in the ellipse itself changes with the inlet (mu -20 %, h_c +4.3 %,
-  dT_max -8.5 %; the old energy equation showed the same, mu -17 %), which no definition of the ratio removes.
+  dT_max -8.5 %; the energy equation before issue 19 showed the same, mu -17 %), which no definition of the
+  ratio removes.
 """
 
 from __future__ import annotations

@@ -80,9 +80,18 @@ def layer_weight(k: int, nz: int) -> float:
     return w / (24.0 * (nz - 1))
 
 
+@njit(cache=True)
+def layer_weights_array(nz):
+    """All nz widths of `layer_weight` (for the kernels)."""
+    out = np.empty(nz)
+    for k in range(nz):
+        out[k] = layer_weight(k, nz)
+    return out
+
+
 def layer_weights(nz: int) -> np.ndarray:
     """All nz widths of `layer_weight`."""
-    return np.array([layer_weight(k, nz) for k in range(nz)])
+    return layer_weights_array(nz)
 
 
 @njit(cache=True, inline="always")
@@ -197,7 +206,9 @@ def _face_positions(nz):
 def _face_term(temperature, k, j, i, g, dj, di, t, t_inlet, a, b):
     """(a, b) of `_node_form` with the convection through one face along x or y added: g the outward flux over
     h times the face's length per cell area (W/(m^3 K)), (dj, di) the direction to the neighbour across it."""
-    if g >= 0.0:  # outflow: the face carries this node's value and its limited correction
+    if g == 0.0:  # no flow through the face (a wall's normal velocity, a film at rest)
+        return a, b
+    if g > 0.0:  # outflow: the face carries this node's value and its limited correction
         return a, b - g * (_face_value(temperature, k, j, i, dj, di, t_inlet) - t)
     # inflow from the neighbour
     return a - g, b - g * _face_value(temperature, k, j + dj, i + di, -dj, -di, t_inlet)
@@ -229,57 +240,83 @@ def wall_convection(temperature, flux_x, flux_y, film, dx, dy, t_inlet):
     return out
 
 
+@njit(cache=True, error_model="numpy")
+def _fixed_parts(flux_z, source, sensitivity, reference, expansivity_grad, conductivity, film):
+    """The parts of the node balances that stay fixed while the columns are swept: (implicit, explicit, heating,
+    blended), layer fields (nz, ny, nx) but blended (nz + 1, ny, nx):
+
+    implicit = sensitivity + max(-beta_T u . grad p, 0): heating linearised about `reference`, expansion cooling;
+    explicit = source + sensitivity reference (W/m^3); heating = max(beta_T u . grad p, 0), times T from the
+    current iterate (compression heating, explicit); blended = c W min(1, 2/Pe): the flux across a layer face
+    times the weight of its central correction (Pe = c |W| dz/k, the cell Péclet number across the film)."""
+    nz, ny, nx = source.shape
+    implicit = np.empty((nz, ny, nx))
+    explicit = np.empty((nz, ny, nx))
+    heating = np.empty((nz, ny, nx))
+    blended = np.zeros((nz + 1, ny, nx))
+    for k in range(nz):
+        for j in range(ny):
+            for i in range(nx):
+                sig = sensitivity[k, j, i]
+                comp = expansivity_grad[k, j, i]  # beta_T (u . grad p), W/(m^3 K) per K of T
+                implicit[k, j, i] = sig - min(comp, 0.0)
+                explicit[k, j, i] = source[k, j, i] + sig * reference[k, j, i]
+                heating[k, j, i] = max(comp, 0.0)
+    for j in range(ny):
+        for i in range(nx):
+            conductance = conductivity[j, i] * (nz - 1) / max(film[j, i], 1e-12)  # k/dz
+            for f in range(1, nz):
+                z = flux_z[f, j, i]
+                blended[f, j, i] = z * min(1.0, CENTRAL_PECLET * conductance / abs(z)) if z != 0.0 else 0.0
+    return implicit, explicit, heating, blended
+
+
 @njit(cache=True, error_model="numpy", inline="always")
-def _node_form(temperature, k, j, i, flux_z, source, sensitivity, reference, expansivity_grad, width, face_position,
-               conductance, a, b, h):
+def _node_form(temperature, k, j, i, flux_z, blended, implicit, explicit, heating, inverse_width, face_position, a, b,
+               inverse_h):
     """Node (k, j, i)'s balance without conduction, convection minus sources (W/m^3), as the linear form
     F = a T_k + lo T_k-1 + up T_k+1 - b: (a, lo, up, b). a, lo, up: the implicit part (upwind convection, heating
     linearised about `reference`, compression cooling); b: sources and the explicit rest (upwind neighbours along
     x and y, the limited and central corrections of the face values from the current iterate). a, b: those of the
-    convection along x and y (`_xy_form`); h: film (m); width: w_k; conductance: k/dz of the column (W/(m^2 K))."""
+    convection along x and y (`_xy_form`); implicit, explicit, heating, blended: `_fixed_parts`; inverse_width:
+    1/w_k; inverse_h: 1/h of the column (1/m)."""
     nz = temperature.shape[0]
     t = temperature[k, j, i]
     lo = 0.0
     up = 0.0
-    rw = 1.0 / (h * width)
+    rw = inverse_width[k] * inverse_h
     if k < nz - 1:  # face above, outward flux +flux_z
         z = flux_z[k + 1, j, i]
+        zb = blended[k + 1, j, i] * rw
         lam = face_position[k + 1]
-        blend = min(1.0, CENTRAL_PECLET * conductance / abs(z)) if z != 0.0 else 1.0
         t_up = temperature[k + 1, j, i]
         if z >= 0.0:
-            b -= z * rw * blend * lam * (t_up - t)
+            b -= zb * lam * (t_up - t)
         else:
             a -= z * rw
             up += z * rw
-            b -= z * rw * blend * (1.0 - lam) * (t - t_up)
+            b -= zb * (1.0 - lam) * (t - t_up)
     if k > 0:  # face below, outward flux -flux_z
         z = flux_z[k, j, i]
+        zb = blended[k, j, i] * rw
         lam = face_position[k]
-        blend = min(1.0, CENTRAL_PECLET * conductance / abs(z)) if z != 0.0 else 1.0
         t_lo = temperature[k - 1, j, i]
         if z <= 0.0:
-            b += z * rw * blend * (1.0 - lam) * (t_lo - t)
+            b += zb * (1.0 - lam) * (t_lo - t)
         else:
             a += z * rw
             lo -= z * rw
-            b += z * rw * blend * lam * (t - t_lo)
-    sig = sensitivity[k, j, i]
-    a += sig
-    b += source[k, j, i] + sig * reference[k, j, i]
-    comp = expansivity_grad[k, j, i]  # beta_T (u . grad p), W/(m^3 K) per K of T
-    if comp < 0.0:
-        a -= comp  # cooling by expansion: implicit
-    else:
-        b += comp * t
+            b += zb * lam * (t - t_lo)
+    a += implicit[k, j, i]
+    b += explicit[k, j, i] + heating[k, j, i] * t
     return a, lo, up, b
 
 
-@njit(cache=True, error_model="numpy")
-def _forms(temperature, j, i, flux_x, flux_y, flux_z, source, sensitivity, reference, expansivity_grad, conductivity,
-           film, dx, dy, t_inlet, face_position, walls, a, lo, up, b):
+@njit(cache=True, error_model="numpy", inline="always")
+def _forms(temperature, j, i, flux_x, flux_y, flux_z, blended, implicit, explicit, heating, conductivity, film, dx, dy,
+           t_inlet, face_position, inverse_width, walls, a, lo, up, b):
     """The linear forms of every node of column (j, i) (in place), the walls' convection along x and y from
-    `wall_convection`; returns (k/dz^2, theta): Numerov's weight
+    `wall_convection`, the fixed parts from `_fixed_parts`; returns (k/dz^2, theta): Numerov's weight
     theta = min(1, 12 k/(dz^2 max a)) over the interior nodes keeps the off-diagonals of the column's matrix
     negative (no overshoot) where convection outweighs conduction across the film (thick inlet films); there the
     scheme tends to the second-order one."""
@@ -288,17 +325,17 @@ def _forms(temperature, j, i, flux_x, flux_y, flux_z, source, sensitivity, refer
     dz = h / (nz - 1)
     conductance = conductivity[j, i] / dz
     largest = 0.0
-    rdxh = 1.0 / (dx * h)
-    rdyh = 1.0 / (dy * h)
+    inverse_h = 1.0 / h
+    rdxh = inverse_h / dx
+    rdyh = inverse_h / dy
     for k in range(nz):
         if k == 0 or k == nz - 1:
             side = 0 if k == 0 else 1
             ax, bx = walls[side, 0, j, i], walls[side, 1, j, i]
         else:
             ax, bx = _xy_form(temperature, k, j, i, flux_x, flux_y, rdxh, rdyh, t_inlet)
-        a[k], lo[k], up[k], b[k] = _node_form(temperature, k, j, i, flux_z, source, sensitivity, reference,
-                                              expansivity_grad, layer_weight(k, nz), face_position, conductance, ax,
-                                              bx, h)
+        a[k], lo[k], up[k], b[k] = _node_form(temperature, k, j, i, flux_z, blended, implicit, explicit, heating,
+                                              inverse_width, face_position, ax, bx, inverse_h)
         if 0 < k < nz - 1:
             largest = max(largest, a[k])
     kz = conductance / dz
@@ -306,9 +343,9 @@ def _forms(temperature, j, i, flux_x, flux_y, flux_z, source, sensitivity, refer
     return kz, theta
 
 
-@njit(cache=True, error_model="numpy")
-def _column(temperature, j, i, flux_x, flux_y, flux_z, source, sensitivity, reference, expansivity_grad,
-            conductivity, film, dx, dy, t_inlet, face_position, walls, a, lo, up, b, band, rhs):
+@njit(cache=True, error_model="numpy", inline="always")
+def _column(temperature, j, i, flux_x, flux_y, flux_z, blended, implicit, explicit, heating, conductivity, film, dx, dy,
+            t_inlet, face_position, inverse_width, walls, a, lo, up, b, band, rhs):
     """Solve the interior layers of column (j, i) in place; returns the largest change (K).
 
     Every node k gives its balance as F_k = a_k T_k + lo_k T_k-1 + up_k T_k+1 - b_k (`_node_form`); k T'' = F is
@@ -318,8 +355,8 @@ def _column(temperature, j, i, flux_x, flux_y, flux_z, source, sensitivity, refe
     without pivoting."""
     nz = temperature.shape[0]
     n = nz - 2
-    kz, theta = _forms(temperature, j, i, flux_x, flux_y, flux_z, source, sensitivity, reference, expansivity_grad,
-                       conductivity, film, dx, dy, t_inlet, face_position, walls, a, lo, up, b)
+    kz, theta = _forms(temperature, j, i, flux_x, flux_y, flux_z, blended, implicit, explicit, heating, conductivity,
+                       film, dx, dy, t_inlet, face_position, inverse_width, walls, a, lo, up, b)
     side = theta / 12.0
     mid = 1.0 - theta / 6.0
     t_bottom = temperature[0, j, i]
@@ -392,6 +429,9 @@ def sweep_columns(temperature, flux_x, flux_y, flux_z, source, sensitivity, refe
     band = np.zeros((5, nz - 2))
     rhs = np.empty(nz - 2)
     walls = wall_convection(temperature, flux_x, flux_y, film, dx, dy, t_inlet)
+    implicit, explicit, heating, blended = _fixed_parts(flux_z, source, sensitivity, reference, expansivity_grad,
+                                                        conductivity, film)
+    inverse_width = 1.0 / layer_weights_array(nz)
     change = 0.0
     done = 0
     for s in range(sweeps):
@@ -399,8 +439,8 @@ def sweep_columns(temperature, flux_x, flux_y, flux_z, source, sensitivity, refe
         for j in range(ny):
             for step in range(nx):
                 i = step if s % 2 == 0 else nx - 1 - step
-                c = _column(temperature, j, i, flux_x, flux_y, flux_z, source, sensitivity, reference,
-                            expansivity_grad, conductivity, film, dx, dy, t_inlet, face_position, walls, a, lo, up, b,
+                c = _column(temperature, j, i, flux_x, flux_y, flux_z, blended, implicit, explicit, heating,
+                            conductivity, film, dx, dy, t_inlet, face_position, inverse_width, walls, a, lo, up, b,
                             band, rhs)
                 change = max(change, c)
         done = s + 1
@@ -430,11 +470,13 @@ def wall_fluxes(temperature, flux_x, flux_y, flux_z, source, sensitivity, refere
     b = np.empty(nz)
     f = np.empty(nz)
     walls = wall_convection(temperature, flux_x, flux_y, film, dx, dy, t_inlet)
+    implicit, explicit, heating, blended = _fixed_parts(flux_z, source, sensitivity, reference, expansivity_grad,
+                                                        conductivity, film)
+    inverse_width = 1.0 / layer_weights_array(nz)
     for j in range(ny):
         for i in range(nx):
-            kz, theta = _forms(temperature, j, i, flux_x, flux_y, flux_z, source, sensitivity, reference,
-                               expansivity_grad, conductivity, film, dx, dy, t_inlet, face_position, walls, a, lo, up,
-                               b)
+            kz, theta = _forms(temperature, j, i, flux_x, flux_y, flux_z, blended, implicit, explicit, heating,
+                               conductivity, film, dx, dy, t_inlet, face_position, inverse_width, walls, a, lo, up, b)
             for k in range(nz):
                 value = a[k] * temperature[k, j, i] - b[k]
                 if k > 0:
