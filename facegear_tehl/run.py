@@ -60,9 +60,9 @@ def run_case(
         overrides["points"] = [p.name for p in selected]
     tasks = [SolveTask(point, case.lubricant, case.solver) for point in selected]
     solved, failed, refined = solve_refining(tasks, solver or ehl_solver(), jobs=jobs, progress=progress)
-    warnings = analysis.warnings + tuple(
-        f"{name}: the {asked} grid did not resolve the film; solved on {grid} (chosen by the solver)"
-        for name, (asked, grid) in refined.items())
+    by_name = {s.name: s for s in solved}
+    warnings = analysis.warnings + tuple(refinement_note(name, asked, grid, by_name[name])
+                                         for name, (asked, grid) in refined.items())
     if refined:
         overrides["refined_grid"] = {name: grid for name, (_, grid) in refined.items()}
     solutions, heat_table = heat_budget(selected, [_with_path_coordinate(s, p) for s, p in zip(solved, selected)],
@@ -106,6 +106,13 @@ def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
             solved[i] = replace(solution, scalars={**solution.scalars, "wall_time": (spent, "s")},
                                 models={**solution.models, "solver": solution.models.get("solver", "") + "; " + note})
             refined[task.point.name] = (asked[task.point.name], _shape(task.settings))
+
+
+def refinement_note(name: str, asked: str, grid: str, solution: PointSolution) -> str:
+    """What the solver did about a grid that did not resolve the film of point `name`, and how it ended."""
+    done = (f"solved on {grid}" if not _unresolved(solution)
+            else f"finer grids up to {grid} did not resolve it either ({solution.outcome.value})")
+    return f"{name}: the {asked} grid did not resolve the film; {done} (chosen by the solver)"
 
 
 def _unresolved(solution: PointSolution) -> bool:

@@ -520,12 +520,15 @@ def main(argv: Sequence[str] | None = None) -> int:
                   f"W = {point.load:10.4g} N  {c.model}")
         print(f"{len(cases)} cases")
         return 0
+    from facegear_tehl.run import refinement_note
+
     rows, total, refined = solve_cases(cases, args.grid, args.grid_y, args.jobs)
     print(markdown_table(rows))
     print()
     print(summary(rows, total, args.grid, args.grid_y))
+    by_name = {row.solution.name: row.solution for row in rows}
     for name, (asked, solved_on) in refined.items():
-        print(f"- {name}: {asked} did not resolve the film; solved on {solved_on} (chosen by the solver)")
+        print(f"- {refinement_note(name, asked, solved_on, by_name[name])}")
     if args.save:
         write_csv(rows, args.save / "envelope.csv")
     if args.map:
