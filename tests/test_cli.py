@@ -215,7 +215,8 @@ def test_failed_point_exits_1_and_writes_a_flagged_result(tmp_path, monkeypatch,
     assert "error: contact: failed: FloatingPointError: overflow" in result.stderr
     written = read_result(tmp_path / "ball_on_disc.h5")
     assert written.status == "failed" and written.points["contact"].fields == {}
-    assert result.stdout.splitlines()[2].split()[2:] == ["-"] * 14
+    cells = result.stdout.splitlines()[2].split()[2:]  # every value of the failed point's row: no data
+    assert len(cells) >= 14 and set(cells) == {"-"}
 
 
 def test_unexpected_error_exits_1_without_a_file(tmp_path, monkeypatch, fake_solver):

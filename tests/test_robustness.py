@@ -14,6 +14,7 @@ from click.testing import CliRunner
 import h5py
 import numpy as np
 import pytest
+import yaml
 
 from facegear_tehl.case import parse_case
 from facegear_tehl.cli import tehl
@@ -26,8 +27,9 @@ from test_parallel import assert_same_file
 
 ROOT = Path(__file__).resolve().parents[1]
 HARD_CASES = sorted((ROOT / "cases" / "hard").glob("*.yaml"))
-# Slide-to-roll ratio 2 (one surface at rest), thermal full, Ree-Eyring: on 33^2 its thermal loop does not
-# converge, so the end-to-end run also covers a result written with converged = false.
+# Slide-to-roll ratio 2 (one surface at rest), thermal full, Ree-Eyring; limited to three outer iterations on
+# 33^2 (hard_runs) its thermal loop cannot converge, so the end-to-end run covers a result written with
+# converged = false.
 HARD_CASE = ROOT / "cases" / "hard" / "srr2_one_at_rest.yaml"
 
 
@@ -78,12 +80,17 @@ def test_non_finite_entries_finds_nan_and_inf_anywhere(tmp_path):
 
 @pytest.fixture(scope="module")
 def hard_runs(tmp_path_factory) -> list[tuple[int, Path]]:
-    """The hard case run twice through the CLI on 33^2: (exit code, result file) each."""
+    """The hard case, limited to three outer iterations, run twice through the CLI on 33^2: (exit code, result
+    file) each."""
     folder = tmp_path_factory.mktemp("hard")
+    raw = yaml.safe_load(HARD_CASE.read_text())
+    raw["solver"]["max_thermal_iterations"] = 3  # too few to settle: a non-converged thermal run, by construction
+    case = folder / "srr2_three_outer_iterations.yaml"
+    case.write_text(yaml.safe_dump(raw))
     runs = []
     for index in range(2):
         target = folder / f"run{index}.h5"
-        result = CliRunner().invoke(tehl, ["run", str(HARD_CASE), "--grid", "33", "--jobs", "1", "-o", str(target)])
+        result = CliRunner().invoke(tehl, ["run", str(case), "--grid", "33", "--jobs", "1", "-o", str(target)])
         assert "Traceback" not in result.output
         runs.append((result.exit_code, target))
     return runs
@@ -97,7 +104,10 @@ def test_a_hard_case_end_to_end_writes_no_nan_or_inf(hard_runs):
     assert (code, result.status, point.converged) == (3, "not_converged", False)
     assert point.message.startswith("thermal loop not converged after "), point.message
     assert point.scalars["h_min"] > 0.0  # an open film, though the thermal loop did not settle
-    assert point.fields["pressure"].values.shape == (33, 33) and "temperature_mid" in point.fields
+    # 33^2 does not resolve this film (h_min estimated > 10 % off): the run refines it and says so
+    shape = (int(point.scalars["grid_y"]), int(point.scalars["grid"]))
+    assert point.fields["pressure"].values.shape == shape and "temperature_mid" in point.fields
+    assert shape == (33, 33) or "refined_grid" in result.overrides
     assert non_finite_entries(path) == []
 
 

@@ -421,9 +421,9 @@ class PointSolve:
             else:  # an isothermal Ree-Eyring film: its state is eta*/eta alone
                 history.viscosity_changes.append(float(np.abs(np.log(factor / previous_factor)).max()))
                 changes = history.viscosity_changes
-            history.thermal_h_c.append(solver.central_film(level) * scaling.film_scale)
-            if status.diverged:
+            if status.diverged:  # its film is not finite: no h_c is recorded
                 break
+            history.thermal_h_c.append(solver.central_film(level) * scaling.film_scale)
             last_finite = (solver.snapshot(index), state)
             if model.solve_energy:
                 rise = max(float(temperature.max() - self.lubricant.inlet_temperature), MIN_RISE)
