@@ -206,7 +206,7 @@ def _face_positions(nz):
 def _face_term(temperature, k, j, i, g, dj, di, t, t_inlet, a, b):
     """(a, b) of `_node_form` with the convection through one face along x or y added: g the outward flux over
     h times the face's length per cell area (W/(m^3 K)), (dj, di) the direction to the neighbour across it."""
-    if g == 0.0:  # no flow through the face (a wall's normal velocity, a film at rest)
+    if g == 0.0:  # no flow through the face
         return a, b
     if g > 0.0:  # outflow: the face carries this node's value and its limited correction
         return a, b - g * (_face_value(temperature, k, j, i, dj, di, t_inlet) - t)
