@@ -53,7 +53,8 @@ class StagedSolver(Protocol):
     """A solver that can also run in stages that may go to different processes, with the same result as a
     whole solve (ehl.solve.StagedSolver): `begin(point, lubricant, settings, retry_after)` returns the solution
     or a picklable intermediate that `finish` completes; a solution for which `needs_retry` holds is begun
-    again with `retry_after` set, and `with_retry(first, retry)` is kept."""
+    again with `retry_after` set to it, until `needs_retry` no longer holds, and `with_retry(first, last)` is
+    kept."""
 
     def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution: ...
 
@@ -150,7 +151,7 @@ def solve_each(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
         _warm_up(solver, tasks[0])
     executor = ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=_init_worker)
     try:
-        # per future: (task index, first attempt when this is its retry)
+        # per future: (task index, first attempt when this is a retry)
         pending: dict[Future, tuple[int, PointSolution | None]] = {}
 
         def submit(index: int, first: PointSolution | None, function: Callable, *args: object) -> None:
@@ -175,9 +176,9 @@ def solve_each(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
                     yield index, outcome
                 elif not isinstance(outcome, PointSolution):  # an intermediate: its next stage
                     submit(index, first, solver.finish, outcome)
-                elif first is None and solver.needs_retry(outcome):
+                elif solver.needs_retry(outcome):
                     task = tasks[index]
-                    submit(index, outcome, solver.begin, task.point, task.lubricant, task.settings, outcome)
+                    submit(index, first or outcome, solver.begin, task.point, task.lubricant, task.settings, outcome)
                 else:
                     yield index, Solved(outcome if first is None else solver.with_retry(first, outcome), failed=False)
     except BaseException:

@@ -17,12 +17,18 @@ from facegear_tehl.settings import SolverSettings
 from facegear_tehl.solution import Outcome, PointSolution
 
 # A film too thin for the grid it was asked on closes there (h_min <= 0), or the solve stalls with an h_min
-# whose own error estimate exceeds UNRESOLVED_H_MIN: the point is solved again on a grid twice as fine along each
-# axis, up to MAX_REFINED_GRID nodes along x (the hard cases of Moes M = 5000 close their film on 129^2 and
+# whose own error estimate exceeds UNRESOLVED_H_MIN: the point is solved again on a finer grid, up to
+# MAX_REFINED_GRID nodes along either axis (the hard cases of Moes M = 5000 close their film on 129^2 and
 # 257^2, or stall there with h_min = 7 nm estimated 46 % off, and converge on 513^2; a 1025 x 1025 solve takes
 # about a minute here). Stalled thermal loops estimate their h_min within 0.1-0.4 %: they are not refined.
 MAX_REFINED_GRID = 1025
 UNRESOLVED_H_MIN = 0.1
+# Where the film is lowest decides the direction: in the side lobes (|y| > SIDE_LOBE a) the film's narrow
+# constriction runs along x and is resolved by rows, so a grid with fewer rows than columns doubles its rows
+# alone (an a/b = 5 ellipse at p_h = 1.5 GPa, 0.5 m/s, Moes M = 8.5e3, closes its film at y = 0.94 a on 257 x 65
+# and 257 x 129 and converges on 257 x 257; on 513 x 129 it runs away); elsewhere (the outlet constriction and
+# the pressure spike along the centre rows) both axes are doubled.
+SIDE_LOBE = 0.5
 
 
 def ehl_solver() -> StagedSolver:
@@ -93,10 +99,10 @@ def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
     asked = {task.point.name: _shape(task.settings) for task in tasks}
     while True:
         closed = [i for i, s in enumerate(solved)
-                  if _unresolved(s) and 2 * tasks[i].settings.grid - 1 <= MAX_REFINED_GRID]
+                  if _unresolved(s) and _refined(tasks[i].settings, s) is not None]
         if not closed:
             return solved, failed, refined
-        finer = [replace(tasks[i], settings=_refined(tasks[i].settings)) for i in closed]
+        finer = [replace(tasks[i], settings=_refined(tasks[i].settings, solved[i])) for i in closed]
         again, _ = solve_all(finer, solver, jobs=jobs, progress=progress)
         for i, task, solution in zip(closed, finer, again):
             tasks[i] = task
@@ -124,10 +130,24 @@ def _unresolved(solution: PointSolution) -> bool:
     return solution.outcome is Outcome.NOT_CONVERGED and abs(estimate) > UNRESOLVED_H_MIN
 
 
-def _refined(settings: SolverSettings) -> SolverSettings:
-    """The settings on a grid twice as fine along each axis."""
+def _refined(settings: SolverSettings, solution: PointSolution) -> SolverSettings | None:
+    """The settings on the next finer grid for a film that `solution` did not resolve: twice the rows alone when its
+    lowest film lies in the side lobes and the grid has fewer rows than columns, else twice as fine along each
+    axis (SIDE_LOBE); None beyond MAX_REFINED_GRID."""
+    if _in_side_lobe(solution) and settings.nodes_y < settings.grid:
+        return replace(settings, grid_y=2 * settings.nodes_y - 1)
+    if 2 * max(settings.grid, settings.nodes_y) - 1 > MAX_REFINED_GRID:
+        return None
     grid_y = None if settings.grid_y is None else 2 * settings.grid_y - 1
     return replace(settings, grid=2 * settings.grid - 1, grid_y=grid_y)
+
+
+def _in_side_lobe(solution: PointSolution) -> bool:
+    """The lowest film of the solve (or where it closed) lies beyond SIDE_LOBE semi-axes a from the centre line."""
+    scalars = solution.scalars
+    y = scalars.get("y_h_min", scalars.get("y_film_closed", (math.nan, "m")))[0]
+    a = scalars.get("a", (math.nan, "m"))[0]
+    return abs(y) > SIDE_LOBE * a
 
 
 def _shape(settings: SolverSettings) -> str:

@@ -209,3 +209,29 @@ def test_a_film_that_closes_is_solved_again_on_a_finer_grid(tmp_path):
     expected = nijenbanning_central(sc.moes_m, sc.moes_l, contact.radius_x / contact.radius_y)
     moes_h_c = point.scalars["h_c"] / (contact.radius_x * (2.0 * sc.hamrock_u) ** 0.5)
     assert abs(moes_h_c / expected - 1.0) <= 0.15 + abs(point.scalars["error_estimate_h_c"])
+
+
+def test_a_film_closing_in_the_side_lobes_is_solved_again_with_more_rows(tmp_path):
+    """An a/b = 5 ellipse at p_h = 1.5 GPa, 0.5 m/s (Moes M = 8.5e3) closes its film in the side lobes on the
+    257 x 65 grid it asks for: the run doubles the rows alone (257 x 129, then 257 x 257, where it converges),
+    not the columns, and its h_c lies within its own error estimate plus 15 % (the fit's accuracy) of the
+    Nijenbanning, Venner & Moes (1994) central film, its lowest film in the side lobes (|y| > a/2)."""
+    from facegear_tehl.case import load_case
+    from facegear_tehl.ehl.scaling import scaling_for
+    from facegear_tehl.film_formulas import nijenbanning_central
+
+    case_file = synthetic.CASES / "hard" / "side_lobes_ab5.yaml"
+    target = tmp_path / "side_lobes.h5"
+    result = CliRunner().invoke(tehl, ["run", str(case_file), "-o", str(target), "--jobs", "1"])
+    assert result.exit_code == 0, result.output
+    assert "the 257 x 65 grid did not resolve the film; solved on 257 x 257" in result.stderr
+    point = read_result(target).points["contact"]
+    assert point.converged and point.scalars["h_min"] > 0.0
+    assert (point.scalars["grid"], point.scalars["grid_y"]) == (257, 257)
+    assert abs(point.scalars["y_h_min"]) > 0.5 * point.scalars["a"]
+    case = load_case(case_file)
+    contact = contact_analysis(case).points[0]
+    sc = scaling_for(contact, case.lubricant)
+    expected = nijenbanning_central(sc.moes_m, sc.moes_l, contact.radius_x / contact.radius_y)
+    moes_h_c = point.scalars["h_c"] / (contact.radius_x * (2.0 * sc.hamrock_u) ** 0.5)
+    assert abs(moes_h_c / expected - 1.0) <= 0.15 + abs(point.scalars["error_estimate_h_c"])

@@ -106,7 +106,9 @@ def point_solution(solve: PointSolve, level: Level, status: Status, state: FilmS
         "film_thickness": Field(level.film * scaling.film_scale, "m", "film thickness"),
     }
     if level.film.min() <= 0.0:
+        # where the film closed (the lowest node) stays: it tells which way a finer grid must resolve it
         scalars = {k: v for k, v in scalars.items() if k not in FILM_SCALARS}
+        scalars["x_film_closed"], scalars["y_film_closed"] = _lowest_film_place(solve, level)
         fields, state = {}, None
     if state is not None:
         state_scalars, state_fields = _film_state_outputs(solve, level, state)
@@ -125,14 +127,14 @@ def _film_scalars(solve: PointSolve, level: Level, wall: float) -> dict[str, tup
     point, scaling, summaries, history = solve.point, solve.scaling, solve.summaries, solve.history
     film_scale = scaling.film_scale
     fine = summarise(level)
-    j_min, i_min = np.unravel_index(np.argmin(level.film), level.film.shape)
+    x_min, y_min = _lowest_film_place(solve, level)
     h_c_start = summaries[-1].h_c  # the error estimates compare the levels as the full-multigrid start left them
     h_min_start = summaries[-1].h_min
     return {
         "h_c": (fine.h_c * film_scale, "m"),
         "h_min": (fine.h_min * film_scale, "m"),
-        "x_h_min": (float(level.x[i_min]) * scaling.b, "m"),
-        "y_h_min": (float(level.y[j_min]) * scaling.a, "m"),
+        "x_h_min": x_min,
+        "y_h_min": y_min,
         "p_max": (fine.p_max * scaling.p_h, "Pa"),
         "p_hertz": (scaling.p_h, "Pa"),
         "a": (scaling.a, "m"),
@@ -152,6 +154,7 @@ def _film_scalars(solve: PointSolve, level: Level, wall: float) -> dict[str, tup
         "iterations": (float(history.cycles), "1"),
         "work_units": (solve.solver.work_units, "1"),
         "wall_time": (wall, "s"),
+        "attempts": (float(solve.attempt), "1"),
         "error_estimate_h_c": (estimate(summaries, level, h_c_start, "h_c", ORDER), "1"),
         "error_estimate_h_min": (estimate(summaries, level, h_min_start, "h_min", ORDER), "1"),
         "grid": (float(level.nx), "1"),
@@ -161,6 +164,12 @@ def _film_scalars(solve: PointSolve, level: Level, wall: float) -> dict[str, tup
         "inlet_gap_ratio": (inlet_gap_ratio(level, scaling, point.radius_x, point.radius_y,
                                             fine.h_c * film_scale), "1"),
     }
+
+
+def _lowest_film_place(solve: PointSolve, level: Level) -> tuple[tuple[float, str], tuple[float, str]]:
+    """x and y (m) of the node of the lowest film on `level`."""
+    j_min, i_min = np.unravel_index(np.argmin(level.film), level.film.shape)
+    return (float(level.x[i_min]) * solve.scaling.b, "m"), (float(level.y[j_min]) * solve.scaling.a, "m")
 
 
 def _film_state_outputs(solve: PointSolve, level: Level, state: FilmState

@@ -63,6 +63,18 @@ THERMAL_FLOOR_ERROR_SHARE = 0.5  # or this share of h_c's own error estimate, if
 # iteration on a 136 K rise for an a/b = 30 ellipse at 0.8 GPa, 10 m/s, SRR 0.5 on 257 x 65) halves its
 # under-relaxation, down to MIN_RELAXATION_SCALE of the values above, and is judged again on a fresh window.
 MIN_RELAXATION_SCALE = 0.125
+# The relaxation of each attempt at a solve that runs away (StagedSolver): the defaults; then Venner's switch as
+# is, with an escalating start; then that with the Gauss-Seidel / Jacobi-distributive changes damped to half
+# (0.3 -> 0.15, 0.15 -> 0.1): at Moes M ~ 1e4 the full-multigrid start runs away from every coarsest grid
+# undamped and converges damped (a/b = 5, p_h = 1.5 GPa, 0.5 m/s, M = 8.5e3, L = 7.9), as does the thermal
+# a/b = 30, 1.5 GPa, 10 m/s, SRR 0.5 point of the envelope suite, which runs away on its finest grid undamped.
+# Damping is the last resort: it slows the convergence of the points the second attempt converges (two of the
+# default face gear's points on 65 x 17 then end their thermal loops unconverged).
+ATTEMPTS = (
+    ("the ellipse-scaled switch", Relaxation()),
+    ("Venner's switch", Relaxation(scale_switch=False)),
+    ("Venner's switch, damped", Relaxation(scale_switch=False, under_gs=0.15, under_jd=0.1)),
+)
 MIN_RISE = 1.0  # K: tolerances relative to the temperature rise use at least this rise (near-isothermal films)
 
 
@@ -199,9 +211,11 @@ class PointSolve:
     `finish` runs the fine stage."""
 
     def __init__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
-                 relaxation: Relaxation = Relaxation(), elapsed: float = 0.0, escalate_start: bool = False):
-        """`elapsed`: s already spent on this point (a first attempt that ran away), counted in its wall time;
-        `escalate_start`: a start that runs away begins again from a finer coarsest grid (start())."""
+                 relaxation: Relaxation = Relaxation(), elapsed: float = 0.0, escalate_start: bool = False,
+                 attempt: int = 1):
+        """`elapsed`: s already spent on this point (earlier attempts that ran away), counted in its wall time;
+        `escalate_start`: a start that runs away begins again from a finer coarsest grid (start());
+        `attempt`: which attempt at the point this is (1: the first)."""
         self.point, self.lubricant, self.settings = point, lubricant, settings
         self.scaling = scaling_for(point, lubricant)
         shapes = grid.hierarchy_shapes(settings.grid, settings.nodes_y, settings.coarsest_grid)
@@ -213,6 +227,7 @@ class PointSolve:
         self.coarsest = settings.coarsest_grid  # nodes of the coarsest grid's shorter side (start())
         self.start_notes: list[str] = []  # starts that ran away, from the coarsest grid they began on
         self.escalate_start = escalate_start
+        self.attempt = attempt
         self.elapsed = elapsed  # s spent up to the last pause (a solve paused between stages has no clock)
         self._clock = time.perf_counter() - elapsed
 
@@ -509,40 +524,45 @@ class StagedSolver:
     """The EHL solver as parallel.solve_all runs it: whole (`__call__`), or in stages that may run in
     different processes with the same result (`begin`, `finish`, `needs_retry`, `with_retry`).
 
-    Convergence policy: a solve that runs away is repeated once with the other Gauss-Seidel / Jacobi switch
-    (the ellipse-scaled one first, then Venner's circle value; multigrid.Level) and a start that begins again
-    from a finer coarsest grid when it runs away (PointSolve.start); the retry is reported.
+    Convergence policy: a solve that runs away is repeated with the relaxation of the next of ATTEMPTS (the
+    ellipse-scaled Gauss-Seidel / Jacobi switch first, then Venner's circle value, then that damped;
+    multigrid.Level) and a start that begins again from a finer coarsest grid when it runs away
+    (PointSolve.start); the retry is reported.
     """
 
     def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
-        first = _completed(self.begin(point, lubricant, settings))
-        if not self.needs_retry(first):
-            return first
-        return self.with_retry(first, _completed(self.begin(point, lubricant, settings, first)))
+        first = solution = _completed(self.begin(point, lubricant, settings))
+        while self.needs_retry(solution):
+            solution = _completed(self.begin(point, lubricant, settings, solution))
+        return first if solution is first else self.with_retry(first, solution)
 
     def begin(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
               retry_after: PointSolution | None = None) -> PointSolution | PointSolve:
-        """The first stage (PointSolve.begin). `retry_after`: the first attempt, which ran away: this one uses
-        Venner's switch as is and an escalating start, and its wall time counts the first's."""
+        """The first stage (PointSolve.begin). `retry_after`: the last attempt, which ran away: this one uses the
+        next relaxation of ATTEMPTS and an escalating start, and its wall time counts the earlier attempts'."""
         if retry_after is None:
             return PointSolve(point, lubricant, settings).begin()
-        return PointSolve(point, lubricant, settings, Relaxation(scale_switch=False),
-                          elapsed=retry_after.scalar("wall_time"), escalate_start=True).begin()
+        attempt = int(retry_after.scalar("attempts")) + 1
+        return PointSolve(point, lubricant, settings, ATTEMPTS[attempt - 1][1], elapsed=retry_after.scalar("wall_time"),
+                          escalate_start=True, attempt=attempt).begin()
 
     def finish(self, stage: PointSolve) -> PointSolution:
         """The second stage (PointSolve.finish)."""
         return stage.finish()
 
     def needs_retry(self, solution: PointSolution) -> bool:
-        """The first attempt ran away: repeat it with Venner's switch."""
-        return solution.outcome is Outcome.DIVERGED
+        """The attempt ran away and ATTEMPTS has another relaxation to try."""
+        return solution.outcome is Outcome.DIVERGED and solution.scalar("attempts") < len(ATTEMPTS)
 
     def with_retry(self, first: PointSolution, retry: PointSolution) -> PointSolution:
-        """The retry's solution, noted, if it did better than running away; else the first attempt's (the retry's
-        wall time counts both)."""
-        if retry.outcome is Outcome.DIVERGED:  # the first attempt's record, with the time both took
-            return replace(first, scalars={**first.scalars, "wall_time": retry.scalars["wall_time"]})
-        note = f"converged after a retry with Venner's switch (first attempt: {first.message})"
+        """The last retry's solution, noted, if it did better than running away; else the first attempt's (the wall
+        time counts all attempts)."""
+        if retry.outcome is Outcome.DIVERGED:  # the first attempt's record, with the time and count of all
+            return replace(first, scalars={**first.scalars, "wall_time": retry.scalars["wall_time"],
+                                           "attempts": retry.scalars["attempts"]})
+        attempt = int(retry.scalar("attempts"))
+        note = (f"{retry.outcome.value} at attempt {attempt} with {ATTEMPTS[attempt - 1][0]} and an escalating start "
+                f"(first attempt: {first.message})")
         return replace(retry, models={**retry.models, "solver": retry.models["solver"] + "; " + note})
 
 
