@@ -68,7 +68,7 @@ def test_friction_heat_and_flash_temperature_are_smallest_at_the_pitch_point(run
 
 
 def test_oil_film_holds_a_few_percent_of_the_frictional_heat(run):
-    # seed paper §3.5: about 1 %; here 2-6 % (the README discusses the difference)
+    # seed paper §3.5: about 1 %; here 2-6 % (docs/accuracy.md discusses the difference)
     ratio = run.heat["oil_to_friction_ratio"].values
     assert ((ratio > 0.001) & (ratio < 0.1)).all()
 

@@ -282,7 +282,7 @@ def test_face_gear_point_converges_monotonically_at_second_order():
 
 @pytest.mark.slow
 def test_s1_of_the_face_gear_case_converges_and_the_default_grid_is_within_1_percent():
-    """Grids 65 x 17 to 513 x 129 at S1 with the case's model (thermal full, Ree-Eyring; the README table):
+    """Grids 65 x 17 to 513 x 129 at S1 with the case's model (thermal full, Ree-Eyring; the docs/accuracy.md table):
     h_c and h_min converge monotonically at order 1-2.5, and the default grid (257 x 65) is within 1 % of the
     extrapolated value in h_c, h_min and dT_max (issue 7)."""
     case = load_case(FACE_GEAR)
