@@ -3,7 +3,8 @@
 Dimensionless groups (Hamrock & Dowson 1977), built on the radius R in the entrainment direction:
     U = eta_0 u_e/(E' R), G = alpha E', W = w/(E' R^2), k = a/b;  Moes: M = W (2U)^(-3/4), L = G (2U)^(1/4).
 Used as the solver's initial guess and as references in the validation report; their scatter against
-full numerical solutions is ~10-30 % (PHYSICS.md §2), so they are never used to tune the solver.
+full numerical solutions is ~10-30 % (Nijenbanning et al. 1994 fit theirs within ~10-15 %; Hamrock-Dowson's h_min
+is ~30 % below measurement, Koye & Winer 1981, J. Lubr. Technol. 103:284), so they never tune the solver.
 """
 
 from __future__ import annotations

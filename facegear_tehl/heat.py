@@ -1,7 +1,7 @@
 """Friction and heat budget of one meshing point: friction formulas, frictional heat power, its partition
 between the two bodies, flash temperature, steady-state duty ratio and oil-film heat (SI units).
 
-Formulas (PHYSICS.md §5.3–5.6 and §6.1–6.2):
+Formulas (docs/method.md §6):
   Xu, Kahraman, Anderson & Maddock (2007):  mu = exp(f) P_h^b2 |SR|^b3 V_e^b6 nu_0^b7 R^b8,
       f = b1 + b4 |SR| P_h log10(nu_0) + b5 exp(-|SR| P_h log10(nu_0)) + b9 exp(S)
   ISO/TR 14179-2 (Schlenk 1994):  mu_mz = 0.048 (F_bt/b / (v_sum rho_red))^0.2 eta^-0.05 R_a^0.25 X_L
@@ -22,7 +22,7 @@ import numpy as np
 from facegear_tehl.materials import Solid
 
 # Xu, Kahraman, Anderson & Maddock (2007), J. Mech. Des. 129(1):58-68: regression coefficients b1..b9
-# (PHYSICS.md §6.1; two independent sources agree, signs applied).
+# (the published magnitudes with their signs applied).
 XU_COEFFICIENTS = (
     -8.916465,  # b1
     1.03303,  # b2, exponent of P_h (GPa)
@@ -36,20 +36,24 @@ XU_COEFFICIENTS = (
 )
 
 # ISO/TR 14179-2 (Schlenk 1994) oil-type factor X_L as used by Fernandes' GEARpie `CONTACT.py`
-# (PHYSICS.md §6.2 [S]); ISO/TR's own table has 1.0 for mineral oil and lower values for synthetics.
+# (Fernandes et al. 2015, Tribol. Int. 88:309-316); ISO/TR's own table has 1.0 for mineral oil and lower values
+# for synthetics.
 ISO_TR_14179_OIL_FACTOR = {"mineral": 0.846, "pao": 0.65, "ester": 0.65, "pag": 0.585}
 
 # Maximum of Jaeger's (1942) high-Péclet kernel over a band of half-width b, in units of q0 sqrt(b)/B
-# (PHYSICS.md §5.2 [V]): uniform flux q0 -> 2 sqrt(2/pi) at the trailing edge (closed form);
+# (Jaeger 1942, Proc. R. Soc. N.S.W. 76:203-224): uniform flux q0 -> 2 sqrt(2/pi) at the trailing edge
+# (closed form);
 # semi-elliptical flux q0 sqrt(1 - x^2/b^2) -> 1.2346198 at x = +0.6522 b (quadrature; quoted 1.23462).
 FLASH_PEAK_COEFFICIENT = {"semi_elliptical": 1.2346198, "uniform": 2.0 * math.sqrt(2.0 / math.pi)}
 # Blok (1937) line-contact coefficient with a semi-elliptical flux, p0 = 2w'/(pi b): 1.2346198 * 2/pi
-# = 0.7860 (PHYSICS.md §5.4 [V]); times sqrt(2) it is Blok's classical 1.11 for the full width 2b.
+# = 0.7860 (Blok 1937, Proc. Gen. Disc. Lubrication, IMechE 2:222-235); times sqrt(2) it is Blok's classical
+# 1.11 for the full width 2b.
 BLOK_LINE_COEFFICIENT = FLASH_PEAK_COEFFICIENT["semi_elliptical"] * 2.0 / math.pi
 BLOK_SAME_MATERIAL_COEFFICIENT = BLOK_LINE_COEFFICIENT * math.sqrt(2.0)
 
 # Tian & Kennedy (1994), J. Tribol. 116:167-174, uniform circular source: constants of the
-# Péclet-number fits of the maximum and mean surface temperature (PHYSICS.md §5.5 [M; limits V]).
+# Péclet-number fits of the maximum and mean surface temperature (constants as usually quoted; their Pe -> 0
+# and Pe -> inf limits are checked against the exact values in tests/test_heat.py).
 TIAN_KENNEDY_MAX_OFFSET = 1.273
 TIAN_KENNEDY_MEAN_FACTOR = 1.22
 TIAN_KENNEDY_MEAN_OFFSET = 0.6575
@@ -252,7 +256,7 @@ def distribute_by_shear_power(
 
 @dataclass(frozen=True)
 class DutyCycle:
-    """Contact dwell and rotation period of a gear surface point (seed paper §3.4; PHYSICS.md §5.6)."""
+    """Contact dwell and rotation period of a gear surface point (seed paper §3.4; docs/method.md §6)."""
 
     tangential_speed: float  # v_t = omega r, m/s
     dwell: float  # t_c = 2b / v_t, s
@@ -276,7 +280,7 @@ def duty_cycle(b: float, radius: float, speed_rpm: float) -> DutyCycle:
 
 
 def duty_ratio(b: float, radius: float) -> float:
-    """t_c / T = b / (pi r), -: independent of the speed (PHYSICS.md §5.6)."""
+    """t_c / T = b / (pi r), -: independent of the speed (t_c = 2b/(omega r), T = 2 pi/omega)."""
     return b / (math.pi * radius)
 
 

@@ -1,4 +1,4 @@
-"""Friction and heat budget of each meshing point (seed paper §3.3-3.5; formulas in heat.py, PHYSICS.md §5-6).
+"""Friction and heat budget of each meshing point (seed paper §3.3-3.5; formulas in heat.py, docs/method.md §6).
 
 From a solved point (the thermal / Ree-Eyring film's friction coefficient mu, temperatures and stresses):
 - Xu et al. (2007) empirical friction coefficient, next to the computed one;

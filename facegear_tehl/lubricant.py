@@ -179,7 +179,7 @@ def density_ratio_at(p, t, law):
 @njit(cache=True)
 def conductivity_ratio_at(p, a, b):
     """k/k_0 at one pressure p (Pa, clipped at 0) of the pressure-dependent thermal conductivity of
-    Larsson, Larsson, Eriksson, Sjoberg & Hoglund (2000), Proc. IMechE J 214:17-27 (PHYSICS.md §4.6):
+    Larsson, Larsson, Eriksson, Sjoberg & Hoglund (2000), Proc. IMechE J 214:17-27, fit for the PAO 'PAOB':
 
         k/k_0 = 1 + a p/(1 + b p),   p in GPa, a and b in 1/GPa
 

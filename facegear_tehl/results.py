@@ -1,6 +1,6 @@
 """The result file (HDF5): the one writer and the one reader.
 
-Layout (format 1.x, ARCHITECTURE.md):
+Layout (format 1.x):
 
     /                   attrs: filetype, format_version, tehl_version, created, case_name, case_yaml,
                         status (ok | not_converged | failed), message, warnings (JSON list),

@@ -51,7 +51,7 @@ class Field:
 class PointSolution:
     """Result of one contact-point solve.
 
-    scalars: name -> (value, units); the keys of ARCHITECTURE.md (h_c, h_min, p_max, p_hertz, a, b,
+    scalars: name -> (value, units); the keys of the result file (README glossary: h_c, h_min, p_max, p_hertz, a, b,
         load_error, iterations, work_units, wall_time, error_estimate_h_c, ...), SI units.
     fields: 2-D arrays on the (ny, nx) grid (pressure, film_thickness, temperature, ...).
     axes: 'x' and 'y' node coordinates, m.

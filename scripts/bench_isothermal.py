@@ -1,4 +1,5 @@
-"""Speed and accuracy of the isothermal solver on the circular benchmark of BENCHMARKS.md.
+"""Speed and accuracy of the isothermal solver on the circular benchmark of Venner & Lubrecht
+(2000), docs/benchmarks.md.
 
 For M = 20 and 200 at L = 10 (steel, R = 12.7 mm, eta_0 = 0.04 Pa s, alpha = 2.2e-8 1/Pa; domain
 X in [-4.5, 1.5], Y in [-3, 3]) and grids 65^2 .. 513^2, prints H_c and H_min in Venner's scaling
@@ -19,7 +20,7 @@ from facegear_tehl.case import SolverSettings
 from facegear_tehl.ehl.scaling import contact_from_moes
 from facegear_tehl.ehl.solve import solve_point
 
-# BENCHMARKS.md, reference C code of Venner & Lubrecht (2000) on this machine type, 513^2 values.
+# Reference C code of Venner & Lubrecht (2000) run on this machine type, 513^2 values (docs/benchmarks.md).
 REFERENCE = {
     ("barus", 20.0): (0.4973, 0.3065),
     ("roelands", 20.0): (0.4318, 0.2924),
@@ -65,7 +66,7 @@ def main() -> None:
                 print(f"| {model} | {m:g} | {grid} | {hc:.4f} | {hmin:.4f} | {100 * est:+.2f} % | "
                       f"{sol.scalar('iterations'):.0f} | {sol.scalar('work_units'):.1f} | {wall:.2f}{flag} |")
     print()
-    print("Reference (BENCHMARKS.md, 513^2, C code):", {f"{k[0]} M={k[1]:g}": v for k, v in REFERENCE.items()})
+    print("Reference (Venner & Lubrecht C code, 513^2):", {f"{k[0]} M={k[1]:g}": v for k, v in REFERENCE.items()})
     print()
     print("| viscosity | grid | FMG only: H_c | vs 513^2 | wall time s | reference C time s |")
     print("|---|---|---|---|---|---|")

@@ -1,5 +1,5 @@
 """Hard-case suite: solve every case of cases/hard/, record whether and how each point converged, write each
-result file and check that it holds no NaN or Inf; print a markdown table (README "Hard cases").
+result file and check that it holds no NaN or Inf; print a markdown table (docs/benchmarks.md "Hard cases").
 
 Per point: converged, cycles (V-cycles on the finest grid), thermal outer iterations, solve wall time, h_min,
 p_max (and p_h), the file check, and below the table the solver's message for every point that did not

@@ -1,7 +1,7 @@
 """Work-precision report: the error of each grid against the Richardson-extrapolated value, vs wall time.
 
 Models:
-  circle       the isothermal circular case of BENCHMARKS.md (Moes M = 20, L = 10, Roelands viscosity,
+  circle       the isothermal circular case of Venner & Lubrecht (2000) (Moes M = 20, L = 10, Roelands viscosity,
                Dowson-Higginson density, domain X in [-4.5, 1.5], Y in [-3, 3]);
   S1 newtonian point S1 of cases/facegear_110.yaml, isothermal, with a Newtonian lubricant;
   S1 <mode>    the same point with the case's lubricant (rheology) and each thermal model of --thermal (off,
@@ -57,7 +57,7 @@ class Model:
 def models(thermal_modes: Sequence[str]) -> list[Model]:
     """The circular benchmark, S1 of the face gear case isothermal and Newtonian, then S1 with each thermal
     mode the solver offers."""
-    ball = load_case(CASES / "ball_on_disc.yaml")  # the same domain and solver settings as BENCHMARKS.md
+    ball = load_case(CASES / "ball_on_disc.yaml")  # the domain and settings of docs/benchmarks.md
     point, lubricant = contact_from_moes(20.0, 10.0, viscosity_model="roelands", density_model="dowson_higginson")
     found = [Model("circle M=20 L=10", point, lubricant, with_thermal(ball, "off"))]
     gear = load_case(CASES / "facegear_110.yaml")

@@ -1,4 +1,5 @@
-"""Isothermal solver against the published film formulas (PHYSICS.md §2): prints markdown tables.
+"""Isothermal solver against the published film formulas (Hamrock & Dowson 1977, Nijenbanning et al.
+1994, Chittenden et al. 1985): prints markdown tables.
 
 1. Elliptical contacts, Barus + incompressible, entrainment along the minor axis: central film vs
    Nijenbanning-Venner-Moes (1994) and minimum film vs Hamrock-Dowson (1977), Moes' scaling.

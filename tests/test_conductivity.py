@@ -1,4 +1,4 @@
-"""Pressure-dependent thermal conductivity of the lubricant (issue 4, PHYSICS.md §4.6): the Larsson et al.
+"""Pressure-dependent thermal conductivity of the lubricant (issue 4): the Larsson et al.
 (2000) law against hand values, its case keys, the energy kernel against the conduction solution of a uniformly
 heated film, and its effect on a small thermal solve. The defaults (a = b = 0) keep the constant k_0 bit for bit."""
 

@@ -1,4 +1,5 @@
-"""Isothermal EHL solver against external references (BENCHMARKS.md, PHYSICS.md §2-3)."""
+"""Isothermal EHL solver against external references (Venner & Lubrecht 2000 C code, docs/benchmarks.md;
+Nijenbanning, Venner & Moes 1994)."""
 
 import math
 
@@ -31,7 +32,7 @@ def moes(solution, point, lubricant):
 
 
 def test_circular_roelands_dowson_higginson_against_reference():
-    # BENCHMARKS.md: M = 20, L = 10, Roelands + DH, 513^2 reference H_c = 0.4318, H_min = 0.2924.
+    # Venner & Lubrecht C code: M = 20, L = 10, Roelands + DH, 513^2 reference H_c = 0.4318, H_min = 0.2924.
     point, lub = contact_from_moes(20.0, 10.0, viscosity_model="roelands", density_model="dowson_higginson")
     sol = solve_point(point, lub, settings(257))
     h_c, h_min = venner(sol, point)
@@ -43,7 +44,7 @@ def test_circular_roelands_dowson_higginson_against_reference():
 
 
 def test_circular_barus_incompressible_against_reference():
-    # BENCHMARKS.md: Barus, incompressible, 513^2 reference H_c = 0.4973.
+    # Venner & Lubrecht C code: Barus, incompressible, 513^2 reference H_c = 0.4973.
     point, lub = contact_from_moes(20.0, 10.0)
     sol = solve_point(point, lub, settings(257))
     assert venner(sol, point)[0] == pytest.approx(0.4973, rel=0.01)
@@ -51,7 +52,8 @@ def test_circular_barus_incompressible_against_reference():
 
 @pytest.mark.parametrize("d", [1.0, 0.5, 0.2])
 def test_elliptical_central_film_against_nijenbanning(d):
-    # PHYSICS.md §2.3: NVM H_c(Moes) at M = 100, L = 10 (Barus, incompressible); NVM is a +-10-15 % fit.
+    # Nijenbanning et al. (1994, Wear 176:217-229): NVM H_c(Moes) at M = 100, L = 10 (Barus, incompressible); NVM
+    # is a +-10-15 % fit.
     point, lub = contact_from_moes(100.0, 10.0, d)
     sol = solve_point(point, lub, settings(129, domain_x=None, domain_y=None))
     assert moes(sol, point, lub) == pytest.approx(nijenbanning_central(100.0, 10.0, d), rel=0.10)
@@ -93,7 +95,7 @@ def test_skewed_ellipse_follows_chittenden_trend():
 
 
 def test_heavy_load_converges_without_nan():
-    # M = 1000, L = 10 (p_h ~ 1.5-2 GPa in gear terms): the classic scheme produces NaN here (BENCHMARKS.md).
+    # M = 1000, L = 10 (p_h ~ 1.5-2 GPa in gear terms): the Venner & Lubrecht C code gives NaN here.
     point, lub = contact_from_moes(1000.0, 10.0, viscosity_model="roelands", density_model="dowson_higginson")
     sol = solve_point(point, lub, settings(129))
     for f in sol.fields.values():

@@ -1,4 +1,5 @@
-"""Film-thickness formulas against the worked numbers of PHYSICS.md §2.3 and §2.5."""
+"""Film-thickness formulas (Hamrock & Dowson 1977; Nijenbanning et al. 1994; Chittenden et al. 1985)
+against worked numbers computed independently from the published formulas."""
 
 import math
 
@@ -7,7 +8,7 @@ import pytest
 from facegear_tehl import film_formulas as ff
 from facegear_tehl.hertz import ellipticity
 
-# PHYSICS.md §2.5: R_x = 10 mm, R_y = 50 mm, F = 1000 N, E' = 226.37 GPa, eta_0 = 0.03 Pa s, alpha = 15/GPa, u = 5 m/s
+# Worked case: R_x = 10 mm, R_y = 50 mm, F = 1000 N, E' = 226.37 GPa, eta_0 = 0.03 Pa s, alpha = 15/GPa, u = 5 m/s
 U, G, W = 6.6262e-11, 3395.6, 4.4175e-5
 K = 1.03 * 5.0**0.64  # Hamrock-Dowson's ellipticity approximation, as in their fit
 

@@ -38,8 +38,8 @@ def test_partition_sums_to_one_and_power_splits(run):
 
 
 def test_duty_ratio_at_the_pitch_point_is_b_over_pi_r_pitch(run):
-    # At S3 the contact is on the pinion pitch circle, r = m N1/2 = 6.35 mm * 25/2 (FACEGEAR.md §1), and on the
-    # face gear at L0 = m N2/2 = 508 mm: t_c/T = b/(pi r) (PHYSICS.md §5.6).
+    # At S3 the contact is on the pinion pitch circle, r = m N1/2 = 6.35 mm * 25/2 (docs/method.md §1.1), and on the
+    # face gear at L0 = m N2/2 = 508 mm: t_c/T = b/(pi r) (seed paper §3.4: t_c = 2b/v_t).
     s3 = next(p for p in run.points if p.name == "S3")
     b = s3.scalar("b")
     assert s3.scalar("duty_ratio_1") == pytest.approx(b / (math.pi * 0.00635 * 25 / 2), rel=1e-9)
@@ -68,7 +68,7 @@ def test_friction_heat_and_flash_temperature_are_smallest_at_the_pitch_point(run
 
 
 def test_oil_film_holds_a_few_percent_of_the_frictional_heat(run):
-    # seed paper §3.5: about 1 %; here 2-6 % (the README discusses the difference)
+    # seed paper §3.5: about 1 %; here 2-6 % (docs/accuracy.md discusses the difference)
     ratio = run.heat["oil_to_friction_ratio"].values
     assert ((ratio > 0.001) & (ratio < 0.1)).all()
 

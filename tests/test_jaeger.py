@@ -1,4 +1,5 @@
-"""Moving heat source kernels against PHYSICS.md §5.2 (verified values) and closed forms."""
+"""Moving heat source kernels (Jaeger 1942; Carslaw & Jaeger 1959) against closed forms and values computed
+independently by quadrature of the exact solutions."""
 
 import math
 
@@ -14,7 +15,7 @@ from facegear_tehl.ehl.jaeger import (
 )
 from facegear_tehl.materials import Solid
 
-STEEL = Solid(elastic_modulus=206e9, poisson_ratio=0.3)  # k = 46, rho = 7850, c = 470 (PHYSICS.md §5.3)
+STEEL = Solid(elastic_modulus=206e9, poisson_ratio=0.3)  # k = 46, rho = 7850, c = 470 (handbook steel)
 HALF_WIDTH = 0.3e-3  # m
 
 
@@ -49,7 +50,8 @@ def semi_elliptical_exact(x):
 
 
 def test_uniform_band_maximum_and_mean():
-    # PHYSICS.md §5.2 [V]: max 1.59577 q sqrt(b)/B at the trailing edge, mean over the band 1.0638.
+    # Jaeger (1942), uniform flux: max 2 sqrt(2/pi) = 1.59577 q sqrt(b)/B at the trailing edge, mean over the band
+    # 1.0638.
     u, q = 10.0, 1e9
     effusivity = STEEL.thermal_effusivity_speed(u)
     x, dx = band_grid(257)
@@ -63,7 +65,7 @@ def test_uniform_band_maximum_and_mean():
 
 
 def test_semi_elliptical_maximum_and_its_position():
-    # PHYSICS.md §5.2 [V]: max 1.23462 q0 sqrt(b)/B at x = +0.652 b.
+    # Jaeger (1942), semi-elliptical flux (quadrature): max 1.23462 q0 sqrt(b)/B at x = +0.652 b.
     x, dx = band_grid(257)
     rise = surface_temperature_rise(semi_elliptical_flux(x), dx, 1.0)
     assert rise.max() / math.sqrt(HALF_WIDTH) == pytest.approx(1.23462, rel=0.01)
@@ -129,7 +131,8 @@ def test_rows_speeds_and_direction():
 
 def test_disc_source_mean_two_dimensional():
     # Uniform flux on a disc of radius a, kernel applied row by row: the high-Pe disc average is
-    # 0.6886 q a/(k sqrt(Pe)) (PHYSICS.md §5.5 [V]); with B = k sqrt(2 Pe/a) that is 0.6886 sqrt(2) q sqrt(a)/B.
+    # 0.6886 q a/(k sqrt(Pe)) (disc average of the 1-D solution); with B = k sqrt(2 Pe/a) that is 0.6886 sqrt(2) q
+    # sqrt(a)/B.
     nx = 257
     x = np.linspace(-1.25, 1.25, nx)
     xx, yy = np.meshgrid(x, x)
@@ -144,7 +147,8 @@ def test_disc_source_mean_two_dimensional():
      (20, 0.24891), (50, 0.15856), (100, 0.11244)],
 )
 def test_jaeger_band_exact_table(pe, exact_max):
-    # PHYSICS.md §5.2 table [V]: maximum theta k/(q l) of the exact finite-Péclet band solution.
+    # Jaeger (1942), computed independently by quadrature: maximum theta k/(q l) of the exact finite-Péclet band
+    # solution.
     position, value = band_source_maximum(pe)
     assert value == pytest.approx(exact_max, rel=1e-3)
     assert 0.0 < position < 1.0  # the peak lies inside the source, toward the trailing edge
@@ -152,14 +156,14 @@ def test_jaeger_band_exact_table(pe, exact_max):
 
 
 def test_jaeger_band_exact_mean_at_high_peclet():
-    # PHYSICS.md §5.2 [V]: the mean over the source is 0.07536 at Pe = 100 (0.7523/sqrt(L) asymptotically).
+    # Jaeger (1942), quadrature: the mean over the source is 0.07536 at Pe = 100 (0.7523/sqrt(L) asymptotically).
     mean = integrate.quad(lambda xi: band_source_temperature(xi, 100.0), -1, 1, epsabs=1e-10)[0] / 2
     assert mean == pytest.approx(0.07536, rel=1e-3)
 
 
 @pytest.mark.parametrize("pe, tolerance", [(5, 0.05), (10, 0.024), (20, 0.024), (50, 0.024), (100, 0.024)])
 def test_high_peclet_kernel_against_exact_band(pe, tolerance):
-    # PHYSICS.md §5.2: the high-Pe kernel is within 5 % of the exact band solution for Pe >= 5, 2.4 % for Pe >= 10.
+    # The high-Pe kernel is within 5 % of the exact band solution for Pe >= 5, 2.4 % for Pe >= 10.
     u = 2.0 * pe * STEEL.thermal_diffusivity / HALF_WIDTH  # Pe = u b / (2 kappa)
     q = 1e9
     x, dx = band_grid(513)

@@ -1,4 +1,5 @@
-"""Viscosity and density laws against PHYSICS.md §4.1-4.2 (independently computed values)."""
+"""Viscosity and density laws (Roelands 1966, Dowson & Higginson 1966, Yang & Wen 1990) against values
+computed independently from the published formulas."""
 
 import numpy as np
 import pytest

@@ -20,7 +20,7 @@ orthogonal array over thermal index i = 0..3 and rheology r = 0/1: viscosity = r
 density = r xor (i >> 1); the gear uses the same array with the rheology flipped, so the two contacts run
 16 distinct combinations between them and each contact alone covers every pair. Slow part
 (`-m slow`): the remaining 24 combinations per contact, and `reduced` against `full` on 129^2 (below 129^2
-`reduced` is `full` by design, README "Thermal models", so the 33^2 matrix cannot tell them apart).
+`reduced` is `full` by design, docs/method.md "Thermal models", so the 33^2 matrix cannot tell them apart).
 
 Measured (2 shared cores): a plain-contact run takes 0.1-1.8 s, a gear run (S1, S3) 1.2-6.4 s; the fast
 part (18 tests) ~34 s, the slow part (49 tests) ~97 s.
@@ -44,10 +44,10 @@ from facegear_tehl.results import non_finite_entries, read_result
 from facegear_tehl.settings import THERMAL_MODELS
 
 CASES = Path(__file__).resolve().parents[1] / "cases"
-GRID = 33  # nodes along x: the smallest grid the README lists, ~1 s per plain run
+GRID = 33  # nodes along x: the smallest grid the docs list, ~1 s per plain run
 
-# The documented values (README case reference, "Thermal models"); test_matrix_spans_the_documented_options
-# fails if the package gains or drops one without this matrix following.
+# The documented values (docs/case-reference.md, docs/method.md "Thermal models");
+# test_matrix_spans_the_documented_options fails if the package gains or drops one without this matrix following.
 THERMAL = ("off", "reduced", "full", "auto")
 RHEOLOGY = ("newtonian", "ree_eyring")
 VISCOSITY = ("roelands", "barus")
@@ -265,7 +265,7 @@ def test_option_combination_runs_full_product(tmp_path, contact, combo):
 
 @pytest.mark.slow
 def test_reduced_takes_its_own_fine_stage_on_129(tmp_path):
-    """On 129^2 `reduced` solves the thermal problem on 65^2 and freezes it (README "Thermal models"); the
+    """On 129^2 `reduced` solves the thermal problem on 65^2 and freezes it (docs/method.md "Thermal models"); the
     33^2 matrix runs `reduced` as `full`. Both run end to end here and give different films, i.e. the
     `reduced` branch ran (any difference: the two are bit-identical when it does not; ~10 s each)."""
     combo = ("reduced", "ree_eyring", "roelands", "dowson_higginson")  # the shipped sliding case's models

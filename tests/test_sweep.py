@@ -282,7 +282,7 @@ def test_face_gear_point_converges_monotonically_at_second_order():
 
 @pytest.mark.slow
 def test_s1_of_the_face_gear_case_converges_and_the_default_grid_is_within_1_percent():
-    """Grids 65 x 17 to 513 x 129 at S1 with the case's model (thermal full, Ree-Eyring; the README table):
+    """Grids 65 x 17 to 513 x 129 at S1 with the case's model (thermal full, Ree-Eyring; the docs/accuracy.md table):
     h_c and h_min converge monotonically at order 1-2.5, and the default grid (257 x 65) is within 1 % of the
     extrapolated value in h_c, h_min and dT_max (issue 7)."""
     case = load_case(FACE_GEAR)
@@ -299,7 +299,7 @@ def test_s1_of_the_face_gear_case_converges_and_the_default_grid_is_within_1_per
 
 @pytest.mark.slow
 def test_full_sweep_of_the_circular_benchmark():
-    """Grids 33-513 on the isothermal circle of BENCHMARKS.md: monotone, h_c at order 1-2.5 (h_min, a
+    """Grids 33-513 on the isothermal circle of Venner & Lubrecht (2000): monotone, h_c at order 1-2.5 (h_min, a
     minimum over the nodes, reaches 2.8 on the finest triplet), the 513^2 values within 0.1 % of the
     extrapolated ones."""
     sweep = run_sweep(synthetic.ball_on_disc(), GRIDS)

@@ -29,7 +29,8 @@ def plain(path, grid=65, **changes):
 
 
 def test_pure_rolling_at_low_speed_equals_isothermal():
-    # Heating is negligible in pure rolling at low speed (PHYSICS.md §3.4): full thermal h_c within 1 %.
+    # Heating is negligible in pure rolling at low speed (little shear heating):
+    # full thermal h_c within 1 %.
     point, lub, settings = plain(SLIDING, slide_roll_ratio=0.0, entrainment_speed=0.3)
     newtonian = dataclasses.replace(lub, rheology="newtonian")
     hot = solve_point(point, newtonian, dataclasses.replace(settings, thermal="full"))
@@ -144,7 +145,8 @@ def test_face_gear_temperature_and_friction_are_smallest_at_the_pitch_point(face
 
 
 def test_thermal_film_reduction_and_heating_grow_with_sliding():
-    # Fixed load and entrainment speed; only the slide-to-roll ratio changes (PHYSICS.md §3.4 qualitative checks).
+    # Fixed load and entrainment speed; only the slide-to-roll ratio changes (the thermal film reduction grows with
+    # sliding).
     ratios, rises = [], []
     for srr in (0.0, 0.5, 1.5):
         point, lub, settings = plain(SLIDING, slide_roll_ratio=srr)

@@ -5,9 +5,9 @@ under a flux q(x) (W/m^2) that conducts only across its depth heats up as
 
     dT(x) = 1/(sqrt(pi) B) * integral_{x_in}^{x} q(s) (x - s)^(-1/2) ds,     B = sqrt(k rho c u)
 
-(PHYSICS.md §5.2 (i)). It holds for Pe = u b/(2 kappa) >> 1; `band_source_temperature` gives Jaeger's
-exact finite-Péclet solution of a uniform band source, against which its error is 4 % at Pe = 5 and
-2.4 % at Pe = 10.
+(Jaeger 1942, Proc. R. Soc. N.S.W. 76:203-224). It holds for Pe = u b/(2 kappa) >> 1;
+`band_source_temperature` gives Jaeger's exact finite-Péclet solution of a uniform band source, against
+which its error is 4 % at Pe = 5 and 2.4 % at Pe = 10.
 
 Discretisation: q is taken piecewise linear between the nodes of a uniform grid and the weight
 (x - s)^(-1/2) is integrated analytically over every interval (product integration), so the kernel
@@ -106,7 +106,7 @@ def band_source_temperature(position: float, peclet: float) -> float:
     """Exact steady temperature rise of a surface under a uniform band source, theta k/(q l), dimensionless.
 
     Jaeger (1942), band of half-width l with uniform flux q over a half-space moving toward +x at
-    speed V relative to the source (PHYSICS.md §5.2):
+    speed V relative to the source (Carslaw & Jaeger 1959, §10.7):
 
         theta k/(q l) = 1/(pi L) * integral_{X-L}^{X+L} exp(-u) K0(|u|) du,    X = -L x/l,  L = Pe = V l/(2 kappa)
 

@@ -22,7 +22,7 @@ if TYPE_CHECKING:
     from facegear_tehl.ehl.solve import PointSolve
 
 ORDER = 2  # formal order of the discretisation, for the Richardson-scaled error estimate
-ORDER_DT_MAX = 1  # observed order of the largest temperature rise (it sits at the outlet pressure spike; README)
+ORDER_DT_MAX = 1  # observed order of the largest temperature rise (at the outlet pressure spike; docs/accuracy.md)
 
 
 @dataclass(frozen=True)
@@ -74,7 +74,7 @@ def estimate(summaries: list[LevelSummary], level: Level, fine: float, name: str
 def inlet_gap_ratio(level: Level, scaling: Scaling, radius_x: float, radius_y: float, h_c: float) -> float:
     """Rigid gap x^2/(2 R_x) + y^2/(2 R_y) where the entrainment line through the centre leaves the domain
     upstream, over h_c (radii and h_c in m): how far the inlet reaches, in central films. Measured on the face
-    gear points (README, Accuracy: domain size): 9-25 at the default domain; against an inlet of 10.5 b, h_c is
+    gear points (docs/accuracy.md, domain size): 9-25 at the default domain; against an inlet of 10.5 b, h_c is
     2-6 % low at 7-16 and 0.3-1 % low at 20-43."""
     cos, sin = scaling.wedge_x, scaling.wedge_y
     exits = []

@@ -104,7 +104,7 @@ def scaling_for(point: ContactPoint, lubricant: Lubricant) -> Scaling:
     )
 
 
-# Reference solids and oil of the Venner & Lubrecht (2000) benchmarks (BENCHMARKS.md): steel E = 200 GPa,
+# Reference solids and oil of the Venner & Lubrecht (2000) benchmarks (docs/benchmarks.md): steel E = 200 GPa,
 # nu = 0.3 (E' = 2.198e11 Pa), eta_0 = 0.04 Pa s, alpha = 2.2e-8 1/Pa, R_x = 12.7 mm.
 _BENCH_STEEL = Solid(elastic_modulus=2.0e11, poisson_ratio=0.3)
 _BENCH_RADIUS = 0.0127  # m

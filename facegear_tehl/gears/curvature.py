@@ -1,6 +1,6 @@
 """Curvatures of the pinion and face-gear tooth surfaces and their relative curvature (SI units, 1/m).
 
-Sign convention (FACEGEAR.md §5): one unit normal n for all surfaces, out of the pinion / shaper and into
+Sign convention (docs/method.md §1.5): one unit normal n for all surfaces, out of the pinion / shaper and into
 the face gear; shape operator S from dn = -S dr, so the normal curvature along a unit tangent t is
 t.S t = II/I with II_ij = r_ij . n. Then -S_1 and S_2 are the curvatures of pinion and face gear taken
 positive where the body is convex, and the relative curvature is K_rel = S_2 - S_1.
@@ -9,7 +9,7 @@ Two independent routes give the face-gear shape operator, both with analytic der
 differences: the lengthwise relative curvature comes from a near-cancellation):
 (a) `shape_operator_forms`: fundamental forms of the explicit surface r_2(theta_s, phi_s);
 (b) `shape_operator_direct`: Litvin's direct relation S_2 = S_s - w w^T / D (geometry.GenerationContact).
-`closed_form_relative_curvature` is the closed form along the aligned path (FACEGEAR.md §5.3), a check.
+`closed_form_relative_curvature` is the closed form along the aligned path (docs/method.md §1.5), a check.
 """
 
 from __future__ import annotations
@@ -40,7 +40,7 @@ def shape_operator_forms(geo: PairGeometry, theta_s: float, phi_s: float) -> np.
 
 def shape_operator_direct(geo: PairGeometry, theta_s: float, phi_s: float) -> np.ndarray:
     """Face-gear shape operator (3x3, generation frame) by Litvin's direct relation, 1/m:
-    S_2 = S_s - w w^T / D, with the shaper's S_s = -(1/rho_s) e_p e_p^T (FACEGEAR.md §5.2b)."""
+    S_2 = S_s - w w^T / D, with the shaper's S_s = -(1/rho_s) e_p e_p^T (docs/method.md §1.5)."""
     gen = generation_contact(geo, theta_s, geo.mu + theta_s + phi_s)
     return -np.outer(gen.profile, gen.profile) / gen.rho - np.outer(gen.w, gen.w) / gen.D
 
@@ -48,7 +48,7 @@ def shape_operator_direct(geo: PairGeometry, theta_s: float, phi_s: float) -> np
 def closed_form_relative_curvature(geo: PairGeometry, s: float) -> tuple[np.ndarray, np.ndarray]:
     """(S_2, K_rel) as 2x2 matrices in the basis (e_p, k) at path coordinate s of the aligned drive, 1/m.
 
-    FACEGEAR.md §5.3: w_p = c r_ps sin(alpha)/rho_s, w_k = -q sin g cos(alpha),
+    Closed form (docs/method.md §1.5): w_p = c r_ps sin(alpha)/rho_s, w_k = -q sin g cos(alpha),
     D = -c r_ps sin(alpha) + s [c^2 r_ps sin(alpha)/rho_s + q^2 sin^2 g cos^2 alpha],
     S_2 = [[-1/rho_s - w_p^2/D, -w_p w_k/D], [., -w_k^2/D]],  K_rel = S_2 + diag(1/rho_1, 0).
     """

@@ -1,4 +1,4 @@
-"""Surface velocities at the pinion / face-gear contact (FACEGEAR.md §4), fixed frame, m/s.
+"""Surface velocities at the pinion / face-gear contact (docs/method.md §1.4), fixed frame, m/s.
 
 The pinion turns at W1 about -a_1 (it drives clockwise, phi_1 decreasing); the face gear turns at
 W2 = W1 dphi_2/dphi_1 about +a_2 (W1 N1/N2 for an involute drive). With the contact point moving at

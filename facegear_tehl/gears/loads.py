@@ -1,4 +1,4 @@
-"""Normal load, contact ratio and load sharing between tooth pairs (FACEGEAR.md §6), SI units.
+"""Normal load, contact ratio and load sharing between tooth pairs (docs/method.md §1.6), SI units.
 
 Zones along the path s in [s_min, s_max] for a contact ratio 1 <= eps < 2:
 double-tooth entry [s_min, S2), single-tooth [S2, S4], double-tooth exit (S4, s_max],
@@ -35,7 +35,7 @@ def load_share(
 ) -> np.ndarray:
     """Share K(s) of the total normal load carried by the tooth pair in contact at s (m).
 
-    iso_linear (FACEGEAR.md §6, model 1; ISO/AGMA-style): 1/3 at S1 rising linearly to 2/3 before S2,
+    iso_linear (docs/method.md §1.6; ISO 6336-style): 1/3 at S1 rising linearly to 2/3 before S2,
         1 over [S2, S4], 2/3 after S4 falling linearly to 1/3 at S5. The two pairs always sum to 1.
     equal (model 2): 1/2 in the double-tooth zones, 1 in the single-tooth zone.
 

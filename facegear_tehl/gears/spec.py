@@ -1,7 +1,7 @@
 """The `gear:` block of a case: a face gear pair, validated and converted to SI units (`GearSpec`).
 
 Keys (YAML units): pinion_teeth, shaper_teeth, face_gear_teeth, module (m), pressure_angle (deg),
-shaft_angle (deg, 0 < g < 180; FACEGEAR.md §1: the pitch-cone angles add up, delta_1 + delta_2 = g, so
+shaft_angle (deg, 0 < g < 180; docs/method.md §1.1: the pitch-cone angles add up, delta_1 + delta_2 = g, so
 g = 110 deg gives delta_2 = 101.2 deg for 25/160 teeth, a face gear whose pitch cone opens toward the
 pinion; a paper's "110 deg" meaning the supplementary drive is our 70 deg), pinion_addendum and
 face_gear_addendum (m, default = module), inner_radius and outer_radius of the face gear (m),

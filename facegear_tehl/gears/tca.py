@@ -1,13 +1,13 @@
 """Tooth contact analysis of the pinion / face-gear mesh: the contact path and the meshing points S1..S5.
 
-Frames and conventions as in `geometry` (FACEGEAR.md §1, §3). The pinion drives clockwise (about -k):
+Frames and conventions as in `geometry` (docs/method.md §1.1, §1.3). The pinion drives clockwise (about -k):
 its rotation from the pitch position is phi_1 (right hand about its axis), and the path coordinate is
 s = -r_b1 phi_1, the pinion roll distance, positive toward the pinion tip (later in the mesh).
 
-Aligned drive (FACEGEAR.md §3.1, exact): the contact point runs along the pinion's transverse line of
+Aligned drive (docs/method.md §1.3, exact): the contact point runs along the pinion's transverse line of
 action, Q(s) = P + s t_LA, with phi_2 = phi_1 N1/N2 (no transmission error).
 
-General TCA (FACEGEAR.md §3.2): for a pinion angle phi_1 solve five equations in
+General TCA (docs/method.md §1.3): for a pinion angle phi_1 solve five equations in
 x = (theta_1, u_1, theta_s, phi_s, phi_2):
 
     M_1 r_1(theta_1, u_1; phi_1) = Rot(a_2, -phi_2) r_2(theta_s, phi_s) + dq a_2     (3, positions)
@@ -19,8 +19,8 @@ shifted by dq along a_2. The face gear enters through its explicit (theta_s, phi
 shaper / face-gear equation of meshing needs no sixth equation. Newton with the analytic Jacobian;
 the derivative of the solution along the path follows from the same Jacobian (implicit function theorem).
 Transmission error TE = -(phi_2 - phi_1 N1/N2): rotations counted in the direction of motion, positive
-when the face gear leads. (FACEGEAR.md §3.2 lists TE for a pinion turned by +d about y, i.e. our
-shaft_angle_error = -d.)
+when the face gear leads. (The misalignment table of docs/accuracy.md lists TE for a pinion turned by +d
+about y, i.e. our shaft_angle_error = -d.)
 """
 
 from __future__ import annotations
@@ -118,7 +118,7 @@ class ContactState:
 
 
 def aligned_state(geo: PairGeometry, s: float) -> ContactState:
-    """Semi-analytic contact at path coordinate s (FACEGEAR.md §3.1): Q = P + s t_LA, TE = 0."""
+    """Semi-analytic contact at path coordinate s (docs/method.md §1.3): Q = P + s t_LA, TE = 0."""
     alpha = geo.pressure_angle
     t_la = geo.line_of_action
     rho_1 = geo.r_p1 * math.sin(alpha) + s
@@ -308,7 +308,7 @@ class ContactPath:
 
 
 def meshing_points(s_min: float, s_max: float, base_pitch: float) -> dict[str, float]:
-    """S1..S5 by definition (FACEGEAR.md §6): s_min, s_max - p_b, 0, s_min + p_b, s_max."""
+    """S1..S5 by definition (docs/method.md §1.6): s_min, s_max - p_b, 0, s_min + p_b, s_max."""
     return {
         "S1": s_min,
         "S2": s_max - base_pitch,

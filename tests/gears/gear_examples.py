@@ -1,8 +1,9 @@
-"""Shared data for the gear tests: FACEGEAR.md §8 example gear sets and the comparison rule.
+"""Shared data for the gear tests: the example gear sets of docs/accuracy.md and the comparison rule.
 
-Reference values are FACEGEAR.md's printed numbers (an independent implementation), given here as the
-printed text. `assert_reference` accepts a relative error of 1e-3, or half a unit of the last printed
-digit when the printing is coarser than that (e.g. p0 = 355 MPa, psi_e = 2.14 deg).
+Reference values are the printed numbers of an independent implementation of Litvin's method (not this
+code; tables in docs/accuracy.md), given here as the printed text. `assert_reference` accepts a relative
+error of 1e-3, or half a unit of the last printed digit when the printing is coarser than that (e.g.
+p0 = 355 MPa, psi_e = 2.14 deg).
 """
 
 from __future__ import annotations
@@ -19,15 +20,15 @@ from facegear_tehl.materials import Solid
 from facegear_tehl.schema import Block
 
 CASE_FILE = Path(__file__).resolve().parents[2] / "cases" / "facegear_110.yaml"
-STEEL = Solid(elastic_modulus=206e9, poisson_ratio=0.3)  # FACEGEAR.md §8: E = 206 GPa, nu = 0.3
+STEEL = Solid(elastic_modulus=206e9, poisson_ratio=0.3)  # the reference tables' steel: E = 206 GPa, nu = 0.3
 MM = 1e-3
 
-# FACEGEAR.md §8 example A (25/28/160, m = 6.35 mm, 25 deg, 3000 rpm, 500 N m) and example B.
+# Example A (Litvin et al. 2000 gear set 25/28/160, m = 6.35 mm, 25 deg, 3000 rpm, 500 N m) and example B.
 EXAMPLE_A = dict(pinion_teeth=25, shaper_teeth=28, face_gear_teeth=160, module=6.35e-3, pressure_angle=25.0,
                  shaft_angle=110.0, inner_radius=0.468, outer_radius=0.548, pinion_speed=3000.0, pinion_torque=500.0)
 EXAMPLE_B = dict(pinion_teeth=24, shaper_teeth=27, face_gear_teeth=96, module=3e-3, pressure_angle=20.0,
                  shaft_angle=110.0, inner_radius=0.139, outer_radius=0.160, pinion_speed=1500.0, pinion_torque=200.0)
-TABLE_LOADS = [1 / 3, 1.0, 1.0, 1.0, 1 / 3]  # K at S1..S5 used by FACEGEAR.md §8 tables
+TABLE_LOADS = [1 / 3, 1.0, 1.0, 1.0, 1 / 3]  # K at S1..S5 used by the reference tables
 
 
 def gear_block(base: dict[str, Any] = EXAMPLE_A, **overrides: Any) -> dict[str, Any]:
@@ -78,4 +79,4 @@ def assert_reference(value: float, printed: str, label: str = "") -> None:
     reference = float(printed)
     decimals = len(printed.split(".")[1]) if "." in printed else 0
     tolerance = max(1e-3 * abs(reference), 0.5 * 10.0**-decimals * (1 + 1e-9))
-    assert abs(value - reference) <= tolerance, f"{label}: {value!r} vs FACEGEAR.md {printed} (tol {tolerance:g})"
+    assert abs(value - reference) <= tolerance, f"{label}: {value!r} vs reference {printed} (tol {tolerance:g})"

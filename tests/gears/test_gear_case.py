@@ -77,7 +77,7 @@ def test_shipped_case_reproduces_example_a():
     assert (case.solver.grid, case.solver.nodes_y, case.solver.thermal) == (257, 65, "full")
     gear = case.gear
     assert gear.inner_radius > 0.4659 and gear.outer_radius < 0.5664  # inside [L1, L2] of example A at 110 deg
-    # the case takes S2 and S4 at the double-tooth side (2/3 of F_n); FACEGEAR.md §8 at the single side (1)
+    # the case takes S2 and S4 at the double-tooth side (2/3 of F_n); the reference tables at the single side (1)
     assert gear.transition_side == "double"
     double = analyse_gear_pair(gear, case.materials.body_1, case.materials.body_2)
     assert [p.load / double.points[2].load for p in double.points] == pytest.approx([1 / 3, 2 / 3, 1, 2 / 3, 1 / 3])
@@ -125,7 +125,7 @@ def test_contact_points_frame_and_oblique_entrainment():
         assert point.radius_x <= point.radius_y
         assert point.path_coordinate == pytest.approx(float(result.point_values["s"][i]))
         assert point.entrainment[0] > 0  # x along the minor axis, oriented with the entrainment
-        # psi_e is kept: 2 to 12 deg in example A (FACEGEAR.md §0.4), not aligned with x
+        # psi_e is kept: 2 to 12 deg in example A (docs/accuracy.md), not aligned with x
         assert 2.0 < point.entrainment_angle < 12.5
         assert point.entrainment_speed == pytest.approx(float(result.point_values["entrainment_speed"][i]), rel=1e-12)
         assert abs(point.slide_roll_ratio) == pytest.approx(

@@ -1,9 +1,9 @@
-"""FACEGEAR.md §8 example tables (independent implementation) reproduced by the gear contact analysis.
+"""The example tables of an independent implementation (docs/accuracy.md) reproduced by the gear contact analysis.
 
 Convention differences, documented: SRR and psi_e are signed here (by V_s . U_e and by the right-handed
-contact frame); FACEGEAR.md prints magnitudes, so magnitudes are compared. Velocity components along the
+contact frame); the tables print magnitudes, so magnitudes are compared. Velocity components along the
 profile and the tooth length are compared as magnitudes for the same reason. L1 is Litvin's shaper-tip
-criterion (FACEGEAR.md quotes the range "462.5 to 465.8": the top-land crossing and the deepest point).
+criterion (the tables quote the range "462.5 to 465.8": the top-land crossing and the deepest point).
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ from facegear_tehl.gears.tca import aligned_state
 
 from gear_examples import EXAMPLE_A, EXAMPLE_B, MM, analysis, assert_reference, pair
 
-# FACEGEAR.md §8, table A1 (g = 110 deg), columns in the printed units.
+# Table A1 of docs/accuracy.md (g = 110 deg), columns in the printed units.
 A1_COLUMNS = ("s", "psi1", "rho1", "R2", "fg_neg", "fg_pos", "Rx", "Ry", "major_angle", "Ue", "Ue_prof", "Ue_len",
               "Vs_prof", "Vs_len", "SRR", "psi_e", "F", "a", "b", "p0")
 A1_ROWS = {
@@ -37,7 +37,7 @@ A1_ROWS = {
 
 
 def _point_columns(result, index: int) -> dict[str, float]:
-    """Our values of one meshing point in the units of FACEGEAR.md's table."""
+    """Our values of one meshing point in the units of the reference table."""
     spec = result.spec
     geo = spec.geometry
     values = result.point_values
@@ -98,7 +98,7 @@ def test_example_a1_scalars(a1):
 
 
 def _top_land_crossing(geo) -> float:
-    """Face-gear radius where the singular line crosses the top land (the lower end of FACEGEAR.md's L1 range)."""
+    """Face-gear radius where the singular line crosses the top land (the lower end of the reference L1 range)."""
     theta_tip = math.sqrt(geo.r_as**2 - geo.r_bs**2) / geo.r_bs
     theta = optimize.brentq(lambda t: axial_section(geo, singular_point(geo, t))[0] - geo.tip_depth, 0.05, theta_tip)
     return axial_section(geo, singular_point(geo, theta))[1]
@@ -116,7 +116,8 @@ def test_undercut_and_pointing_limits(shaft_angle, crossing, deepest, l2):
 
 
 def test_litvin_elastic_approach_ellipse(a1):
-    """FACEGEAR.md §5.4: 2a = 2 sqrt(delta/A), 2b = 2 sqrt(delta/B), delta = 0.0065 mm; 27.3 / 1.34 mm at P."""
+    """Litvin & Fuentes (2004) elastic-approach ellipse: 2a = 2 sqrt(delta/A), 2b = 2 sqrt(delta/B),
+    delta = 0.0065 mm; 27.3 / 1.34 mm at P."""
     delta = 0.0065 * MM
     index = 2  # S3
     kappa_min = 1.0 / float(a1.point_values["Ry"][index])
@@ -169,6 +170,6 @@ def test_example_b():
         assert_reference(s3[column], printed, f"S3 {column}")
     for column, printed in [("s", "7.094"), ("Rx", "18.503"), ("Ry", "1909"), ("SRR", "0.412"), ("psi_e", "23.9")]:
         assert_reference(s5[column], printed, f"S5 {column}")
-    # FACEGEAR.md §6: S4 = -0.166 mm lies before the pitch point; the analysis says so.
+    # Reference example B: S4 = -0.166 mm lies before the pitch point; the analysis says so.
     assert_reference(float(result.point_values["s"][3]) / MM, "-0.166")
     assert len(result.warnings) == 1 and "S4" in result.warnings[0] and "S3" in result.warnings[0]

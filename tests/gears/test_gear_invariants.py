@@ -1,4 +1,5 @@
-"""FACEGEAR.md §9 invariants, one test (or a few) per item, checked against closed forms and geometry."""
+"""Invariants of the gear contact analysis (docs/method.md §1), one test (or a few) per item, checked against
+closed forms and geometry."""
 
 from __future__ import annotations
 
@@ -262,8 +263,9 @@ def test_load_contact_ratio_and_path_start():
 
 # 11. Hertz routine.
 def test_hertz_reference_and_limits():
-    """FACEGEAR.md §5.4 / §9.11 print R_y = 40 mm, but its a = 2.1040, b = 0.1992 mm, p0 = 1139 MPa (a/b = 10.6)
-    belong to R_y = 400 mm (R_y/R_x = 40); with R_y = 40 mm the exact values are a = 0.786, b = 0.314 mm."""
+    """The reference Hertz check was first quoted with R_y = 40 mm, but its a = 2.1040, b = 0.1992 mm,
+    p0 = 1139 MPa (a/b = 10.6) belong to R_y = 400 mm (R_y/R_x = 40); with R_y = 40 mm the exact values are
+    a = 0.786, b = 0.314 mm."""
     reduced = reduced_modulus(STEEL, STEEL)
     assert_reference(reduced / 1e9, "226.37")
     contact = hertz_contact(10 * MM, 400 * MM, 1000.0, reduced)
@@ -290,8 +292,9 @@ def test_undercut_limit_above_base_radius_section(name):
 
 
 def test_equivalent_rack_pointing_limit_orthogonal():
-    """FACEGEAR.md §2.1: r_w = L Ns/N2, cos alpha_L = r_bs/r_w, e_s = 2 r_w (pi/(2Ns) - inv alpha + inv alpha_L),
-    s_tip = e_s - 2 (r_w - (r_ps - h_a2)) tan alpha_L = 0; within 0.5 % of the exact L2 for g = 90 deg."""
+    """Equivalent rack (docs/method.md §1.2): r_w = L Ns/N2, cos alpha_L = r_bs/r_w,
+    e_s = 2 r_w (pi/(2Ns) - inv alpha + inv alpha_L), s_tip = e_s - 2 (r_w - (r_ps - h_a2)) tan alpha_L = 0; within
+    0.5 % of the exact L2 for g = 90 deg."""
     from scipy import optimize
 
     geo = GEARS["A90"]

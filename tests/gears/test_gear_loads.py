@@ -1,4 +1,4 @@
-"""Load sharing K(s) (FACEGEAR.md §6): the two pairs in mesh one base pitch apart carry F_n between them."""
+"""Load sharing K(s) (docs/method.md §1.6): the two pairs in mesh one base pitch apart carry F_n between them."""
 
 from __future__ import annotations
 

@@ -1,9 +1,9 @@
 """General tooth contact analysis (5 equations) against the semi-analytic path, and misalignment.
 
-FACEGEAR.md §3.2 misalignment table (example A, 110 deg). Its shaft-angle error is a pinion rotation of
+The misalignment table of docs/accuracy.md (example A, 110 deg). Its shaft-angle error is a pinion rotation of
 +0.05 deg about y through O_1, which is our shaft_angle_error = -0.05 deg (we count the change of the
 shaft angle). TE counts rotations in the direction of motion (TE > 0 when the face gear leads); its
-signs then agree with FACEGEAR.md's.
+signs then agree with the table's.
 """
 
 from __future__ import annotations
