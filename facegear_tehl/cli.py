@@ -42,7 +42,8 @@ class _Tehl(click.Group):
         except (click.ClickException, click.exceptions.Exit, click.Abort):
             raise
         except (CaseError, ResultFileError) as exc:
-            click.echo(f"error: {exc}", err=True)
+            for line in str(exc).splitlines():  # one line per problem (CaseErrors holds several)
+                click.echo(f"error: {line}", err=True)
             ctx.exit(EXIT_BAD_INPUT)
         except Exception as exc:  # noqa: BLE001 - any other error: one line and exit 1 (--debug: the traceback)
             if ctx.params.get("debug"):
@@ -69,7 +70,7 @@ def run(
     ctx: click.Context, case_file: str, output: str | None, grid: int | None, points: str | None, jobs: int | None
 ) -> None:
     """Solve CASE and write the result file."""
-    case = load_case(case_file)
+    case = _load_case(case_file)
     workers = worker_count(jobs)
     solver = (case if grid is None else case.with_grid(grid)).solver
     names = _point_names(points)
@@ -99,6 +100,14 @@ def run(
         click.echo(heat_budget_table(result))
     click.echo(f"result: {target} (status {result.status})")
     _exit_on_status(ctx, result)
+
+
+def _load_case(case_file: str) -> Case:
+    """The validated case; its warnings (valid but unusual values) on stderr."""
+    case = load_case(case_file)
+    for warning in case.warnings:
+        click.echo(f"warning: {warning}", err=True)
+    return case
 
 
 def _exit_on_status(ctx: click.Context, result: Result) -> None:
@@ -135,7 +144,7 @@ def sweep(
 ) -> None:
     """Solve one point of CASE on a sequence of grids and print its mesh-independence table (change per
     grid, observed order, Richardson extrapolation with its GCI uncertainty); writes HDF5 (/sweep) and CSV."""
-    case = load_case(case_file)
+    case = _load_case(case_file)
     grid_list = parse_grids(grids, case)
     check_tolerance(tolerance)
     workers = worker_count(jobs)
@@ -167,7 +176,7 @@ def sweep(
 @click.argument("case_file", metavar="CASE")
 def validate(case_file: str) -> None:
     """Check CASE without running it."""
-    case = load_case(case_file)
+    case = _load_case(case_file)
     points = contact_analysis(case).points
     if case.gear is None:
         point = points[0]
@@ -191,7 +200,7 @@ def validate(case_file: str) -> None:
 @click.argument("case_file", metavar="CASE")
 def contact(case_file: str) -> None:
     """Print the face gear contact analysis of CASE at its meshing points (no lubrication)."""
-    case = load_case(case_file)
+    case = _load_case(case_file)
     if case.gear is None:
         raise CaseError("gear", None, "a gear: block (tehl contact analyses a face gear pair)")
     click.echo(contact_table(analyse_gear_pair(case.gear, case.materials.body_1, case.materials.body_2)))

@@ -82,7 +82,7 @@ BAD_CASES = {
     "grid_y 100": (_replace("  grid: 257", "  grid: 257\n  grid_y: 100"), "solver.grid_y", "2^n + 1"),
     "grid_y 9": (_replace("  grid: 257", "  grid: 257\n  grid_y: 9"), "solver.grid_y", "at least solver.coarsest_grid"),
     "domain without the contact": (_replace("x: [-4.5, 1.5]", "x: [-0.5, 1.5]"), "solver.domain.x", "containing"),
-    "broken yaml": (_replace("  radius_x: 0.0127", "  radius_x: [0.0127"), "(file)", "YAML syntax error"),
+    "broken yaml": (_replace("  radius_x: 0.0127", "  radius_x: [0.0127"), "(file)", "syntax error at line 7"),
     "missing file": (None, "(file)", "readable case file"),
 }
 
@@ -145,6 +145,70 @@ def test_bad_points_exit_2(tmp_path, monkeypatch, points, expected):
     result = _invoke("run", _case(tmp_path), "--points", points)
     _assert_one_line_error(result.exit_code, result.stderr, result.stdout, "--points", expected)
     assert _files(tmp_path) == ["case.yaml"]
+
+
+GEAR_TEXT = (synthetic.CASES / "facegear_110.yaml").read_text()
+
+
+def test_every_problem_of_a_case_is_named_at_once(tmp_path):
+    """Five independent mistakes in four blocks: five lines, in file order, and no file written."""
+    text = (CASE_TEXT.replace("  load: 6.272", "  load: heavy")
+            .replace("  entrainment_speed: 0.6383", "  entrainment_speed: -1")
+            .replace("body_2: {elastic_modulus: 2.0e11, poisson_ratio: 0.3", "body_2: {elastic_modulus: 2.0e11, "
+                     "poisson_ratio: 0.7")
+            .replace("  rheology: newtonian", "  rheology: newtonion")
+            .replace("  grid: 257", "  grid: 100"))
+    result = _invoke("run", _case(tmp_path, text), "-o", tmp_path / "r.h5")
+    assert result.exit_code == 2 and "Traceback" not in result.stderr
+    lines = result.stderr.splitlines()
+    assert [line.split(":")[1].strip() for line in lines] == [
+        "contact.load", "contact.entrainment_speed", "materials.body_2.poisson_ratio", "lubricant.rheology",
+        "solver.grid"]
+    assert all(line.startswith("error: ") for line in lines)
+    assert "expected a finite number" in lines[0] and "expected a positive number" in lines[1]
+    assert _files(tmp_path) == ["case.yaml"]
+
+
+@pytest.mark.parametrize("kind, old, new, key, meant", [
+    ("gear", "  pinion_torque: 500.0", "  pinion_torqe: 500.0", "gear.pinion_torqe", "pinion_torque"),
+    ("contact", "  load: 6.272", "  laod: 6.272", "contact.laod", "load"),
+    ("contact", "lubricant:", "lubricnt:", "lubricnt", "lubricant"),
+])
+def test_a_misspelt_required_key_is_named_with_did_you_mean(tmp_path, kind, old, new, key, meant):
+    """Not '<meant> is missing', but the key written, with the one meant (issue 15)."""
+    text = (GEAR_TEXT if kind == "gear" else CASE_TEXT).replace(old, new, 1)
+    result = _invoke("validate", _case(tmp_path, text))
+    _assert_one_line_error(result.exit_code, result.stderr, result.stdout, key, f"did you mean '{meant}'?")
+    assert "required and missing" in result.stderr
+
+
+def test_a_yaml_syntax_error_names_its_line_and_the_parser_message(tmp_path):
+    text = CASE_TEXT.replace("  load: 6.272", "  load: 6.272\n\tentrainment_speed: 1.0")  # a tab indents
+    line = next(i for i, row in enumerate(text.splitlines(), 1) if row.startswith("\tentrainment_speed"))
+    result = _invoke("validate", _case(tmp_path, text))
+    _assert_one_line_error(result.exit_code, result.stderr, result.stdout, "(file)",
+                           f"syntax error at line {line}, column 1")
+    assert "found character '\\t' that cannot start any token" in result.stderr
+    assert "got 'entrainment_speed: 1.0 " in result.stderr  # the line, as far as the message shows it
+
+
+@pytest.mark.parametrize("kind, old, new, key, hint", [
+    ("contact", "inlet_temperature: 40.0", "inlet_temperature: 313", "lubricant.inlet_temperature", "write 39.85"),
+    ("gear", "pinion_torque: 500.0", "pinion_torque: 500000", "gear.pinion_torque", "N mm"),
+    ("gear", "pinion_speed: 3000.0", "pinion_speed: 3.0e5", "gear.pinion_speed", "rpm"),
+    ("contact", "viscosity: 0.04", "viscosity: 40", "lubricant.viscosity", "mPa s"),
+    ("contact", "entrainment_speed: 0.6383", "entrainment_speed: 638.3", "contact.entrainment_speed", "mm/s"),
+])
+def test_unusual_values_are_accepted_with_a_warning(tmp_path, kind, old, new, key, hint):
+    """313 degC is kelvin read as degC (313.15 K = 40 degC); a torque in N mm, a viscosity in mPa s, ..."""
+    base = GEAR_TEXT if kind == "gear" else CASE_TEXT
+    assert old in base
+    result = _invoke("validate", _case(tmp_path, base.replace(old, new, 1)))
+    assert result.exit_code == 0, result.stderr
+    warnings = result.stderr.splitlines()
+    assert len(warnings) == 1 and warnings[0].startswith(f"warning: {key}: ") and hint in warnings[0], warnings
+    assert result.stdout.startswith("ok: ")
+    assert _invoke("validate", _case(tmp_path, base)).stderr == ""  # the shipped cases: no warning
 
 
 def test_validate_prints_one_ok_line():
