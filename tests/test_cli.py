@@ -4,6 +4,7 @@ except in the end-to-end tests at the bottom."""
 
 from __future__ import annotations
 
+from dataclasses import replace
 import json
 from pathlib import Path
 import signal
@@ -256,7 +257,35 @@ def test_run_grid_and_points_reach_the_solver(tmp_path, monkeypatch, fake_solver
     assert settings.grid == 33 and point.name == "contact" and lubricant.viscosity == 0.04
     assert point.load == 6.272 and point.radius_x == 0.0127
     assert read_result(tmp_path / "ball_on_disc.h5").overrides == {"grid": 33, "points": ["contact"]}
-    assert "tehl run: ball_on_disc: contact on a 33x33 grid" in result.stderr
+    assert "tehl run: ball_on_disc: contact on a 33x33 grid, thermal off" in result.stderr
+
+
+@pytest.mark.parametrize("thermal", ["reduced", "full", "auto"])
+def test_run_thermal_overrides_the_case(tmp_path, monkeypatch, fake_solver, thermal):
+    monkeypatch.chdir(tmp_path)
+    result = _invoke("run", synthetic.BALL_ON_DISC, "--thermal", thermal)  # the case says thermal: off
+    assert result.exit_code == 0, result.output
+    (_, _, settings), = fake_solver.calls
+    assert settings.thermal == thermal
+    written = read_result(tmp_path / "ball_on_disc.h5")
+    assert written.overrides == {"thermal": thermal} and written.models["thermal"] == thermal
+    assert f"thermal {thermal}" in result.stderr.splitlines()[0]
+
+
+def test_run_rejects_an_unknown_thermal_model(tmp_path, monkeypatch, fake_solver):
+    monkeypatch.chdir(tmp_path)
+    result = _invoke("run", synthetic.BALL_ON_DISC, "--thermal", "warm")
+    _assert_one_line_error(result.exit_code, result.stderr, result.stdout, "--thermal", "off, reduced, full, auto")
+    assert fake_solver.calls == [] and _files(tmp_path) == []
+
+
+@pytest.mark.parametrize("command", ["run", "sweep", "validate", "contact", "info", "plot", "init"])
+def test_every_help_shows_examples(command):
+    result = _invoke(command, "--help")
+    assert result.exit_code == 0
+    examples = result.stdout.split("Example")[1].splitlines()[1:]
+    assert examples and all(line.strip().startswith("tehl ") for line in examples if line.strip())
+    assert any(f"tehl {command}" in line for line in examples)
 
 
 def test_not_converged_exits_3_and_writes_a_flagged_result(tmp_path, monkeypatch, fake_solver):
@@ -353,12 +382,35 @@ def test_info_json_gives_the_scalars_in_si(result_file):
 
 
 def test_info_table(result_file):
+    """Engineering units by default: h_c = 1.5e-7 m is 0.15 µm, p_hertz = 0.450 GPa is 450 MPa (a 81.6 µm = 0.0816
+    mm), the relative load error 2.5e-6 is 2.5e-4 %; --si gives the file's values."""
     result = _invoke("info", result_file)
     assert result.exit_code == 0
     lines = result.stdout.splitlines()
     assert lines[0].split() == ["case", "ball_on_disc"]
-    assert any(line.split() == ["h_c", "m", "1.5e-07"] for line in lines)
-    assert any(line.split() == ["converged", "yes"] for line in lines)
+    row = {line.split()[0]: line.split()[1:] for line in lines if line.strip()}
+    assert row["h_c"] == ["µm", "0.15"] and row["h_min"] == ["µm", "0.09"]
+    assert row["p_hertz"][0] == "MPa" and float(row["p_hertz"][1]) == pytest.approx(450, abs=0.5)
+    assert row["a"][0] == "mm" and float(row["a"][1]) == pytest.approx(0.0816, abs=1e-4)
+    assert row["load_error"] == ["%", "0.00025"] and row["error_estimate_h_c"] == ["%", "0.4"]
+    assert row["converged"] == ["yes"]
+    assert [line.split()[0] for line in lines if line.split()[1:2] == ["unit"]] == ["film", "pressure", "convergence"]
+    si = {line.split()[0]: line.split()[1:] for line in _invoke("info", result_file, "--si").stdout.splitlines()
+          if line.strip()}
+    assert si["h_c"] == ["m", "1.5e-07"] and si["load_error"] == ["1", "2.5e-06"]
+
+
+def test_info_shows_round_off_as_zero(tmp_path):
+    """A heat power of 1e-18 W next to one of 0.05 W is round-off (S3, pure rolling, in the default case)."""
+    run = synthetic.run_result()
+    point = run.points[0]
+    scalars = {**point.scalars, "steady_power_1": (1.1e-18, "W"), "steady_power_2": (0.05, "W"),
+               "dT_min": (-3e-9, "K")}
+    path = write_result(replace(run, points=(replace(point, scalars=scalars),)), tmp_path / "r.h5")
+    row = {line.split()[0]: line.split()[1:] for line in _invoke("info", path).stdout.splitlines() if line.strip()}
+    assert row["steady_power_1"] == ["W", "0"] and row["steady_power_2"] == ["W", "0.05"]
+    assert row["dT_min"] == ["K", "-3e-09"]  # alone of its unit in its table: no scale to be round-off of
+    assert _invoke("info", path, "--si").stdout.count("1.1e-18") == 1
 
 
 @pytest.mark.parametrize("content", [b"not hdf5", None])
