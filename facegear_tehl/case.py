@@ -293,7 +293,7 @@ def _yaml_error(exc: yaml.YAMLError, text: str) -> CaseError:
         where = f"character {position + 1}" if position is not None else "unknown position"
         return CaseError("(file)", f"YAML syntax error at {where}", "valid YAML")
     lines = text.splitlines()
-    line = lines[mark.line].strip() if mark.line < len(lines) else ""
+    line = " ".join(lines[mark.line].split(" #")[0].split()) if mark.line < len(lines) else ""  # without comment
     context, started = getattr(exc, "context", None), getattr(exc, "context_mark", None)
     if context and started is not None and started.line != mark.line:  # where the construct that broke began
         context = f"{context} started at line {started.line + 1},"
