@@ -190,7 +190,7 @@ def test_a_yaml_syntax_error_names_its_line_and_the_parser_message(tmp_path):
     _assert_one_line_error(result.exit_code, result.stderr, result.stdout, "(file)",
                            f"syntax error at line {line}, column 1")
     assert "found character '\\t' that cannot start any token" in result.stderr
-    assert "got 'entrainment_speed: 1.0 " in result.stderr  # the line, as far as the message shows it
+    assert "got 'entrainment_speed: 1.0'" in result.stderr  # the line, without its comment
 
 
 @pytest.mark.parametrize("kind, old, new, key, hint", [
