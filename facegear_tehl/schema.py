@@ -314,9 +314,10 @@ class Block:
             error = CaseError(self.key_path(key), self.raw[key], expected)
             if collector is None:
                 raise error
-            if hint and hint[0] in self._missing:  # named in place of the missing key's error
-                missing = self._missing.pop(hint[0])
-                collector.errors[next(i for i, e in enumerate(collector.errors) if e is missing)] = error
+            missing = self._missing.pop(hint[0]) if hint and hint[0] in self._missing else None
+            place = [i for i, recorded in enumerate(collector.errors) if recorded is missing]
+            if place:  # named in place of the missing key's error
+                collector.errors[place[0]] = error
             else:
                 collector.errors.append(error)
         if collector is not None and not collector.clean():
