@@ -1,8 +1,8 @@
-"""Command line: `tehl run | validate | contact | info`.
+"""Command line: `tehl init | validate | contact | run | info | plot | sweep` (docs/cli.md).
 
 Exit codes: 0 ok; 1 unexpected error (or a point whose solve failed; its result is still written);
-2 bad input (case file, options, not a result file): one line `error: <key path>: ...`, no output file;
-3 not converged (result written, flagged).
+2 bad input (case file, options, not a result file): one line `error: <key path>: ...` per problem, no
+output file; 3 not converged (result written, flagged). Warnings (valid but unusual input) go to stderr.
 """
 
 from __future__ import annotations
