@@ -1,8 +1,10 @@
 """Case file (YAML) -> validated, frozen `Case` in SI units.
 
 Top-level blocks: `name`, `description`, one of `contact` (a plain elliptical contact) or `gear`
-(a face gear pair), and `materials`, `lubricant`, `solver`, `output`. Any problem raises
-`schema.CaseError` naming the key path, the value and what was expected.
+(a face gear pair), and `materials`, `lubricant`, `solver`, `output`. The problems of a case raise
+`schema.CaseError` (one) or `schema.CaseErrors` (several, all found), each naming the key path, the value and
+what was expected. Values that are valid but unusual for a lubricated contact (a unit mistaken, most likely)
+are kept, with a warning in `Case.warnings`.
 """
 
 from __future__ import annotations
@@ -17,10 +19,16 @@ import yaml
 from facegear_tehl.gears.spec import GearSpec, parse_gear_block
 from facegear_tehl.lubricant import DENSITY_MODELS, KELVIN, RHEOLOGY_MODELS, VISCOSITY_MODELS, Lubricant
 from facegear_tehl.materials import Solid
-from facegear_tehl.schema import Block, CaseError, check, defaults
+from facegear_tehl.schema import Block, CaseError, attempt, check, collecting, defaults, warn
 from facegear_tehl.settings import THERMAL_MODELS, OutputSettings, SolverSettings  # also imported from here
 
 MAX_GRID = 4097  # nodes per side: 16.8 million nodes, beyond what one machine solves
+# Ranges of real lubricated contacts: a value outside is accepted with a warning (a unit mistaken, most likely).
+OIL_HOTTEST = 200.0  # degC: the flash points of gear and bearing oils start near 200 degC (ISO 6743-6 grades)
+USUAL_VISCOSITY = (1e-4, 10.0)  # Pa s: a tenth of water's 1e-3 up to a heavy gear oil near its pour point
+USUAL_MODULUS = (1e9, 1.2e12)  # Pa: engineering polymers (about 1 GPa) up to diamond (1.05 to 1.2 TPa)
+USUAL_LOAD = (1e-2, 1e6)  # N: micro-tribometer loads up to the heaviest gear-tooth contacts
+USUAL_SPEED = (1e-3, 100.0)  # m/s: slow-roll tribometer tests up to the pitch-line speeds of aerospace gears
 # Physical numbers are checked against broad ranges (moduli from rubber to beyond diamond, loads 1e-6..1e9 N,
 # speeds 1e-6..1e3 m/s, ...): far wider than any lubricated contact, they keep the contact analysis and the
 # solver clear of overflow to Inf and underflow to 0.
@@ -74,6 +82,7 @@ class Case:
     solver: SolverSettings
     output: OutputSettings
     gear: GearSpec | None = None  # a face gear pair; exactly one of contact and gear is set
+    warnings: tuple[str, ...] = ()  # '<key path>: <remark>' for each valid but unusual value
 
     def with_grid(self, grid: int) -> Case:
         """The same case on another finest grid (validated like the YAML key solver.grid)."""
@@ -102,7 +111,8 @@ _OUTPUT = defaults(OutputSettings)
 
 def _solid(block: Block) -> Solid:
     solid = Solid(
-        elastic_modulus=block.number("elastic_modulus", positive=True, low=1e5, high=1e13, unit="Pa"),
+        elastic_modulus=block.number("elastic_modulus", positive=True, low=1e5, high=1e13, unit="Pa",
+                                     usual=USUAL_MODULUS, hint="the key is in Pa (steel: 2.06e11)"),
         poisson_ratio=block.number("poisson_ratio", low=0.0, high=0.5, open_low=True, open_high=True),
         density=block.number("density", _SOLID["density"], positive=True, low=1.0, high=1e5, unit="kg/m^3"),
         thermal_conductivity=block.number("thermal_conductivity", _SOLID["thermal_conductivity"], positive=True,
@@ -116,7 +126,8 @@ def _solid(block: Block) -> Solid:
 
 
 def _materials(block: Block) -> Materials:
-    materials = Materials(body_1=_solid(block.block("body_1")), body_2=_solid(block.block("body_2")))
+    materials = Materials(body_1=attempt(lambda: _solid(block.block("body_1"))),
+                          body_2=attempt(lambda: _solid(block.block("body_2"))))
     block.finish()
     return materials
 
@@ -129,10 +140,15 @@ def _lubricant(block: Block) -> Lubricant:
         eyring = block.number("eyring_stress", positive=True, low=1e4, unit="Pa")
     temperature = d["inlet_temperature"]
     if block.has("inlet_temperature"):  # degC in the file
-        temperature = block.number("inlet_temperature", low=-100.0, high=400.0, unit="degC") + KELVIN
+        celsius = block.number("inlet_temperature", low=-100.0, high=400.0, unit="degC")
+        if celsius > OIL_HOTTEST:
+            warn(block.key_path("inlet_temperature"), f"{celsius:g} degC is hotter than an oil bath runs (at most "
+                 f"{OIL_HOTTEST:g} degC); the key is in degC: if {celsius:g} is kelvin, write {celsius - KELVIN:g}")
+        temperature = celsius + KELVIN
     z = block.number("roelands_z", d["roelands_z"], low=0.0, high=2.0, open_low=True)
     lubricant = Lubricant(
-        viscosity=block.number("viscosity", positive=True, low=1e-6, high=1e6, unit="Pa s"),
+        viscosity=block.number("viscosity", positive=True, low=1e-6, high=1e6, unit="Pa s", usual=USUAL_VISCOSITY,
+                               hint="the key is in Pa s (a value in mPa s is 1000 times larger)"),
         inlet_temperature=temperature,
         pressure_viscosity=block.number("pressure_viscosity", positive=True, high=1e-6, unit="1/Pa"),
         density=block.number("density", d["density"], positive=True, low=1.0, high=1e5, unit="kg/m^3"),
@@ -172,8 +188,10 @@ def _plain_contact(block: Block) -> PlainContact:
     contact = PlainContact(
         radius_x=block.number("radius_x", positive=True, low=1e-6, high=1e4, unit="m"),
         radius_y=block.number("radius_y", positive=True, low=1e-6, high=1e4, unit="m"),
-        load=block.number("load", positive=True, low=1e-6, high=1e9, unit="N"),
-        entrainment_speed=block.number("entrainment_speed", positive=True, low=1e-6, high=1e3, unit="m/s"),
+        load=block.number("load", positive=True, low=1e-6, high=1e9, unit="N", usual=USUAL_LOAD),
+        entrainment_speed=block.number("entrainment_speed", positive=True, low=1e-6, high=1e3, unit="m/s",
+                                       usual=USUAL_SPEED, hint="the key is in m/s (a value in mm/s is 1000 times "
+                                       "larger)"),
         # |SRR| > 2: the surfaces move in opposite directions (u_2 = u_e (1 - SRR/2) < 0); at |SRR| = 4 the
         # slower one moves backward at the entrainment speed.
         slide_roll_ratio=block.number("slide_roll_ratio", _CONTACT["slide_roll_ratio"], low=-4.0, high=4.0),
@@ -253,20 +271,38 @@ def _output(block: Block) -> OutputSettings:
 
 
 def parse_case(text: str, name: str = "case") -> Case:
-    """Parse and validate the YAML text of a case."""
+    """Parse and validate the YAML text of a case: CaseError, or CaseErrors naming every problem found."""
     try:
         raw: Any = yaml.load(text, Loader=_Loader)
     except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        position = getattr(exc, "position", None)  # a character YAML does not accept (yaml.reader.ReaderError)
-        where = (f"line {mark.line + 1}, column {mark.column + 1}" if mark
-                 else f"character {position + 1}" if position is not None else "unknown position")
-        raise CaseError("(file)", f"YAML syntax error at {where}", "valid YAML") from None
+        raise _yaml_error(exc, text) from None
     except (ValueError, RecursionError) as exc:  # an impossible date, an int of > 4300 digits; deep nesting
         reason = "nesting too deep" if isinstance(exc, RecursionError) else str(exc)
         raise CaseError("(file)", "a value YAML cannot read", f"valid YAML ({reason})") from None
     if raw is None:
         raise CaseError("(file)", "an empty document", "a case: contact: or gear:, materials:, lubricant:, ...")
+    case, warnings = collecting(lambda: _case(raw, text, name))
+    return replace(case, warnings=warnings)
+
+
+def _yaml_error(exc: yaml.YAMLError, text: str) -> CaseError:
+    """(file): got the offending line; expected valid YAML (line, column: the parser's message)."""
+    mark = getattr(exc, "problem_mark", None)
+    position = getattr(exc, "position", None)  # a character YAML does not accept (yaml.reader.ReaderError)
+    if mark is None:
+        where = f"character {position + 1}" if position is not None else "unknown position"
+        return CaseError("(file)", f"YAML syntax error at {where}", "valid YAML")
+    lines = text.splitlines()
+    line = " ".join(lines[mark.line].split(" #")[0].split()) if mark.line < len(lines) else ""  # without comment
+    context, started = getattr(exc, "context", None), getattr(exc, "context_mark", None)
+    if context and started is not None and started.line != mark.line:  # where the construct that broke began
+        context = f"{context} started at line {started.line + 1},"
+    problem = " ".join(f"{context or ''} {getattr(exc, 'problem', None) or ''}".split())
+    return CaseError("(file)", line, f"valid YAML (syntax error at line {mark.line + 1}, column {mark.column + 1}"
+                     + (f": {problem})" if problem else ")"))
+
+
+def _case(raw: Any, text: str, name: str) -> Case:
     top = Block(raw, "")
     case_name = top.string("name", name)
     check(case_name.strip() != "" and case_name.isprintable() and not {"/", "\\"} & set(case_name), "name",
@@ -275,17 +311,17 @@ def parse_case(text: str, name: str = "case") -> Case:
     has_contact, has_gear = top.has("contact"), top.has("gear")
     check(has_contact != has_gear, "contact/gear", "both blocks" if has_contact else None,
           "exactly one of a contact: block (one plain elliptical contact) or a gear: block (a face gear pair)")
-    contact = _plain_contact(top.block("contact")) if has_contact else None
-    gear = parse_gear_block(top.block("gear")) if has_gear else None
+    contact = attempt(lambda: _plain_contact(top.block("contact"))) if has_contact else None
+    gear = attempt(lambda: parse_gear_block(top.block("gear"))) if has_gear else None
     case = Case(
         name=case_name,
         description=description,
         text=text,
         contact=contact,
-        materials=_materials(top.block("materials")),
-        lubricant=_lubricant(top.block("lubricant")),
-        solver=_solver(top.block("solver", {})),
-        output=_output(top.block("output", {})),
+        materials=attempt(lambda: _materials(top.block("materials"))),
+        lubricant=attempt(lambda: _lubricant(top.block("lubricant"))),
+        solver=attempt(lambda: _solver(top.block("solver", {}))),
+        output=attempt(lambda: _output(top.block("output", {}))),
         gear=gear,
     )
     top.finish()

@@ -1,13 +1,14 @@
-"""Command line: `tehl run | validate | contact | info`.
+"""Command line: `tehl init | validate | contact | run | info | plot | sweep` (docs/cli.md).
 
 Exit codes: 0 ok; 1 unexpected error (or a point whose solve failed; its result is still written);
-2 bad input (case file, options, not a result file): one line `error: <key path>: ...`, no output file;
-3 not converged (result written, flagged).
+2 bad input (case file, options, not a result file): one line `error: <key path>: ...` per problem, no
+output file; 3 not converged (result written, flagged). Warnings (valid but unusual input) go to stderr.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import replace
 import json
 import os
 from pathlib import Path
@@ -16,6 +17,7 @@ import traceback
 from typing import Any
 
 import click
+import numpy as np
 
 from facegear_tehl import __version__
 from facegear_tehl.case import Case, load_case
@@ -27,8 +29,20 @@ from facegear_tehl.results import PointResult, Result, ResultFileError, read_res
 from facegear_tehl.schema import CaseError
 from facegear_tehl.solution import PointSolution
 from facegear_tehl.sweep import check_tolerance, parse_grids, report, run_sweep, with_thermal, write_csv
-from facegear_tehl.tables import COST, Column, cell, format_pairs, format_table, yes_no
-from facegear_tehl.units import PERCENT, display
+from facegear_tehl.tables import (
+    COST,
+    ROUND_OFF,
+    SCALAR_GROUPS,
+    Column,
+    cell,
+    format_pairs,
+    format_table,
+    group_of,
+    scalar_unit,
+    yes_no,
+)
+from facegear_tehl.templates import case_template
+from facegear_tehl.units import PERCENT, Unit, display
 
 EXIT_ERROR, EXIT_BAD_INPUT, EXIT_NOT_CONVERGED = 1, 2, 3
 
@@ -42,7 +56,8 @@ class _Tehl(click.Group):
         except (click.ClickException, click.exceptions.Exit, click.Abort):
             raise
         except (CaseError, ResultFileError) as exc:
-            click.echo(f"error: {exc}", err=True)
+            for line in str(exc).splitlines():  # one line per problem (CaseErrors holds several)
+                click.echo(f"error: {line}", err=True)
             ctx.exit(EXIT_BAD_INPUT)
         except Exception as exc:  # noqa: BLE001 - any other error: one line and exit 1 (--debug: the traceback)
             if ctx.params.get("debug"):
@@ -51,25 +66,46 @@ class _Tehl(click.Group):
             ctx.exit(EXIT_ERROR)
 
 
-@click.group(cls=_Tehl, context_settings={"help_option_names": ["-h", "--help"]})
+@click.group(cls=_Tehl, context_settings={"help_option_names": ["-h", "--help"]}, epilog="""\b
+Examples:
+  tehl init -o my_gear.yaml          write a commented face gear case
+  tehl validate my_gear.yaml         check it (exit 2 naming every problem)
+  tehl run my_gear.yaml --grid 65    solve it on a quick grid: my_gear.h5
+  tehl info my_gear.h5               its results in µm, MPa, K, %
+  tehl plot my_gear.h5               its figures
+Each command has its own --help with examples; docs/cli.md shows them with their output.""")
 @click.version_option(__version__, prog_name="tehl")
 @click.option("--debug", is_flag=True, help="Show the traceback of unexpected errors.")
 def tehl(debug: bool) -> None:
     """Thermal EHL of face gear pairs: one YAML case in, one HDF5 result out."""
 
 
-@tehl.command()
+@tehl.command(epilog="""\b
+Examples:
+  tehl run cases/facegear_110.yaml                      all points, the case's grid
+  tehl run cases/facegear_110.yaml --grid 65 -o quick.h5
+  tehl run cases/facegear_110.yaml --points S1,S3 --thermal off
+  tehl run cases/ball_on_disc.yaml --jobs 1""")
 @click.argument("case_file", metavar="CASE")
 @click.option("-o", "--output", help="Result file (default: output.file of the case, else <case name>.h5).")
 @click.option("--grid", type=int, help="Nodes per side of the finest grid, 2^n + 1 (overrides solver.grid).")
 @click.option("--points", help="Comma-separated point names to solve (e.g. S1,S3); default all.")
+@click.option("--thermal", help="Thermal model, overrides solver.thermal: off | reduced | full | auto.")
 @click.option("--jobs", type=int, help="Worker processes solving points side by side (default: all cores).")
 @click.pass_context
 def run(
-    ctx: click.Context, case_file: str, output: str | None, grid: int | None, points: str | None, jobs: int | None
+    ctx: click.Context,
+    case_file: str,
+    output: str | None,
+    grid: int | None,
+    points: str | None,
+    thermal: str | None,
+    jobs: int | None,
 ) -> None:
     """Solve CASE and write the result file."""
-    case = load_case(case_file)
+    case = _load_case(case_file)
+    if thermal is not None:
+        case = with_thermal(case, thermal)
     workers = worker_count(jobs)
     solver = (case if grid is None else case.with_grid(grid)).solver
     names = _point_names(points)
@@ -78,7 +114,8 @@ def run(
     target = _output_path(Path(case_file), case, output)
     processes = min(workers, len(selected))
     click.echo(
-        f"tehl run: {case.name}: {', '.join(p.name for p in selected)} on a {solver.grid}x{solver.nodes_y} grid"
+        f"tehl run: {case.name}: {', '.join(p.name for p in selected)} on a {solver.grid}x{solver.nodes_y} grid, "
+        f"thermal {solver.thermal}"
         + (f", {processes} worker processes" if processes > 1 else ""),
         err=True,
     )
@@ -88,6 +125,8 @@ def run(
     from facegear_tehl.run import run_case
 
     run_result = run_case(case, grid=grid, points=names, progress=_report_progress, jobs=workers)
+    if thermal is not None:  # recorded in the file like the other options that change the case
+        run_result = replace(run_result, overrides={**run_result.overrides, "thermal": thermal})
     for warning in run_result.warnings:
         if warning not in analysis.warnings:  # what the run found (a grid the solver chose, ...)
             click.echo(f"warning: {warning}", err=True)
@@ -101,6 +140,14 @@ def run(
     _exit_on_status(ctx, result)
 
 
+def _load_case(case_file: str) -> Case:
+    """The validated case; its warnings (valid but unusual values) on stderr."""
+    case = load_case(case_file)
+    for warning in case.warnings:
+        click.echo(f"warning: {warning}", err=True)
+    return case
+
+
 def _exit_on_status(ctx: click.Context, result: Result) -> None:
     """Exit 1 if a point failed, 3 if one did not converge (the file is written either way)."""
     if result.status == "failed":
@@ -111,7 +158,10 @@ def _exit_on_status(ctx: click.Context, result: Result) -> None:
         ctx.exit(EXIT_NOT_CONVERGED)
 
 
-@tehl.command()
+@tehl.command(epilog="""\b
+Examples:
+  tehl sweep cases/facegear_110.yaml --point S3 --grids 33,65,129
+  tehl sweep cases/ball_on_disc.yaml --thermal off --tol 0.005 -o ball_sweep.h5""")
 @click.argument("case_file", metavar="CASE")
 @click.option("--grids", default="33,65,129,257,513", show_default=True,
               help="Nodes per side of each grid: ascending, each refining the previous by 2, at least three.")
@@ -135,7 +185,7 @@ def sweep(
 ) -> None:
     """Solve one point of CASE on a sequence of grids and print its mesh-independence table (change per
     grid, observed order, Richardson extrapolation with its GCI uncertainty); writes HDF5 (/sweep) and CSV."""
-    case = load_case(case_file)
+    case = _load_case(case_file)
     grid_list = parse_grids(grids, case)
     check_tolerance(tolerance)
     workers = worker_count(jobs)
@@ -163,11 +213,14 @@ def sweep(
     _exit_on_status(ctx, result)
 
 
-@tehl.command()
+@tehl.command(epilog="""\b
+Examples:
+  tehl validate cases/facegear_110.yaml
+  tehl init --contact -o ball.yaml && tehl validate ball.yaml""")
 @click.argument("case_file", metavar="CASE")
 def validate(case_file: str) -> None:
     """Check CASE without running it."""
-    case = load_case(case_file)
+    case = _load_case(case_file)
     points = contact_analysis(case).points
     if case.gear is None:
         point = points[0]
@@ -187,26 +240,57 @@ def validate(case_file: str) -> None:
     )
 
 
-@tehl.command()
+@tehl.command(epilog="""\b
+Example:
+  tehl contact cases/facegear_110.yaml""")
 @click.argument("case_file", metavar="CASE")
 def contact(case_file: str) -> None:
     """Print the face gear contact analysis of CASE at its meshing points (no lubrication)."""
-    case = load_case(case_file)
+    case = _load_case(case_file)
     if case.gear is None:
         raise CaseError("gear", None, "a gear: block (tehl contact analyses a face gear pair)")
     click.echo(contact_table(analyse_gear_pair(case.gear, case.materials.body_1, case.materials.body_2)))
 
 
-@tehl.command()
+@tehl.command(epilog="""\b
+Examples:
+  tehl init                            a face gear case: case.yaml
+  tehl init --contact -o ball.yaml     a plain elliptical contact
+  tehl init -o my_gear.yaml && tehl validate my_gear.yaml && tehl run my_gear.yaml --grid 65""")
+@click.option("--gear", "kind", flag_value="gear", default=True, help="A face gear pair (the default).")
+@click.option("--contact", "kind", flag_value="contact", help="A plain elliptical contact (ball on disc).")
+@click.option("-o", "--output", default="case.yaml", show_default=True, help="Case file to write.")
+@click.option("--force", is_flag=True, help="Overwrite OUTPUT if it exists.")
+def init(kind: str, output: str, force: bool) -> None:
+    """Write a commented case template (valid as written); edit it, then validate and run it."""
+    target = _writable("--output", Path(output))
+    if target.exists() and not force:
+        raise CaseError("--output", output, "a file that does not exist yet (--force overwrites it)")
+    target.parent.mkdir(parents=True, exist_ok=True)
+    target.write_text(case_template(kind, target.name), encoding="utf-8")
+    click.echo(f"wrote {target}: a {'face gear' if kind == 'gear' else 'plain contact'} case; next: "
+               f"tehl validate {target}")
+
+
+@tehl.command(epilog="""\b
+Examples:
+  tehl info facegear_110.h5           by theme, in µm, MPa, K, %
+  tehl info facegear_110.h5 --si      the same in SI units
+  tehl info facegear_110.h5 --json    SI values for scripts""")
 @click.argument("result_file", metavar="RESULT")
+@click.option("--si", is_flag=True, help="Values in the file's SI units (m, Pa, K, fractions), not µm, MPa, K, %.")
 @click.option("--json", "as_json", is_flag=True, help="Print the per-point scalars (SI) as JSON.")
-def info(result_file: str, as_json: bool) -> None:
-    """Show the per-point scalars of a result file."""
+def info(result_file: str, si: bool, as_json: bool) -> None:
+    """Show the per-point scalars of a result file, by theme, in engineering units."""
     result = read_result(result_file)
-    click.echo(json.dumps(info_json(result), indent=2) if as_json else info_text(result))
+    click.echo(json.dumps(info_json(result), indent=2) if as_json else info_text(result, si=si))
 
 
-@tehl.command()
+@tehl.command(epilog="""\b
+Examples:
+  tehl plot facegear_110.h5
+  tehl plot facegear_110.h5 --what fields --point S1,S3 --format pdf
+  tehl plot facegear_110.h5 --what trends,heat -o figures""")
 @click.argument("result_file", metavar="RESULT")
 @click.option("--what", default="all", show_default=True,
               help="Figure types, comma-separated: all, fields, trends, friction, heat, contact, convergence.")
@@ -248,8 +332,10 @@ def info_json(result: Result) -> dict[str, Any]:
     }
 
 
-def info_text(result: Result) -> str:
-    """The file's header, then every scalar of every point (SI) with its units."""
+def info_text(result: Result, si: bool = False) -> str:
+    """The file's header, then the scalars of every point in tables by theme (film, pressure, temperature,
+    heat, convergence, other): in engineering units (µm, mm, MPa, K, %), a value below ROUND_OFF of the largest
+    of its unit in its table shown as 0 (round-off); or the file's raw SI values with `si`."""
     header = [
         ("case", result.case_name),
         ("status", result.status),
@@ -267,18 +353,52 @@ def info_text(result: Result) -> str:
     header += [("warning", warning) for warning in result.warnings]
     points = list(result.points.values())
     names = list(dict.fromkeys(key for p in points for key in p.scalars))
-    rows = [["converged", "", *(yes_no(p.converged) for p in points)]]
-    for key in names:
-        units = next(p.units[key] for p in points if key in p.units)
-        rows.append([key, units, *(cell(p.scalars.get(key), ".6g", "-") for p in points)])
-    lines = [format_pairs(header), "", format_table(["scalar", "units", *(p.name for p in points)], rows)]
+    units = {key: next(p.units[key] for p in points if key in p.units) for key in names}
+    lines = [format_pairs(header)]
+    for group in [name for name, _ in SCALAR_GROUPS] + ["other"]:
+        keys = [key for key in names if group_of(key) == group]
+        if group == "convergence":
+            keys = ["converged", *keys]
+        elif not keys:
+            continue
+        rows = [["converged", "", *(yes_no(p.converged) for p in points)] if key == "converged" else
+                _scalar_row(key, units[key], [p.scalars.get(key) for p in points], _scale(keys, units, points), si)
+                for key in keys]
+        lines += ["", format_table([group, "unit", *(p.name for p in points)], rows)]
     if result.heat and "point" in result.heat:
         lines += ["", "heat budget:", heat_budget_table(result)]
     if result.contact_scalars:
-        contact_rows = [[key, result.contact_units[key], cell(value, ".6g", "-")]
+        contact_rows = [_scalar_row(key, result.contact_units[key], [value], abs(value), si)
                         for key, value in result.contact_scalars.items()]
-        lines += ["", format_table(["contact", "units", "value"], contact_rows)]
+        lines += ["", format_table(["contact", "unit", "value"], contact_rows)]
     return "\n".join(lines)
+
+
+def _scale(keys: list[str], units: Mapping[str, str], points: list[PointResult]) -> dict[str, float]:
+    """The largest |value| of each SI unit among `keys` over all points (the reference of round-off)."""
+    scale: dict[str, float] = {}
+    for key in keys:
+        for p in points:
+            if key in p.scalars:
+                scale[units[key]] = max(scale.get(units[key], 0.0), abs(p.scalars[key]))
+    return scale
+
+
+def _scalar_row(key: str, units: str, values: list[float | int | None], scale: Mapping[str, float] | float,
+                si: bool) -> list[str]:
+    """[key, unit, a cell per value]: raw SI with `si` (6 digits), else in `scalar_unit` (4 digits) with 0 for
+    round-off (below ROUND_OFF of `scale`, per unit or one number); '-' for a missing value."""
+    reference = scale if isinstance(scale, (int, float)) else scale.get(units, 0.0)
+    unit = Unit(units) if si else scalar_unit(key, units)
+    cells = []
+    for value in values:
+        if value is None:
+            cells.append("-")
+        elif not si and abs(value) < ROUND_OFF * reference:
+            cells.append("0")
+        else:
+            cells.append(cell(unit(value), ".6g" if si else ".4g", "-"))
+    return [key, unit.label, *cells]
 
 
 def _listed(value: Any) -> str:
@@ -318,9 +438,12 @@ _HEAT = (
 
 def heat_budget_table(result: Result) -> str:
     """One row per point of the /heat table: friction, heat power and its partition, steady-state power per
-    gear, flash temperature, frictional and oil-film heat; '-' where a column is missing."""
+    gear, flash temperature, frictional and oil-film heat; '-' where a column is missing, 0 for a value below
+    ROUND_OFF of its column's largest."""
     heat = result.heat
-    rows = [[str(name), *(c.text(heat[c.key].values[i] if c.key in heat else None) for c in _HEAT)]
+    columns = {c.key: np.where(np.abs(heat[c.key].values) < ROUND_OFF * np.max(np.abs(heat[c.key].values)), 0.0,
+                               heat[c.key].values) for c in _HEAT if c.key in heat}  # round-off shown as 0
+    rows = [[str(name), *(c.text(columns[c.key][i] if c.key in columns else None) for c in _HEAT)]
             for i, name in enumerate(heat["point"].values)]
     return format_table(["point", *(c.header for c in _HEAT)], rows)
 

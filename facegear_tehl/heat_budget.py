@@ -167,7 +167,7 @@ def heat_budget(points: list[ContactPoint], solutions: list[PointSolution], lubr
     if not rows:
         return out, {}
     names = [name for name, _ in rows]
-    table = {"point": Field(np.array(names), "", "meshing point")}
+    table = {"point": Field(np.array(names), "-", "meshing point (a name: no unit)")}
     for column, (units, description) in COLUMNS.items():
         if all(column in values for _, values in rows):
             table[column] = Field(np.array([values[column] for _, values in rows]), units, description)

@@ -8,7 +8,7 @@ from typing import Mapping, Sequence
 
 from facegear_tehl.case import Case
 from facegear_tehl.contact import ContactPoint
-from facegear_tehl.gears.analysis import analyse_gear_pair
+from facegear_tehl.gears.analysis import PATH_DESCRIPTIONS, analyse_gear_pair
 from facegear_tehl.schema import CaseError
 from facegear_tehl.solution import Field
 
@@ -29,7 +29,7 @@ def contact_analysis(case: Case) -> ContactAnalysis:
     body_1, body_2 = case.materials.body_1, case.materials.body_2
     if case.gear is not None:
         gear = analyse_gear_pair(case.gear, body_1, body_2)
-        path = {name: Field(values, gear.units[name]) for name, values in gear.path.items()}
+        path = {name: Field(values, gear.units[name], PATH_DESCRIPTIONS[name]) for name, values in gear.path.items()}
         return ContactAnalysis(points=gear.points, path=path, scalars=gear.scalars(), warnings=gear.warnings)
     contact = case.contact
     point = ContactPoint.from_rolling_sliding(

@@ -1,6 +1,6 @@
 """The result file (HDF5): the one writer and the one reader.
 
-Layout (format 1.x):
+Layout (format 1.x; docs/cli.md describes it for readers):
 
     /                   attrs: filetype, format_version, tehl_version, created, case_name, case_yaml,
                         status (ok | not_converged | failed), message, warnings (JSON list),
@@ -17,7 +17,12 @@ Layout (format 1.x):
                         value is not defined (e.g. the order on the two coarsest grids), never Inf;
                         attrs: scalars and their units (JSON)
 
-Every dataset carries `units`, `description` and `kind` attributes. Files are written to a temporary
+Every dataset carries `units`, `description` and `kind` attributes. From format 1.2 every dataset is attached
+to HDF5 dimension scales, as netCDF-4 lays out dimensions, so that xarray (engine h5netcdf) opens any group with
+named dimensions and coordinates: fields on (y, x); histories on an index (`cycle`, `outer_iteration`, `level`);
+tables on their key column (`point`, `s`, `grid`) and a vector's components on `xy` or `xyz`. The index and
+component datasets have kind 'scale' and are not read back (they hold nothing but 0, 1, 2, ... or x, y, z).
+Counts (cycles, iterations, grid nodes, layers) are stored as integers. Files are written to a temporary
 file in the target directory and renamed onto the target only when complete, so a crash or an
 interruption leaves the previous file (or no file), never a partial one. NaN and Inf are refused
 (except the NaN that marks an undefined entry of the sweep table).
@@ -41,11 +46,22 @@ from facegear_tehl.case import Case
 from facegear_tehl.solution import Field, PointSolution
 
 FILETYPE = "facegear_tehl result"
-FORMAT_VERSION = "1.1"  # 1.1: /points/<name> attrs outcome
+FORMAT_VERSION = "1.2"  # 1.1: /points/<name> attrs outcome; 1.2: dimension scales, integer counts
 STATUSES = ("ok", "not_converged", "failed")
 # Group attributes that are not scalars.
 _RESERVED_ATTRS = ("units", "converged", "outcome", "message", "models")
 _AXES = ("x", "y")
+# Scalars and columns that count something: stored as integers (a sweep column keeps floats where it holds NaN).
+COUNTS = frozenset({"iterations", "thermal_iterations", "thermal_layers", "grid", "grid_y", "coarsest_grid",
+                    "level_nodes", "attempts"})
+# The index a history runs along, by the start of its name (default: the finest-grid cycle).
+_HISTORY_INDEX = (("level_", "level", "full-multigrid level, coarsest first"),
+                  ("thermal_", "outer_iteration", "outer (thermal) iteration"),
+                  ("viscosity_", "outer_iteration", "outer (thermal) iteration"))
+_CYCLE_INDEX = ("cycle", "entry of the per-cycle histories, in the order they were recorded")
+# The column each table's rows are keyed by (its coordinate in xarray).
+_TABLE_KEYS = {"contact": "s", "heat": "point", "sweep": "grid"}
+_COMPONENTS = {2: ("xy", ("x", "y")), 3: ("xyz", ("x", "y", "z"))}  # a vector column's components (see its description)
 
 
 class ResultFileError(Exception):
@@ -202,11 +218,38 @@ def _write_point(points: h5py.Group, solution: PointSolution) -> None:
     for kind, entries in (("axis", solution.axes), ("field", solution.fields), ("history", solution.history)):
         for name, column in entries.items():
             _write_dataset(group, name, column, kind)
+    for axis in solution.axes:
+        group[axis].make_scale(axis)
+    for name in solution.fields:
+        _attach(group[name], group["y"], group["x"])
+    for name, column in solution.history.items():
+        index, description = next(((index, text) for start, index, text in _HISTORY_INDEX if name.startswith(start)),
+                                  _CYCLE_INDEX)
+        _attach(group[name], _index_scale(group, index, len(column.values), f"index: {description}", name))
+
+
+def _attach(dataset: h5py.Dataset, *scales: h5py.Dataset) -> None:
+    """Attach `scales` to the dimensions of `dataset`, in order."""
+    for dimension, scale in zip(dataset.dims, scales):
+        dimension.attach_scale(scale)
+
+
+def _index_scale(group: h5py.Group, name: str, size: int, description: str, owner: str,
+                 labels: tuple[str, ...] | None = None) -> h5py.Dataset:
+    """The dimension scale `name` of `size` entries (0, 1, ... or `labels`) in `group`, created on first use;
+    a dataset whose length differs from the shared scale gets its own, `<owner>_index`."""
+    if name in group and group[name].shape != (size,):
+        name = f"{owner}_index"
+    if name not in group:
+        values = np.arange(size) if labels is None else np.array(labels)
+        _write_dataset(group, name, Field(values, "1" if labels is None else "-", description), "scale")
+        group[name].make_scale(name)
+    return group[name]
 
 
 def _write_scalars(group: h5py.Group, scalars: Mapping[str, tuple[float, str]]) -> None:
     for key, (value, _) in scalars.items():
-        group.attrs[key] = value
+        group.attrs[key] = _stored(key, value)
     group.attrs["units"] = json.dumps({key: units for key, (_, units) in scalars.items()})
 
 
@@ -218,10 +261,40 @@ def _write_table(
         _write_scalars(group, scalars)
         for column_name, column in columns.items():
             _write_dataset(group, column_name, column, "table")
+        _attach_table_dimensions(group, name, columns)
+
+
+def _attach_table_dimensions(group: h5py.Group, name: str, columns: Mapping[str, Field]) -> None:
+    """Rows along the table's key column (an index `row` without it); a vector's components along `xy`/`xyz`."""
+    key = _TABLE_KEYS.get(name)
+    if key in columns and np.ndim(columns[key].values) == 1:
+        rows = group[key]
+        rows.make_scale(key)
+    elif columns:
+        rows = _index_scale(group, "row", len(next(iter(columns.values())).values), "index: row of the table", name)
+    for column_name, column in columns.items():
+        scales = [rows]
+        if np.ndim(column.values) == 2:
+            size = np.shape(column.values)[1]
+            scale, labels = _COMPONENTS.get(size, (f"{column_name}_index", None))
+            what = ", ".join(labels) if labels else "index"
+            scales.append(_index_scale(group, scale, size, f"vector component ({what})", column_name, labels))
+        if column_name != key:
+            _attach(group[column_name], *scales)
+
+
+def _stored(name: str, value: Any) -> Any:
+    """`value` as the file stores it: counts (COUNTS) as integers when every value is a whole number."""
+    if name not in COUNTS:
+        return value
+    array = np.asarray(value)
+    if array.dtype.kind == "f" and np.all(np.isfinite(array)) and np.all(array == np.round(array)):
+        array = array.astype(np.int64)
+    return array if array.ndim else array.item()
 
 
 def _write_dataset(group: h5py.Group, name: str, column: Field, kind: str) -> None:
-    values = np.asarray(column.values)
+    values = _stored(name, np.asarray(column.values))
     if values.dtype.kind in "US":
         dataset = group.create_dataset(name, data=values.astype(object), dtype=h5py.string_dtype())
     elif values.ndim == 2:
@@ -245,6 +318,9 @@ def _check_run(run: RunResult) -> None:
     for table_name, table in (("contact", run.contact), ("heat", run.heat), ("sweep", run.sweep)):
         for name, column in table.items():
             _check_column(f"/{table_name}/{name}", name, column, allow_nan=table_name == "sweep")
+        rows = {name: len(column.values) for name, column in table.items()}
+        if len(set(rows.values())) > 1:
+            raise ValueError(f"/{table_name}: columns of different lengths {rows}; a table's columns share its rows")
 
 
 def _check_point(solution: PointSolution) -> None:
@@ -359,7 +435,7 @@ def _read_scalars(group: h5py.Group) -> tuple[dict[str, float | int], dict[str, 
 
 def _read_point(name: str, group: h5py.Group) -> PointResult:
     scalars, units = _read_scalars(group)
-    by_kind: dict[str, dict[str, Field]] = {"axis": {}, "field": {}, "history": {}}
+    by_kind: dict[str, dict[str, Field]] = {"axis": {}, "field": {}, "history": {}, "scale": {}}
     for dataset_name, dataset in group.items():
         by_kind[str(dataset.attrs["kind"])][dataset_name] = _read_field(dataset)
     return PointResult(
@@ -377,7 +453,9 @@ def _read_point(name: str, group: h5py.Group) -> PointResult:
 
 
 def _read_table(group: h5py.Group | None) -> dict[str, Field]:
-    return {} if group is None else {name: _read_field(dataset) for name, dataset in group.items()}
+    if group is None:
+        return {}
+    return {name: _read_field(dataset) for name, dataset in group.items() if dataset.attrs["kind"] != "scale"}
 
 
 def _read_field(dataset: h5py.Dataset) -> Field:

@@ -6,7 +6,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 import math
 
-from facegear_tehl.units import Unit, display
+from facegear_tehl.units import MILLIMETRE, PERCENT, Unit, display
 
 
 def format_table(headers: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
@@ -65,3 +65,47 @@ class Column:
 COST = (Column("cycles", "iterations", spec=".0f"), Column("work units", "work_units", spec=".1f"),
         Column("wall time", "wall_time", "s", ".2f"))
 """The cost of a solve: in the run summary and in the sweep report."""
+
+
+# `tehl info`: the per-point scalars by theme, in this order; a scalar of none of them is listed under "other".
+SCALAR_GROUPS = (
+    ("film", ("h_c", "h_min", "x_h_min", "y_h_min", "inlet_gap_ratio", "error_estimate_h_c",
+              "error_estimate_h_min")),
+    ("pressure", ("p_max", "p_hertz", "load", "a", "b", "ellipticity", "radius_x", "radius_y", "moes_m",
+                  "moes_l", "path_coordinate")),
+    ("temperature", ("dT_max", "dT_min", "x_dT_min", "y_dT_min", "dT_mid_max", "dT_surface_1_max",
+                     "dT_surface_2_max", "surface_rise_max", "flash_temperature", "thermal_loading",
+                     "error_estimate_dT_max")),
+    ("friction", ("mu", "mu_1", "mu_2", "mu_xu", "error_estimate_mu", "entrainment_speed", "sliding_speed",
+                  "slide_roll_ratio", "entrainment_angle", "friction_power", "dissipated_power",
+                  "dissipated_power_ellipse", "partition_1", "partition_2", "friction_power_1", "friction_power_2")),
+    ("heat", ("heat_generated", "heat_conducted", "heat_convected", "heat_mass_defect", "dwell_time",
+              "duty_ratio_1", "duty_ratio_2", "steady_power_1", "steady_power_2", "frictional_heat",
+              "frictional_heat_seed", "frictional_heat_ellipse", "oil_film_heat", "oil_film_heat_domain",
+              "oil_to_friction_ratio", "oil_to_ellipse_friction_ratio", "oil_to_seed_friction_ratio",
+              "distribution_difference")),
+    ("convergence", ("load_error", "iterations", "work_units", "wall_time", "grid", "grid_y", "coarsest_grid",
+                     "thermal_iterations", "thermal_layers", "energy_balance_error", "algebraic_floor",
+                     "thermal_floor", "viscosity_floor")),
+)
+FILM_KEYS = frozenset({"h_c", "h_min", "error_estimate_h_c", "error_estimate_h_min"})  # lengths shown in µm
+# Dimensionless fractions shown in %: relative errors, shares and ratios.
+PERCENT_KEYS = frozenset({"load_error", "energy_balance_error", "error_estimate_h_c", "error_estimate_h_min",
+                          "error_estimate_dT_max", "error_estimate_mu", "partition_1", "partition_2",
+                          "oil_to_friction_ratio", "oil_to_ellipse_friction_ratio", "oil_to_seed_friction_ratio",
+                          "distribution_difference", "load_share"})
+ROUND_OFF = 1e-12  # |x| below this fraction of the largest value of its unit in its group: shown as 0 (round-off)
+
+
+def scalar_unit(key: str, units: str) -> Unit:
+    """The unit a scalar is shown in: films in µm, other lengths in mm, fractions in %, the rest by `display`."""
+    if units == "m":
+        return display("m") if key in FILM_KEYS else MILLIMETRE
+    if units == "1" and key in PERCENT_KEYS:
+        return PERCENT
+    return display(units)
+
+
+def group_of(key: str) -> str:
+    """The SCALAR_GROUPS theme of a scalar, 'other' if none."""
+    return next((name for name, keys in SCALAR_GROUPS if key in keys), "other")

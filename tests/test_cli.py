@@ -4,6 +4,7 @@ except in the end-to-end tests at the bottom."""
 
 from __future__ import annotations
 
+from dataclasses import replace
 import json
 from pathlib import Path
 import signal
@@ -82,7 +83,7 @@ BAD_CASES = {
     "grid_y 100": (_replace("  grid: 257", "  grid: 257\n  grid_y: 100"), "solver.grid_y", "2^n + 1"),
     "grid_y 9": (_replace("  grid: 257", "  grid: 257\n  grid_y: 9"), "solver.grid_y", "at least solver.coarsest_grid"),
     "domain without the contact": (_replace("x: [-4.5, 1.5]", "x: [-0.5, 1.5]"), "solver.domain.x", "containing"),
-    "broken yaml": (_replace("  radius_x: 0.0127", "  radius_x: [0.0127"), "(file)", "YAML syntax error"),
+    "broken yaml": (_replace("  radius_x: 0.0127", "  radius_x: [0.0127"), "(file)", "syntax error at line 7"),
     "missing file": (None, "(file)", "readable case file"),
 }
 
@@ -147,6 +148,70 @@ def test_bad_points_exit_2(tmp_path, monkeypatch, points, expected):
     assert _files(tmp_path) == ["case.yaml"]
 
 
+GEAR_TEXT = (synthetic.CASES / "facegear_110.yaml").read_text()
+
+
+def test_every_problem_of_a_case_is_named_at_once(tmp_path):
+    """Five independent mistakes in four blocks: five lines, in file order, and no file written."""
+    text = (CASE_TEXT.replace("  load: 6.272", "  load: heavy")
+            .replace("  entrainment_speed: 0.6383", "  entrainment_speed: -1")
+            .replace("body_2: {elastic_modulus: 2.0e11, poisson_ratio: 0.3", "body_2: {elastic_modulus: 2.0e11, "
+                     "poisson_ratio: 0.7")
+            .replace("  rheology: newtonian", "  rheology: newtonion")
+            .replace("  grid: 257", "  grid: 100"))
+    result = _invoke("run", _case(tmp_path, text), "-o", tmp_path / "r.h5")
+    assert result.exit_code == 2 and "Traceback" not in result.stderr
+    lines = result.stderr.splitlines()
+    assert [line.split(":")[1].strip() for line in lines] == [
+        "contact.load", "contact.entrainment_speed", "materials.body_2.poisson_ratio", "lubricant.rheology",
+        "solver.grid"]
+    assert all(line.startswith("error: ") for line in lines)
+    assert "expected a finite number" in lines[0] and "expected a positive number" in lines[1]
+    assert _files(tmp_path) == ["case.yaml"]
+
+
+@pytest.mark.parametrize("kind, old, new, key, meant", [
+    ("gear", "  pinion_torque: 500.0", "  pinion_torqe: 500.0", "gear.pinion_torqe", "pinion_torque"),
+    ("contact", "  load: 6.272", "  laod: 6.272", "contact.laod", "load"),
+    ("contact", "lubricant:", "lubricnt:", "lubricnt", "lubricant"),
+])
+def test_a_misspelt_required_key_is_named_with_did_you_mean(tmp_path, kind, old, new, key, meant):
+    """Not '<meant> is missing', but the key written, with the one meant (issue 15)."""
+    text = (GEAR_TEXT if kind == "gear" else CASE_TEXT).replace(old, new, 1)
+    result = _invoke("validate", _case(tmp_path, text))
+    _assert_one_line_error(result.exit_code, result.stderr, result.stdout, key, f"did you mean '{meant}'?")
+    assert "required and missing" in result.stderr
+
+
+def test_a_yaml_syntax_error_names_its_line_and_the_parser_message(tmp_path):
+    text = CASE_TEXT.replace("  load: 6.272", "  load: 6.272\n\tentrainment_speed: 1.0")  # a tab indents
+    line = next(i for i, row in enumerate(text.splitlines(), 1) if row.startswith("\tentrainment_speed"))
+    result = _invoke("validate", _case(tmp_path, text))
+    _assert_one_line_error(result.exit_code, result.stderr, result.stdout, "(file)",
+                           f"syntax error at line {line}, column 1")
+    assert "found character '\\t' that cannot start any token" in result.stderr
+    assert "got 'entrainment_speed: 1.0'" in result.stderr  # the line, without its comment
+
+
+@pytest.mark.parametrize("kind, old, new, key, hint", [
+    ("contact", "inlet_temperature: 40.0", "inlet_temperature: 313", "lubricant.inlet_temperature", "write 39.85"),
+    ("gear", "pinion_torque: 500.0", "pinion_torque: 500000", "gear.pinion_torque", "N mm"),
+    ("gear", "pinion_speed: 3000.0", "pinion_speed: 3.0e5", "gear.pinion_speed", "rpm"),
+    ("contact", "viscosity: 0.04", "viscosity: 40", "lubricant.viscosity", "mPa s"),
+    ("contact", "entrainment_speed: 0.6383", "entrainment_speed: 638.3", "contact.entrainment_speed", "mm/s"),
+])
+def test_unusual_values_are_accepted_with_a_warning(tmp_path, kind, old, new, key, hint):
+    """313 degC is kelvin read as degC (313.15 K = 40 degC); a torque in N mm, a viscosity in mPa s, ..."""
+    base = GEAR_TEXT if kind == "gear" else CASE_TEXT
+    assert old in base
+    result = _invoke("validate", _case(tmp_path, base.replace(old, new, 1)))
+    assert result.exit_code == 0, result.stderr
+    warnings = result.stderr.splitlines()
+    assert len(warnings) == 1 and warnings[0].startswith(f"warning: {key}: ") and hint in warnings[0], warnings
+    assert result.stdout.startswith("ok: ")
+    assert _invoke("validate", _case(tmp_path, base)).stderr == ""  # the shipped cases: no warning
+
+
 def test_validate_prints_one_ok_line():
     result = _invoke("validate", synthetic.BALL_ON_DISC)
     assert result.exit_code == 0
@@ -192,7 +257,35 @@ def test_run_grid_and_points_reach_the_solver(tmp_path, monkeypatch, fake_solver
     assert settings.grid == 33 and point.name == "contact" and lubricant.viscosity == 0.04
     assert point.load == 6.272 and point.radius_x == 0.0127
     assert read_result(tmp_path / "ball_on_disc.h5").overrides == {"grid": 33, "points": ["contact"]}
-    assert "tehl run: ball_on_disc: contact on a 33x33 grid" in result.stderr
+    assert "tehl run: ball_on_disc: contact on a 33x33 grid, thermal off" in result.stderr
+
+
+@pytest.mark.parametrize("thermal", ["reduced", "full", "auto"])
+def test_run_thermal_overrides_the_case(tmp_path, monkeypatch, fake_solver, thermal):
+    monkeypatch.chdir(tmp_path)
+    result = _invoke("run", synthetic.BALL_ON_DISC, "--thermal", thermal)  # the case says thermal: off
+    assert result.exit_code == 0, result.output
+    (_, _, settings), = fake_solver.calls
+    assert settings.thermal == thermal
+    written = read_result(tmp_path / "ball_on_disc.h5")
+    assert written.overrides == {"thermal": thermal} and written.models["thermal"] == thermal
+    assert f"thermal {thermal}" in result.stderr.splitlines()[0]
+
+
+def test_run_rejects_an_unknown_thermal_model(tmp_path, monkeypatch, fake_solver):
+    monkeypatch.chdir(tmp_path)
+    result = _invoke("run", synthetic.BALL_ON_DISC, "--thermal", "warm")
+    _assert_one_line_error(result.exit_code, result.stderr, result.stdout, "--thermal", "off, reduced, full, auto")
+    assert fake_solver.calls == [] and _files(tmp_path) == []
+
+
+@pytest.mark.parametrize("command", ["run", "sweep", "validate", "contact", "info", "plot", "init"])
+def test_every_help_shows_examples(command):
+    result = _invoke(command, "--help")
+    assert result.exit_code == 0
+    examples = result.stdout.split("Example")[1].splitlines()[1:]
+    assert examples and all(line.strip().startswith("tehl ") for line in examples if line.strip())
+    assert any(f"tehl {command}" in line for line in examples)
 
 
 def test_not_converged_exits_3_and_writes_a_flagged_result(tmp_path, monkeypatch, fake_solver):
@@ -289,12 +382,35 @@ def test_info_json_gives_the_scalars_in_si(result_file):
 
 
 def test_info_table(result_file):
+    """Engineering units by default: h_c = 1.5e-7 m is 0.15 µm, p_hertz = 0.450 GPa is 450 MPa (a 81.6 µm = 0.0816
+    mm), the relative load error 2.5e-6 is 2.5e-4 %; --si gives the file's values."""
     result = _invoke("info", result_file)
     assert result.exit_code == 0
     lines = result.stdout.splitlines()
     assert lines[0].split() == ["case", "ball_on_disc"]
-    assert any(line.split() == ["h_c", "m", "1.5e-07"] for line in lines)
-    assert any(line.split() == ["converged", "yes"] for line in lines)
+    row = {line.split()[0]: line.split()[1:] for line in lines if line.strip()}
+    assert row["h_c"] == ["µm", "0.15"] and row["h_min"] == ["µm", "0.09"]
+    assert row["p_hertz"][0] == "MPa" and float(row["p_hertz"][1]) == pytest.approx(450, abs=0.5)
+    assert row["a"][0] == "mm" and float(row["a"][1]) == pytest.approx(0.0816, abs=1e-4)
+    assert row["load_error"] == ["%", "0.00025"] and row["error_estimate_h_c"] == ["%", "0.4"]
+    assert row["converged"] == ["yes"]
+    assert [line.split()[0] for line in lines if line.split()[1:2] == ["unit"]] == ["film", "pressure", "convergence"]
+    si = {line.split()[0]: line.split()[1:] for line in _invoke("info", result_file, "--si").stdout.splitlines()
+          if line.strip()}
+    assert si["h_c"] == ["m", "1.5e-07"] and si["load_error"] == ["1", "2.5e-06"]
+
+
+def test_info_shows_round_off_as_zero(tmp_path):
+    """A heat power of 1e-18 W next to one of 0.05 W is round-off (S3, pure rolling, in the default case)."""
+    run = synthetic.run_result()
+    point = run.points[0]
+    scalars = {**point.scalars, "steady_power_1": (1.1e-18, "W"), "steady_power_2": (0.05, "W"),
+               "dT_min": (-3e-9, "K")}
+    path = write_result(replace(run, points=(replace(point, scalars=scalars),)), tmp_path / "r.h5")
+    row = {line.split()[0]: line.split()[1:] for line in _invoke("info", path).stdout.splitlines() if line.strip()}
+    assert row["steady_power_1"] == ["W", "0"] and row["steady_power_2"] == ["W", "0.05"]
+    assert row["dT_min"] == ["K", "-3e-09"]  # alone of its unit in its table: no scale to be round-off of
+    assert _invoke("info", path, "--si").stdout.count("1.1e-18") == 1
 
 
 @pytest.mark.parametrize("content", [b"not hdf5", None])

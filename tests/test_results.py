@@ -283,3 +283,120 @@ def test_reader_reports_a_damaged_file(run, tmp_path, damage):
             h5.attrs["status"] = "fine"
     with pytest.raises(ResultFileError, match="damaged"):
         read_result(path)
+
+
+# ------------------------------------------------------------------ format 1.2: dimensions, descriptions, counts
+
+
+def test_xarray_opens_every_group_with_named_dimensions_and_coordinates(facegear_file):
+    """xarray's netCDF-4 reader (engine h5netcdf, a reader independent of ours) finds the dimension scales: fields
+    on (y, x) with the node coordinates, histories on their index, tables on their key column."""
+    xarray = pytest.importorskip("xarray")
+    pytest.importorskip("h5netcdf")
+    result = read_result(facegear_file)
+    for name, point in result.points.items():
+        with xarray.open_dataset(facegear_file, group=f"points/{name}", engine="h5netcdf") as ds:
+            assert ds["pressure"].dims == ("y", "x") and ds["temperature_mid"].dims == ("y", "x")
+            np.testing.assert_array_equal(ds["x"].values, point.axes["x"].values)
+            np.testing.assert_array_equal(ds["y"].values, point.axes["y"].values)
+            assert ds["x"].attrs["units"] == "m" and ds["pressure"].attrs["units"] == "Pa"
+            # the pressure peak sits on the centre line of the ellipse: y within one node of 0
+            peak = ds["pressure"].where(ds["pressure"] == ds["pressure"].max(), drop=True)
+            assert abs(float(peak["y"][0])) <= float(ds["y"].diff("y").max())
+            assert ds["residual_history"].dims == ("cycle",) and ds["level_h_c"].dims == ("level",)
+            assert ds["thermal_change_history"].dims == ("outer_iteration",)
+            assert ds.sizes["cycle"] == point.history["residual_history"].values.size
+    with xarray.open_dataset(facegear_file, group="heat", engine="h5netcdf") as heat:
+        assert list(heat["point"].values) == list(result.points)
+        assert heat["mu"].dims == ("point",)
+        assert float(heat["mu"].sel(point="S1")) == result.points["S1"].scalars["mu"]
+    with xarray.open_dataset(facegear_file, group="contact", engine="h5netcdf") as contact:
+        assert contact["p_h"].dims == ("s",) and contact["u1"].dims == ("s", "xy")
+        assert contact["contact_point"].dims == ("s", "xyz") and list(contact["xy"].values) == ["x", "y"]
+        entrainment = 0.5 * (contact["u1"] + contact["u2"])  # U_e = (u1 + u2)/2, by component
+        np.testing.assert_allclose(entrainment, contact["entrainment"], rtol=1e-12)
+
+
+def test_every_dataset_of_a_real_file_has_units_and_a_description(facegear_file):
+    missing = []
+
+    def visit(name: str, item) -> None:
+        if isinstance(item, h5py.Dataset):
+            units, description = item.attrs.get("units", ""), item.attrs.get("description", "")
+            if not (isinstance(units, str) and units.strip() and isinstance(description, str) and description.strip()):
+                missing.append(f"{name}: units {units!r}, description {description!r}")
+
+    with h5py.File(facegear_file) as h5:
+        h5.visititems(visit)
+        assert {"contact", "heat", "points"} <= set(h5)
+    assert missing == []
+
+
+def test_counts_are_stored_as_integers(facegear_file):
+    """The conftest run solves on --grid 65: 65 x 17 nodes, levels 2^k + 1 up to 65, 9 thermal layers (default)."""
+    with h5py.File(facegear_file) as h5:
+        attrs = h5["points/S1"].attrs
+        for key in ("iterations", "thermal_iterations", "grid", "grid_y", "coarsest_grid", "thermal_layers"):
+            assert attrs[key].dtype.kind == "i", key
+        assert (attrs["grid"], attrs["grid_y"], attrs["thermal_layers"]) == (65, 17, 9)
+        levels = h5["points/S1/level_nodes"][()]
+        assert levels.dtype.kind == "i" and levels[-1] == 65
+        assert all((n - 1) & (n - 2) == 0 for n in levels)  # n - 1 a power of two
+    point = read_result(facegear_file).points["S1"]
+    assert isinstance(point.scalars["iterations"], int) and point.scalars["iterations"] >= 1
+
+
+def test_tables_and_histories_without_a_shared_index_get_their_own(run, tmp_path):
+    """A table without its key column runs along `row`; a history whose length differs from the shared `cycle`
+    index gets an index of its own; a sweep table runs along its grids; its NaN-holding count column stays float."""
+    xarray = pytest.importorskip("xarray")
+    pytest.importorskip("h5netcdf")
+    point = run.points[0]
+    history = {**point.history, "load_error_history": Field(np.arange(3.0), "1", "relative load error per cycle")}
+    sweep = {"grid": Field(np.array([33.0, 65.0, 129.0]), "1", "nodes per side"),
+             "iterations": Field(np.array([12.0, np.nan, 14.0]), "1", "V-cycles on the finest grid")}
+    heat = {"mu": Field(np.array([0.05, 0.06]), "1", "friction coefficient")}
+    path = write_result(replace(_with_point(run, history=history), heat=heat, sweep=sweep), tmp_path / "r.h5")
+    with xarray.open_dataset(path, group="points/contact", engine="h5netcdf") as ds:
+        assert ds["residual_history"].dims == ("cycle",) and ds.sizes["cycle"] == synthetic.CYCLES
+        assert ds["load_error_history"].dims == ("load_error_history_index",)
+    with xarray.open_dataset(path, group="heat", engine="h5netcdf") as ds:
+        assert ds["mu"].dims == ("row",) and list(ds["row"].values) == [0, 1]
+    with xarray.open_dataset(path, group="sweep", engine="h5netcdf") as ds:
+        assert ds["iterations"].dims == ("grid",) and list(ds["grid"].values) == [33, 65, 129]
+        assert ds["grid"].dtype.kind == "i" and ds["iterations"].dtype.kind == "f"
+    result = read_result(path)
+    assert set(result.points["contact"].history) == {"residual_history", "load_error_history"}
+    assert set(result.heat) == {"mu"} and set(result.sweep) == {"grid", "iterations"}
+
+
+def test_table_columns_must_share_their_rows(run, tmp_path):
+    heat = {"mu": Field(np.array([0.05, 0.06]), "1", "friction"), "P": Field(np.array([1.0]), "W", "power")}
+    with pytest.raises(ValueError, match="different lengths"):
+        write_result(replace(run, heat=heat), tmp_path / "r.h5")
+    assert _files(tmp_path) == []
+
+
+def test_a_format_1_1_file_is_still_read(tmp_path):
+    """A file laid out as format 1.1 wrote it (no dimension scales, counts as floats), built here by hand."""
+    path = tmp_path / "old.h5"
+    with h5py.File(path, "w") as h5:
+        h5.attrs.update({"filetype": results.FILETYPE, "format_version": "1.1", "tehl_version": "0.1.0",
+                         "created": "2026-01-01T00:00:00+00:00", "case_name": "old", "case_yaml": "name: old\n",
+                         "status": "ok", "message": "", "warnings": "[]", "models": "{}", "overrides": "{}"})
+        point = h5.create_group("points/S1")
+        point.attrs.update({"h_c": 1.2e-6, "iterations": 34.0, "units": json.dumps({"h_c": "m", "iterations": "1"}),
+                            "converged": True, "outcome": "converged", "message": "", "models": "{}"})
+        for name, values, units, kind in (("x", np.linspace(-1e-3, 1e-3, 5), "m", "axis"),
+                                          ("y", np.linspace(-2e-3, 2e-3, 3), "m", "axis"),
+                                          ("pressure", np.ones((3, 5)), "Pa", "field"),
+                                          ("residual_history", np.array([1e-2, 1e-4]), "1", "history")):
+            point[name] = values
+            point[name].attrs.update({"units": units, "description": name, "kind": kind})
+        h5["heat/mu"] = np.array([0.05])
+        h5["heat/mu"].attrs.update({"units": "1", "description": "", "kind": "table"})
+        h5["heat"].attrs["units"] = "{}"
+    result = read_result(path)
+    assert result.format_version == "1.1" and result.points["S1"].scalars == {"h_c": 1.2e-6, "iterations": 34.0}
+    assert set(result.points["S1"].axes) == {"x", "y"} and result.points["S1"].fields["pressure"].values.shape == (3, 5)
+    assert result.heat["mu"].values.tolist() == [0.05]

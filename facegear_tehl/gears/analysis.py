@@ -62,6 +62,37 @@ PATH_UNITS = MappingProxyType(
         "transmission_error": "rad",
     }
 )
+PATH_DESCRIPTIONS = MappingProxyType(
+    {
+        "s": "path coordinate: pinion roll distance from the pitch position, positive toward the pinion tip",
+        "contact_point": "contact point (X, Y, Z) in the fixed frame",
+        "face_gear_radius": "radius of the contact point on the face gear",
+        "pinion_profile_radius": "involute profile radius of curvature of the pinion, rho_1",
+        "Rx": "reduced radius of curvature along the minor axis x of the contact ellipse",
+        "Ry": "reduced radius of curvature along the major axis y of the contact ellipse",
+        "pinion_curvature": "pinion curvature along its profile, 1/rho_1 (convex positive; 0 along the axis)",
+        "face_gear_curvature_1": "larger principal curvature of the face gear (convex positive)",
+        "face_gear_curvature_2": "smaller principal curvature of the face gear (convex positive)",
+        "ellipse_angle": "major axis of the contact ellipse from the pinion axis, positive toward the pinion tip",
+        "load_share": "share of the normal load carried by this tooth pair",
+        "load": "normal load on this tooth pair",
+        "u1": "pinion surface velocity relative to the contact, (x, y) of the contact frame",
+        "u2": "face-gear surface velocity relative to the contact, (x, y) of the contact frame",
+        "entrainment": "entrainment velocity U_e = (u1 + u2)/2, (x, y) of the contact frame",
+        "sliding": "sliding velocity V_s = u1 - u2, (x, y) of the contact frame",
+        "entrainment_speed": "entrainment speed |U_e|",
+        "sliding_speed": "sliding speed |V_s|",
+        "srr": "slide-to-roll ratio |V_s|/|U_e|, signed by V_s . U_e (positive: the pinion surface is faster)",
+        "entrainment_angle": "angle psi_e of the entrainment velocity from the minor (x) axis",
+        "a": "Hertz semi-axis along the major axis y",
+        "b": "Hertz semi-axis along the minor axis x",
+        "ellipticity": "Hertz ellipticity a/b",
+        "p_h": "maximum Hertz pressure",
+        "transmission_error": "transmission error -(phi_2 - phi_1 N1/N2), positive when the face gear leads its ideal "
+                              "position",
+    }
+)
+"""A one-line description of each quantity of PATH_UNITS (the result file's /contact datasets)."""
 
 
 @dataclass(frozen=True)

@@ -76,6 +76,9 @@ class GearSpec:
         return self.points
 
 
+# Ranges of real face gear drives: a value outside is accepted with a warning (a unit mistaken, most likely).
+USUAL_PINION_SPEED = (1.0, 1e5)  # rpm: a slow hand-driven drive up to beyond the 20000-30000 rpm of helicopter inputs
+USUAL_PINION_TORQUE = (0.1, 1e5)  # N m: instrument drives up to 10 times helicopter face-gear pinions (a few kN m)
 _GEAR = defaults(GearSpec)  # an absent (or null) key takes the default of its field
 _MISALIGNMENT = defaults(Misalignment)
 
@@ -95,8 +98,10 @@ def parse_gear_block(block: Block) -> GearSpec:
     inner = block.number("inner_radius", positive=True, unit="m")
     outer = block.number("outer_radius", positive=True, unit="m")
     check(outer > inner, block.key_path("outer_radius"), outer, f"more than inner_radius = {inner:g} m")
-    speed = block.number("pinion_speed", positive=True, low=1e-3, high=1e6, unit="rpm")
-    torque = block.number("pinion_torque", positive=True, low=1e-3, high=1e7, unit="N m")
+    speed = block.number("pinion_speed", positive=True, low=1e-3, high=1e6, unit="rpm", usual=USUAL_PINION_SPEED,
+                         hint="the key is in rpm (a value in rad/s is about 10 times smaller)")
+    torque = block.number("pinion_torque", positive=True, low=1e-3, high=1e7, unit="N m", usual=USUAL_PINION_TORQUE,
+                          hint="the key is in N m (a value in N mm is 1000 times larger)")
     points = _points(block)
     count = points if isinstance(points, int) else len(points)
     load_sharing = _load_sharing(block, count)
