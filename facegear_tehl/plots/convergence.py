@@ -108,9 +108,9 @@ def _tolerances(ax: Axes, points: Sequence[PointResult], key: str, solver: Solve
                 rise = max(float(p.scalars["dT_max"]), MIN_RISE)
                 for fraction, style in ((solver.thermal_tolerance, "--"), (THERMAL_FLOOR_FRACTION, ":")):
                     ax.axhline(fraction * rise, color=line.get_color(), linestyle=style, linewidth=0.8)
-        rise = r"$\Delta T_{max}$"
-        ax.plot([], [], "k--", linewidth=0.8, label=f"tolerance {solver.thermal_tolerance:.0e} {rise}")
-        ax.plot([], [], "k:", linewidth=0.8, label=f"settled-floor bound {THERMAL_FLOOR_FRACTION:.0e} {rise}")
+        symbol = r"$\Delta T_{max}$"
+        ax.plot([], [], "k--", linewidth=0.8, label=f"tolerance {solver.thermal_tolerance:.0e} {symbol}")
+        ax.plot([], [], "k:", linewidth=0.8, label=f"settled-floor bound {THERMAL_FLOOR_FRACTION:.0e} {symbol}")
     legend(ax, fontsize="small", ncols=2)
 
 
