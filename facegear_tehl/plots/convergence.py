@@ -82,7 +82,8 @@ def _history_panel(ax: Axes, points: Sequence[PointResult], key: str) -> None:
     ax.set_title(first.description or name, fontsize="medium", wrap=True)
     ax.set_xlabel("outer iteration" if "outer iteration" in first.description else "cycle")
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))
-    ax.grid(alpha=0.3, which="both")
+    ax.yaxis.set_minor_locator(NullLocator())  # decades suffice; minor ticks of 5 log panels cost a second
+    ax.grid(alpha=0.3)
     legend(ax, fontsize="small", ncols=2)
 
 

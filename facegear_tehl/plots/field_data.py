@@ -17,7 +17,7 @@ from facegear_tehl.plots.common import Output, body_names
 from facegear_tehl.results import PointResult, Result
 from facegear_tehl.units import Unit, display
 
-FILM_COLOUR_LIMIT = 1.6  # film maps show h up to this multiple of h_c (the inlet gap is 20-100 times larger)
+FILM_COLOUR_LIMIT = 1.6  # film maps show h up to this multiple of h_c (at the domain edge h is 20-70 times h_c)
 SIGNED_CMAP = "RdBu_r"  # temperature rises and fields of both signs: blue below zero, white at zero, red above
 # A field whose largest |value| is below this fraction of the largest |value| of the point's fields in the same
 # units is round-off of zero (e.g. the frictional heat fluxes mu F |v_s| at the pitch point, where |v_s| is

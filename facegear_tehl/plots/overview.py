@@ -56,6 +56,10 @@ def overview_figure(result: Result, rows: Sequence[tuple[PointResult, dict[str, 
             ax.set_axis_off()
     for ax, (point, _) in zip(axes[:, 0], rows):
         ax.set_ylabel(f"{point.name}\n$y/a$")
+    for ax in axes[:-1, : len(columns)].ravel():  # the maps share their Hertzian axes: tick labels outside only
+        ax.tick_params(labelbottom=False)
+    for ax in axes[:, 1: len(columns)].ravel():
+        ax.tick_params(labelleft=False)
     for ax in axes[-1, : len(columns)]:
         ax.set_xlabel("$x/b$ (inlet −, outlet +)")
     fig.suptitle(title(result, "pressure, film and temperature rise at every point"))
