@@ -62,7 +62,8 @@ def overview_figure(result: Result, rows: Sequence[tuple[PointResult, dict[str, 
         ax.tick_params(labelleft=False)
     for ax in axes[-1, : len(columns)]:
         ax.set_xlabel("$x/b$ (inlet −, outlet +)")
-    fig.suptitle(title(result, "pressure, film and temperature rise at every point"))
+    subject = "pressure, film and temperature rise" if "temperature_mid" in columns else "pressure and film"
+    fig.suptitle(title(result, f"{subject} at every point"))
     return fig
 
 
