@@ -292,8 +292,9 @@ Examples:
   tehl plot facegear_110.h5 --what fields --point S1,S3 --format pdf
   tehl plot facegear_110.h5 --what trends,heat -o figures""")
 @click.argument("result_file", metavar="RESULT")
-@click.option("--what", default="all", show_default=True,
-              help="Figure types, comma-separated: all, fields, trends, friction, heat, contact, convergence.")
+@click.option("--what", default="default", show_default=True,
+              help="Figure types, comma-separated: default (centreline, overview, trends, friction, heat, contact, "
+                   "convergence), all, or any of those and maps, surfaces (a file per point and field).")
 @click.option("--point", "points", help="Points whose fields and convergence are drawn, comma-separated; default all.")
 @click.option("-o", "--output", help="Folder for the figures (default: <RESULT name>_plots next to RESULT).")
 @click.option("--format", "fmt", default="png", show_default=True, help="png | pdf | svg.")

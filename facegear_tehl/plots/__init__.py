@@ -1,10 +1,13 @@
-"""Figures from a result file: oil-film fields, trends over the meshing points, friction, heat budget,
-the face gear contact path and convergence (matplotlib; the seed paper's figure numbers in the docstrings).
+"""Figures from a result file: the centre line of each point, an overview sheet of the film maps, trends
+over the meshing points, friction, heat budget, the face gear contact path and convergence by default;
+contour maps and 3-D surfaces of every field on request (matplotlib; the seed paper's figure numbers in
+the docstrings).
 
 Everything is read through `results.read_result`; nothing is solved again. `plot_result` draws the figure
 types asked for and reports the files written and, one line each, what it had no data for. One module per
-figure family: `fields`, `trends`, `friction`, `heat`, `contact`, `convergence`; `common` and `over_points`
-hold what they share. Values are shown in the display units of `facegear_tehl.units`.
+figure family: `centreline`, `overview`, `maps`, `surfaces`, `trends`, `friction`, `heat`, `contact`,
+`convergence`; `common`, `field_data`, `over_points` and `case_values` hold what they share. Values are
+shown in the display units of `facegear_tehl.units`, temperatures as the rise over the inlet ΔT in K.
 
 Figures are `matplotlib.figure.Figure` objects rendered by the Agg canvas: no display, no pyplot state.
 Fields are drawn in Hertzian coordinates x/b, y/a, where the Hertz ellipse is the unit circle: face gear
@@ -16,19 +19,28 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
+from facegear_tehl.plots.case_values import case_values
+from facegear_tehl.plots.centreline import draw_centreline
 from facegear_tehl.plots.common import Output, PlotReport
 from facegear_tehl.plots.contact import draw_contact
 from facegear_tehl.plots.convergence import draw_convergence
-from facegear_tehl.plots.fields import draw_fields
+from facegear_tehl.plots.field_data import point_fields
 from facegear_tehl.plots.friction import draw_friction
 from facegear_tehl.plots.heat import draw_heat
+from facegear_tehl.plots.maps import draw_maps
+from facegear_tehl.plots.overview import draw_overview
+from facegear_tehl.plots.surfaces import draw_surfaces
 from facegear_tehl.plots.trends import draw_trends
 from facegear_tehl.results import Result, read_result
 from facegear_tehl.schema import CaseError
 
-__all__ = ["FIGURE_TYPES", "FORMATS", "PlotReport", "check_options", "figure_types", "plot_file", "plot_result"]
+__all__ = ["DEFAULT_TYPES", "FIGURE_TYPES", "FORMATS", "PlotReport", "check_options", "figure_types", "plot_file",
+           "plot_result"]
 
-FIGURE_TYPES = ("fields", "trends", "friction", "heat", "contact", "convergence")
+DEFAULT_TYPES = ("centreline", "overview", "trends", "friction", "heat", "contact", "convergence")
+FIGURE_TYPES = (*DEFAULT_TYPES, "maps", "surfaces")  # maps and surfaces (a file per point and field) on request
+FIELD_TYPES = ("centreline", "overview", "maps", "surfaces")  # the types drawn from the point fields
+_EXPECTED = "figure types among: default, all, " + ", ".join(FIGURE_TYPES)
 FORMATS = ("png", "pdf", "svg")
 
 
@@ -40,7 +52,7 @@ def plot_file(path: str | Path, folder: str | Path, **options) -> PlotReport:
 def plot_result(
     result: Result,
     folder: str | Path,
-    what: Sequence[str] = FIGURE_TYPES,
+    what: Sequence[str] = DEFAULT_TYPES,
     points: Sequence[str] | None = None,
     fmt: str = "png",
     dpi: int = 150,
@@ -53,13 +65,18 @@ def plot_result(
     check_options(result, what, points, fmt, dpi)
     out = Output(Path(folder), fmt, dpi, PlotReport())
     selected = [result.points[name] for name in (points or result.points)]
+    case = case_values(result)
+    rows = point_fields(result, selected, case, out) if set(FIELD_TYPES) & set(what) else []
     drawers: dict[str, Callable[[], None]] = {
-        "fields": lambda: draw_fields(result, selected, out),
+        "centreline": lambda: draw_centreline(result, rows, out),
+        "overview": lambda: draw_overview(result, rows, out),
+        "maps": lambda: draw_maps(result, rows, out),
+        "surfaces": lambda: draw_surfaces(result, rows, out),
         "trends": lambda: draw_trends(result, out),
         "friction": lambda: draw_friction(result, out),
         "heat": lambda: draw_heat(result, out),
         "contact": lambda: draw_contact(result, out),
-        "convergence": lambda: draw_convergence(result, selected, out),
+        "convergence": lambda: draw_convergence(result, selected, case, out),
     }
     for name in FIGURE_TYPES:
         if name in what:
@@ -68,18 +85,21 @@ def plot_result(
 
 
 def figure_types(option: str) -> tuple[str, ...]:
-    """The figure types of a comma-separated --what ('all' for every type); CaseError for an unknown one."""
+    """The figure types of a comma-separated --what ('default' for DEFAULT_TYPES, 'all' for every type);
+    CaseError for an unknown one."""
     names = [name.strip() for name in option.split(",") if name.strip()]
     if not names:
-        raise CaseError("--what", option, "figure types among: all, " + ", ".join(FIGURE_TYPES))
-    return FIGURE_TYPES if "all" in names else tuple(dict.fromkeys(names))
+        raise CaseError("--what", option, _EXPECTED)
+    if "all" in names:
+        return FIGURE_TYPES
+    return tuple(dict.fromkeys(n for name in names for n in (DEFAULT_TYPES if name == "default" else (name,))))
 
 
 def check_options(result: Result, what: Sequence[str], points: Sequence[str] | None, fmt: str, dpi: int) -> None:
     """CaseError for an unknown figure type, point name or format, or a non-positive dpi."""
     for name in what:
         if name not in FIGURE_TYPES:
-            raise CaseError("--what", name, "figure types among: all, " + ", ".join(FIGURE_TYPES))
+            raise CaseError("--what", name, _EXPECTED)
     for name in points or ():
         if name not in result.points:
             raise CaseError("--point", name, "point names of the file among: " + ", ".join(result.points))

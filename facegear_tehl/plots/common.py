@@ -8,8 +8,11 @@ from pathlib import Path
 
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 
 from facegear_tehl.results import PointResult, Result
+
+PNG_COMPRESSION = 3  # zlib level: 55-75 % of the encoding time of the default 6, files 5-15 % larger
 
 
 @dataclass
@@ -32,7 +35,8 @@ class Output:
     def save(self, figure: Figure, stem: str) -> None:
         path = self.folder / f"{stem}.{self.fmt}"
         self.folder.mkdir(parents=True, exist_ok=True)
-        figure.savefig(path, dpi=self.dpi)
+        options = {"pil_kwargs": {"compress_level": PNG_COMPRESSION}} if self.fmt == "png" else {}
+        figure.savefig(path, dpi=self.dpi, **options)
         self.report.written.append(path)
 
     def skip(self, what: str, reason: str) -> None:
@@ -55,6 +59,19 @@ def legend(ax: Axes, **options) -> None:
     """A legend when the axes hold labelled artists."""
     if ax.get_legend_handles_labels()[0]:
         ax.legend(**options)
+
+
+def legend_outside(ax: Axes, handles: list | None = None) -> None:
+    """A legend to the right of the axes (never over the data), when there is something to list."""
+    handles = handles if handles is not None else ax.get_legend_handles_labels()[0]
+    handles = sorted(handles, key=_is_note)  # notes (entries without a line or marker) after the data
+    if handles:
+        ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0,
+                  fontsize="small")
+
+
+def _is_note(handle: object) -> bool:
+    return isinstance(handle, Line2D) and handle.get_linestyle() == "None" and handle.get_marker() in ("None", " ", "")
 
 
 def body_names(result: Result) -> tuple[str, str]:

@@ -112,9 +112,9 @@ def _curvature_figure(result: Result) -> Figure:
     ax.set_ylabel("curvature (1/m)")
     ax.set_title("principal curvatures (convex +)", fontsize="medium", pad=14)
     ax.legend(fontsize="small", ncols=2)
-    _curve(axes[1], s, _column(result, "Rx", MILLIMETRE), f"R_x ({MILLIMETRE.label})",
+    _curve(axes[1], s, _column(result, "Rx", MILLIMETRE), f"$R_x$ ({MILLIMETRE.label})",
            "reduced radius along the minor axis", "tab:purple")
-    _curve(axes[2], s, _column(result, "Ry"), "R_y (m)", "reduced radius along the major axis", "tab:brown")
+    _curve(axes[2], s, _column(result, "Ry"), "$R_y$ (m)", "reduced radius along the major axis", "tab:brown")
     _finish_path(axes, result)
     return fig
 
@@ -127,13 +127,13 @@ def _speed_figure(result: Result) -> Figure:
     ax = axes[0]
     ax.plot(s, np.hypot(*_column(result, "u1").T), label=f"{body_1} surface |u₁|")
     ax.plot(s, np.hypot(*_column(result, "u2").T), label=f"{body_2} surface |u₂|")
-    ax.plot(s, _column(result, "entrainment_speed"), linewidth=2, label="rolling (entrainment) |U_e|")
-    ax.plot(s, _column(result, "sliding_speed"), linewidth=2, label="sliding |V_s|")
+    ax.plot(s, _column(result, "entrainment_speed"), linewidth=2, label="rolling (entrainment) $|U_e|$")
+    ax.plot(s, _column(result, "sliding_speed"), linewidth=2, label="sliding $|V_s|$")
     ax.set_ylabel("speed (m/s)")
     ax.set_title("speeds relative to the contact point", fontsize="medium", pad=14)
-    _curve(axes[1], s, _column(result, "srr"), "SRR (–)", "slide-to-roll ratio, signed by V_s · U_e", "tab:red")
+    _curve(axes[1], s, _column(result, "srr"), "SRR (–)", r"slide-to-roll ratio, signed by $V_s \cdot U_e$", "tab:red")
     axes[1].axhline(0.0, color="black", linewidth=0.6)
-    _curve(axes[2], s, _column(result, "entrainment_angle"), "ψ (deg)", "entrainment angle to the minor axis x",
+    _curve(axes[2], s, _column(result, "entrainment_angle"), r"$\psi$ (deg)", "entrainment angle to the minor axis x",
            "tab:green")
     _finish_path(axes, result)
     return fig
@@ -149,13 +149,13 @@ def _load_figure(result: Result) -> Figure:
         share = axes[0].secondary_yaxis("right", functions=(lambda f: f / total, lambda k: k * total))
         share.set_ylabel("load share (–)")
     pressure = display("Pa")
-    _curve(axes[1], s, _column(result, "p_h", pressure), f"p_h ({pressure.label})", "maximum Hertz pressure",
+    _curve(axes[1], s, _column(result, "p_h", pressure), f"$p_h$ ({pressure.label})", "maximum Hertz pressure",
            "tab:red")
-    axes[2].plot(s, _column(result, "a", MILLIMETRE), label="a, major semi-axis (left)")
-    axes[2].set_ylabel(f"a ({MILLIMETRE.label})")
+    axes[2].plot(s, _column(result, "a", MILLIMETRE), label="$a$, major semi-axis (left)")
+    axes[2].set_ylabel(f"$a$ ({MILLIMETRE.label})")
     right = axes[2].twinx()
-    right.plot(s, _column(result, "b", MILLIMETRE), color="tab:orange", label="b, minor semi-axis (right)")
-    right.set_ylabel(f"b ({MILLIMETRE.label})")
+    right.plot(s, _column(result, "b", MILLIMETRE), color="tab:orange", label="$b$, minor semi-axis (right)")
+    right.set_ylabel(f"$b$ ({MILLIMETRE.label})")
     axes[2].set_title("Hertz semi-axes", fontsize="medium")
     axes[2].legend(handles=[*axes[2].get_lines(), *right.get_lines()], fontsize="small", loc="lower center")
     _mark_points(axes, result)

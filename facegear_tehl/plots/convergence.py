@@ -11,18 +11,22 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FormatStrFormatter, LogLocator, MaxNLocator, NullFormatter, NullLocator
 import numpy as np
 
+from facegear_tehl.ehl.solve import FLOOR_BAND, MIN_RISE, THERMAL_FLOOR_FRACTION
+from facegear_tehl.plots.case_values import CaseValues
 from facegear_tehl.plots.common import Output, figure, legend, title
 from facegear_tehl.results import PointResult, Result
+from facegear_tehl.settings import SolverSettings
 from facegear_tehl.solution import Field
 from facegear_tehl.units import PERCENT, display
 
 
-def draw_convergence(result: Result, points: Sequence[PointResult], out: Output) -> None:
-    """Per-cycle histories of every point and the film on the multigrid levels; the /sweep table if any."""
+def draw_convergence(result: Result, points: Sequence[PointResult], case: CaseValues | None, out: Output) -> None:
+    """Per-cycle histories of every point with the tolerances, the film on the multigrid levels; the /sweep
+    table if any."""
     histories = list(dict.fromkeys(k for p in points for k in p.history if k.endswith("_history")))
     levels = [p for p in points if {"level_nodes", "level_h_c"} <= p.history.keys()]
     if histories or levels:
-        out.save(_convergence_figure(result, points, histories, levels), "convergence")
+        out.save(_convergence_figure(result, points, histories, levels, case), "convergence")
     else:
         out.skip("convergence", "no per-cycle histories in the file")
     sweep = result.sweep
@@ -35,7 +39,7 @@ def draw_convergence(result: Result, points: Sequence[PointResult], out: Output)
 
 
 def _convergence_figure(result: Result, points: Sequence[PointResult], histories: Sequence[str],
-                        levels: Sequence[PointResult]) -> Figure:
+                        levels: Sequence[PointResult], case: CaseValues | None) -> Figure:
     """One panel per history, then the levels panel, two columns."""
     count = len(histories) + bool(levels)
     columns = 2 if count > 1 else 1
@@ -44,6 +48,8 @@ def _convergence_figure(result: Result, points: Sequence[PointResult], histories
     axes = fig.subplots(rows, columns, squeeze=False).ravel()
     for ax, key in zip(axes, histories):
         _history_panel(ax, points, key)
+        if case is not None:
+            _tolerances(ax, points, key, case.solver)
     if levels:
         _levels_panel(axes[len(histories)], levels)
     for ax in axes[count:]:
@@ -52,12 +58,16 @@ def _convergence_figure(result: Result, points: Sequence[PointResult], histories
     return fig
 
 
+_NAMES = {"thermal_h_c_history": "$h_c$", "thermal_change_history": "temperature change",
+          "viscosity_change_history": r"change of ln($\eta^*/\eta$)"}
+
+
 def _history_panel(ax: Axes, points: Sequence[PointResult], key: str) -> None:
     """One per-cycle history of every point: errors and changes as magnitudes on a log axis, films in µm."""
     first = next(p.history[key] for p in points if key in p.history)
     film = first.units == "m"
     shown = display(first.units)
-    name = key.removesuffix("_history").replace("_", " ")
+    name = _NAMES.get(key, key.removesuffix("_history").replace("_", " "))
     for p in points:
         if key in p.history:
             values = np.asarray(p.history[key].values, dtype=float)
@@ -72,7 +82,36 @@ def _history_panel(ax: Axes, points: Sequence[PointResult], key: str) -> None:
     ax.set_title(first.description or name, fontsize="medium", wrap=True)
     ax.set_xlabel("outer iteration" if "outer iteration" in first.description else "cycle")
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))
-    ax.grid(alpha=0.3, which="both")
+    ax.yaxis.set_minor_locator(NullLocator())  # decades suffice; minor ticks of 5 log panels cost a second
+    ax.grid(alpha=0.3)
+    legend(ax, fontsize="small", ncols=2)
+
+
+def _tolerances(ax: Axes, points: Sequence[PointResult], key: str, solver: SolverSettings) -> None:
+    """The tolerance a history is judged by (ehl.solve): the pressure change and the load error below their
+    tolerances, or the pressure change settled below FLOOR_BAND times it; the temperature change per outer
+    iteration below thermal_tolerance times the rise (at least MIN_RISE), or settled below THERMAL_FLOOR_FRACTION
+    of it, lines per point in its colour."""
+    if key == "pressure_change_history":
+        ax.axhline(solver.tolerance, color="black", linestyle="--", linewidth=1.0,
+                   label=f"tolerance {solver.tolerance:.0e}")
+        ax.axhline(FLOOR_BAND * solver.tolerance, color="black", linestyle=":", linewidth=1.0,
+                   label=f"settled-floor bound {FLOOR_BAND * solver.tolerance:.0e}")
+    elif key == "load_error_history":
+        ax.axhline(solver.load_tolerance, color="black", linestyle="--", linewidth=1.0,
+                   label=f"tolerance {solver.load_tolerance:.0e}")
+    elif key == "viscosity_change_history":
+        ax.axhline(solver.thermal_tolerance, color="black", linestyle="--", linewidth=1.0,
+                   label=f"tolerance {solver.thermal_tolerance:.0e}")
+    elif key == "thermal_change_history":
+        for line, p in zip(ax.get_lines(), [p for p in points if key in p.history]):
+            if "dT_max" in p.scalars:
+                rise = max(float(p.scalars["dT_max"]), MIN_RISE)
+                for fraction, style in ((solver.thermal_tolerance, "--"), (THERMAL_FLOOR_FRACTION, ":")):
+                    ax.axhline(fraction * rise, color=line.get_color(), linestyle=style, linewidth=0.8)
+        symbol = r"$\Delta T_{max}$"
+        ax.plot([], [], "k--", linewidth=0.8, label=f"tolerance {solver.thermal_tolerance:.0e} {symbol}")
+        ax.plot([], [], "k:", linewidth=0.8, label=f"settled-floor bound {THERMAL_FLOOR_FRACTION:.0e} {symbol}")
     legend(ax, fontsize="small", ncols=2)
 
 
@@ -89,7 +128,7 @@ def _levels_panel(ax: Axes, points: Sequence[PointResult]) -> None:
     ax.set_title(points[0].history["level_h_c"].description or "central film on the multigrid levels",
                  fontsize="medium", wrap=True)
     ax.set_xlabel("nodes per side")
-    ax.set_ylabel(f"h_c / h_c(finest) − 1 ({PERCENT.label})")
+    ax.set_ylabel(f"$h_c / h_c$(finest) − 1 ({PERCENT.label})")
     ax.grid(alpha=0.3)
     legend(ax, fontsize="small", ncols=2)
 

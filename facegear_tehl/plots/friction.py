@@ -2,13 +2,21 @@
 
 from __future__ import annotations
 
-from facegear_tehl.plots.common import Output, figure, legend, title
-from facegear_tehl.plots.over_points import SWEEP_FILE, not_converged_note, per_point, plot_series, point_axis
+from facegear_tehl.plots.common import Output, figure, legend_outside, title
+from facegear_tehl.plots.over_points import (
+    SWEEP_FILE,
+    jump_note,
+    not_converged_note,
+    per_point,
+    plot_series,
+    point_axis,
+    relative_errors,
+)
 from facegear_tehl.results import Result
 
 # Friction coefficients: scalar or /heat column name -> legend label.
-_FRICTION_LABELS = {"mu": "Ree–Eyring (thermal EHL)", "mu_xu": "Xu et al. (2007), empirical",
-                    "mu_iso": "ISO/TR 14179-2"}
+_FRICTION_LABELS = {"mu": r"$\mu$ of the solved film (error bars: the solver's estimate)",
+                    "mu_xu": r"$\mu$, Xu et al. (2007), empirical"}
 
 
 def _friction_keys(result: Result) -> list[str]:
@@ -32,15 +40,17 @@ def draw_friction(result: Result, out: Output) -> None:
     series = {key: per_point(result, key) for key in keys}
     names = [n for n in dict.fromkeys(n for values in series.values() for n in values)]
     positions, label_axis = point_axis(result, names)
-    fig = figure(height=4.5)
+    fig = figure(width=8.5, height=4.2)
     ax = fig.add_subplot()
     for key, values in series.items():
-        plot_series(ax, result, positions, values, _FRICTION_LABELS.get(key, key))
+        plot_series(ax, result, positions, values, _FRICTION_LABELS.get(key, key),
+                    errors=relative_errors(result, key, values))
     not_converged_note(ax, result)
-    ax.set_ylabel("friction coefficient μ (–)")
+    jump_note(ax, result, names)
+    ax.set_ylabel(r"friction coefficient $\mu$ (–)")
     ax.set_ylim(bottom=0.0)
     ax.grid(alpha=0.3)
-    legend(ax)
+    legend_outside(ax)
     label_axis(ax)
     ax.set_title(title(result, "friction coefficient over the meshing points"))
     out.save(fig, "friction")

@@ -1,5 +1,6 @@
-"""The heat budget per meshing point: frictional heat power per gear and its steady-state value (Fig. 17),
-frictional heat and heat absorbed by the oil film (Fig. 20, 21)."""
+"""The heat budget per meshing point on linear axes: frictional heat power per gear and its steady-state
+value (Fig. 17 of the seed paper), frictional heat and heat held by the oil film (Fig. 20, 21); columns that
+are zero to round-off at every point are left out with one line."""
 
 from __future__ import annotations
 
@@ -8,23 +9,50 @@ from collections.abc import Mapping, Sequence
 from matplotlib.axes import Axes
 import numpy as np
 
-from facegear_tehl.plots.common import Output, body_names, figure, legend, title
+from facegear_tehl.plots.common import Output, body_names, figure, legend_outside, title
+from facegear_tehl.plots.field_data import round_off_names
 from facegear_tehl.plots.over_points import heat_point_names
 from facegear_tehl.results import Result
+from facegear_tehl.units import display
 
 
-def _heat_columns(result: Result, units: str) -> dict[str, np.ndarray]:
-    """The /heat columns in `units`, by name."""
-    return {name: np.asarray(c.values, dtype=float) for name, c in result.heat.items() if c.units == units}
+def _labels(result: Result) -> dict[str, str]:
+    """Legend labels of the /heat columns the heat budget writes."""
+    body_1, body_2 = body_names(result)
+    return {
+        "friction_power": r"$P = \mu F |v_s|$, both bodies",
+        "friction_power_1": rf"$\gamma_1 P$ into the {body_1}",
+        "friction_power_2": rf"$\gamma_2 P$ into the {body_2}",
+        "dissipated_power": "$P_{film}$: film dissipation, whole domain",
+        "dissipated_power_ellipse": "$P_{film}$ in the Hertz ellipse",
+        "steady_power_1": f"$P_{{ss,1}}$, {body_1}",
+        "steady_power_2": f"$P_{{ss,2}}$, {body_2}",
+        "frictional_heat": "$Q_f$: film dissipation, whole domain",
+        "frictional_heat_ellipse": "$Q_{f,ellipse}$: film dissipation in the Hertz ellipse",
+        "frictional_heat_seed": r"$Q_{f,seed} = \mu F |v_s| t_c$ (seed paper)",
+        "oil_film_heat": "$Q_{oil}$: held by the oil film in the Hertz ellipse",
+        "oil_film_heat_domain": "$Q_{oil}$: held by the oil film, whole domain",
+    }
 
 
 def _column_label(result: Result, name: str) -> str:
-    """'friction_power_1' -> 'friction power, pinion' (body 1/2 of a plain contact)."""
-    body_1, body_2 = body_names(result)
-    for suffix, body in (("_1", body_1), ("_2", body_2)):
+    """The label of a /heat column; 'x_y_1' -> 'x y, pinion' for a column the heat budget does not write."""
+    labels = _labels(result)
+    if name in labels:
+        return labels[name]
+    for suffix, body in zip(("_1", "_2"), body_names(result)):
         if name.endswith(suffix):
             return f"{name[: -len(suffix)].replace('_', ' ')}, {body}"
     return name.replace("_", " ")
+
+
+def _heat_columns(result: Result, units: str, out: Output) -> dict[str, np.ndarray]:
+    """The /heat columns in `units` that are not zero to round-off at every point (one line for those)."""
+    columns = {name: c for name, c in result.heat.items() if c.units == units}
+    zero = round_off_names(columns)
+    if zero:
+        out.skip(f"heat {', '.join(zero)}", "zero to round-off at every point")
+    return {name: np.asarray(c.values, dtype=float) for name, c in columns.items() if name not in zero}
 
 
 def draw_heat(result: Result, out: Output) -> None:
@@ -33,65 +61,45 @@ def draw_heat(result: Result, out: Output) -> None:
         out.skip("heat", "no /heat table in the file (written by the heat budget)")
         return
     names = heat_point_names(result)
-    powers = _heat_columns(result, "W")
+    powers = _heat_columns(result, "W", out)
     if powers:
         panels = [
             ("instantaneous frictional heat power", {k: v for k, v in powers.items() if "steady" not in k}),
-            ("steady-state frictional heat power", {k: v for k, v in powers.items() if "steady" in k}),
+            ("steady-state frictional heat power (averaged over a revolution)",
+             {k: v for k, v in powers.items() if "steady" in k}),
         ]
         panels = [(panel_title, columns) for panel_title, columns in panels if columns]
-        fig = figure(height=2.8 * len(panels) + 0.8)
+        fig = figure(width=9.0, height=2.8 * len(panels) + 0.8)
         axes = fig.subplots(len(panels), 1, sharex=True, squeeze=False)[:, 0]
         for ax, (panel_title, columns) in zip(axes, panels):
-            _bars(ax, result, names, columns, log=False)
-            ax.set_title(panel_title)
+            _bars(ax, result, names, columns)
+            ax.set_title(panel_title, fontsize="medium")
             ax.set_ylabel("heat power (W)")
         axes[-1].set_xlabel("meshing point")
         fig.suptitle(title(result, "frictional heat power"))
         out.save(fig, "heat_power")
     else:
         out.skip("heat power", "no heat power columns (units W) in /heat")
-    energies = {k: v for k, v in _heat_columns(result, "J").items() if np.any(v > 0.0)}
+    energies = _heat_columns(result, "J", out)
     if not energies:
         out.skip("heat energy", "no heat columns (units J) in /heat")
         return
-    fig = figure(height=4.5)
+    unit = display("J")
+    fig = figure(width=9.0, height=4.2)
     ax = fig.add_subplot()
-    _bars(ax, result, names, energies, log=True)
-    _annotate_oil_share(ax, energies)
-    ax.set_ylabel("heat per meshing (J, log scale)")
+    _bars(ax, result, names, {k: unit(v) for k, v in energies.items()})
+    ax.set_ylabel(f"heat per meshing ({unit.label})")
     ax.set_xlabel("meshing point")
-    ax.set_title(title(result, "frictional heat and heat absorbed by the oil film"))
+    ax.set_title(title(result, "frictional heat and heat held by the oil film"))
     out.save(fig, "heat_oil_film")
 
 
-def _bars(ax: Axes, result: Result, names: Sequence[str], columns: Mapping[str, np.ndarray], log: bool) -> None:
-    """Grouped bars, one group per point; on a log axis only positive values are drawn."""
+def _bars(ax: Axes, result: Result, names: Sequence[str], columns: Mapping[str, np.ndarray]) -> None:
+    """Grouped bars on a linear axis from 0, one group per point; the legend beside the axes."""
     width = 0.8 / len(columns)
     x = np.arange(len(names))
     for i, (name, values) in enumerate(columns.items()):
-        shown = np.where(values > 0.0, values, np.nan) if log else values
-        ax.bar(x + (i - (len(columns) - 1) / 2) * width, shown, width, label=_column_label(result, name))
-    if log:
-        ax.set_yscale("log")
+        ax.bar(x + (i - (len(columns) - 1) / 2) * width, values, width, label=_column_label(result, name))
     ax.set_xticks(x, list(names))
     ax.grid(axis="y", alpha=0.3)
-    legend(ax, fontsize="small")
-
-
-def _annotate_oil_share(ax: Axes, energies: Mapping[str, np.ndarray]) -> None:
-    """Q_oil / Q_f in % above each group, when the columns say which is which."""
-    oil = [v for k, v in energies.items() if "oil" in k]
-    friction = [v for k, v in energies.items() if "friction" in k]
-    if len(oil) != 1 or len(friction) != 1:
-        return
-    with np.errstate(divide="ignore", invalid="ignore"):
-        share = 100.0 * oil[0] / friction[0]
-    top = np.fmax(oil[0], friction[0])
-    for i, (value, height) in enumerate(zip(share, top)):
-        if np.isfinite(value) and height > 0.0:
-            ax.annotate(f"{value:.2g} %", (i, height), textcoords="offset points", xytext=(0, 4),
-                        ha="center", fontsize="small")
-    ax.plot([], [], " ", label="n %: oil-film heat / frictional heat")
-    ax.set_ylim(top=30.0 * float(np.nanmax(top)))
-    legend(ax, fontsize="small", loc="upper right")
+    legend_outside(ax)

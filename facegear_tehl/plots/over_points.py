@@ -12,6 +12,8 @@ from facegear_tehl.results import Result
 from facegear_tehl.units import MILLIMETRE
 
 MANY_POINTS = 8  # above this many points, trend axes show the path coordinate without point names
+LOAD_JUMP = 0.1  # a change of the tooth load between neighbouring path rows above this share of its largest
+# value is a jump between one and two tooth pairs in contact (the smooth change over a row is ~1 %)
 SWEEP_FILE = "a sweep file holds one point on several grids (see sweep_error)"
 
 
@@ -33,11 +35,16 @@ def heat_point_names(result: Result) -> list[str]:
     return names if len(names) == rows else [f"row {i + 1}" for i in range(rows)]
 
 
+def on_path(result: Result, names: Sequence[str]) -> bool:
+    """The points `names` all have distinct path coordinates: the trend axis is the path coordinate s."""
+    coordinates = [result.points[n].scalars.get("path_coordinate") if n in result.points else None for n in names]
+    return None not in coordinates and len(set(coordinates)) == len(names) > 1
+
+
 def point_axis(result: Result, names: Sequence[str]) -> tuple[dict[str, float], Callable[[Axes], None]]:
     """x position per point name (path coordinate in mm when every point has one), and the axis labeller."""
-    coordinates = [result.points[n].scalars.get("path_coordinate") if n in result.points else None for n in names]
-    if None not in coordinates and len(set(coordinates)) == len(names) > 1:
-        positions = {n: MILLIMETRE(float(s)) for n, s in zip(names, coordinates)}
+    if on_path(result, names):
+        positions = {n: MILLIMETRE(float(result.points[n].scalars["path_coordinate"])) for n in names}
 
         def label_path(ax: Axes) -> None:
             if len(names) <= MANY_POINTS:
@@ -55,16 +62,58 @@ def point_axis(result: Result, names: Sequence[str]) -> tuple[dict[str, float], 
     return positions, label_names
 
 
+def continuous_runs(result: Result, names: Sequence[str]) -> list[list[str]]:
+    """`names` (in path order) cut into runs between which the tooth load jumps, where a line joining the
+    points would draw a trend that is not there: the load of the /contact path changes by more than
+    LOAD_JUMP of the pair's load between two neighbouring rows whose midpoint lies between the points. One
+    run without a /contact path."""
+    table = result.contact
+    s_points = [result.points[n].scalars.get("path_coordinate") if n in result.points else None for n in names]
+    if not {"s", "load"} <= table.keys() or None in s_points:
+        return [list(names)]
+    s = np.asarray(table["s"].values, dtype=float)
+    load = np.asarray(table["load"].values, dtype=float)
+    jumps = 0.5 * (s[1:] + s[:-1])[np.abs(np.diff(load)) > LOAD_JUMP * np.abs(load).max()]
+    runs = [[names[0]]]
+    for name, s_from, s_to in zip(names[1:], s_points, s_points[1:]):
+        low, high = sorted((s_from, s_to))
+        if np.any((jumps > low) & (jumps < high)):
+            runs.append([])
+        runs[-1].append(name)
+    return runs
+
+
 def plot_series(ax: Axes, result: Result, positions: Mapping[str, float], values: Mapping[str, float],
-                 label: str, style: str = "o-") -> None:
-    """A quantity over the points; open markers for points that did not converge."""
+                label: str, style: str = "o-", errors: Mapping[str, float] | None = None) -> None:
+    """A quantity over the points: markers, with error bars where `errors` (absolute, display units) has
+    them, joined by lines within the runs of `continuous_runs`; open markers for points that did not
+    converge."""
     names = [n for n in positions if n in values]
+    marker, line_style = style[0], style[1:] or "-"
     x = [positions[n] for n in names]
-    (line,) = ax.plot(x, [values[n] for n in names], style, label=label)
+    y = [values[n] for n in names]
+    error = None if not errors else [abs(errors.get(n, 0.0)) for n in names]
+    container = ax.errorbar(x, y, yerr=error, fmt=marker, capsize=3, label=label)
+    colour = container.lines[0].get_color()
+    for run in continuous_runs(result, names):
+        if len(run) > 1:
+            ax.plot([positions[n] for n in run], [values[n] for n in run], line_style, color=colour)
     open_names = [n for n in names if n in result.points and not result.points[n].converged]
     if open_names:
         ax.plot([positions[n] for n in open_names], [values[n] for n in open_names], "o", color="white",
-                markeredgecolor=line.get_color(), markersize=7)
+                markeredgecolor=colour, markersize=7)
+
+
+def relative_errors(result: Result, key: str, values: Mapping[str, float]) -> dict[str, float]:
+    """The error estimate of `key` per point in the units of `values`: |error_estimate_<key>| |value|."""
+    estimates = per_point(result, f"error_estimate_{key}")
+    return {n: abs(estimates[n] * v) for n, v in values.items() if n in estimates and np.isfinite(estimates[n])}
+
+
+def jump_note(ax: Axes, result: Result, names: Sequence[str]) -> None:
+    """A legend entry saying why lines break, when they do."""
+    if len(continuous_runs(result, names)) > 1:
+        ax.plot([], [], " ", label="no line across a jump of the tooth load")
 
 
 def not_converged_note(ax: Axes, result: Result) -> None:
