@@ -2,7 +2,7 @@
 
 Exit codes: 0 ok; 1 unexpected error (or a point whose solve failed; its result is still written);
 2 bad input (case file, options, not a result file): one line `error: <key path>: ...`, no output file;
-3 not converged (result written, flagged).
+3 not converged (result written, flagged), or a variant of a study that failed (the others written).
 """
 
 from __future__ import annotations
@@ -161,6 +161,48 @@ def sweep(
     click.echo(report(result.sweep, result.sweep_scalars))
     click.echo(f"result: {target}, {csv} (status {result.status})")
     _exit_on_status(ctx, result)
+
+
+@tehl.command()
+@click.argument("study_file", metavar="STUDY")
+@click.option("-o", "--output", help="Folder of the study's result files and index.csv (default: <STUDY name>_study).")
+@click.option("--workers", type=int, help="Worker processes of the local Dask cluster (default: all cores).")
+@click.option("--scheduler", help="Address of an existing Dask scheduler (e.g. tcp://host:8786) instead.")
+@click.pass_context
+def study(ctx: click.Context, study_file: str, output: str | None, workers: int | None, scheduler: str | None) -> None:
+    """Run every variant of STUDY (a base case and the keys it varies) on a Dask cluster: one result file per
+    variant, named by the hash of its case, and index.csv; variants already finished are skipped."""
+    from facegear_tehl.study import run_study
+    from facegear_tehl.study_file import load_study
+
+    plan = load_study(study_file)
+    if scheduler is not None and workers is not None:
+        raise CaseError("--workers", workers, "no --workers with --scheduler (the cluster has its own workers)")
+    count = worker_count(workers, "--workers")
+    folder = Path(output if output is not None else f"{Path(study_file).stem}_study")
+    where = f"the Dask cluster at {scheduler}" if scheduler else f"a local Dask cluster of {count} worker processes"
+    click.echo(f"tehl study: {len(plan.variants)} variants of {plan.base.name} over {', '.join(plan.keys)} "
+               f"on {where}", err=True)
+    report = run_study(plan, folder, workers=count, scheduler=scheduler, progress=_study_progress)
+    skipped = len(report.outcomes) - report.computed
+    click.echo(f"{report.computed} variants computed, {skipped} already finished, {len(report.failed)} failed; "
+               f"index: {report.index}")
+    for outcome in report.failed:
+        click.echo(f"failed: variant {outcome.variant.index + 1} ({outcome.variant.label}): {outcome.message}",
+                   err=True)
+    if report.failed:
+        ctx.exit(EXIT_NOT_CONVERGED)
+
+
+def _study_progress(outcome, done: int, total: int, eta: float) -> None:
+    state = outcome.status if outcome.status != "failed" else f"failed: {outcome.message}"
+    click.echo(f"[{done}/{total}] variant {outcome.variant.index + 1} ({outcome.variant.label}): {state}, "
+               f"{outcome.seconds:.1f} s; ETA {_duration(eta)}", err=True)
+
+
+def _duration(seconds: float) -> str:
+    minutes, rest = divmod(round(seconds), 60)
+    return f"{minutes // 60} h {minutes % 60:02d} min" if minutes >= 60 else f"{minutes} min {rest:02d} s"
 
 
 @tehl.command()
