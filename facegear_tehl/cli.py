@@ -251,20 +251,33 @@ def info(result_file: str, as_json: bool) -> None:
 @tehl.command()
 @click.argument("result_file", metavar="RESULT")
 @click.option("--what", default="all", show_default=True,
-              help="Figure types, comma-separated: all, fields, trends, friction, heat, contact, convergence.")
+              help="Figure types, comma-separated: all, fields, trends, friction, heat, contact, convergence; "
+                   "maps for a study folder.")
 @click.option("--point", "points", help="Points whose fields and convergence are drawn, comma-separated; default all.")
 @click.option("-o", "--output", help="Folder for the figures (default: <RESULT name>_plots next to RESULT).")
 @click.option("--format", "fmt", default="png", show_default=True, help="png | pdf | svg.")
 @click.option("--dpi", type=int, default=150, show_default=True, help="Resolution of raster figures.")
-def plot(result_file: str, what: str, points: str | None, output: str | None, fmt: str, dpi: int) -> None:
-    """Draw the figures of a result file (nothing is solved); figure types without data are skipped."""
+@click.option("--z", default="h_min", show_default=True, help="Study maps: the scalar of index.csv drawn.")
+@click.option("--x", "x_key", help="Study maps: the varied key along x (default: the first).")
+@click.option("--y", "y_key", help="Study maps: the varied key along y (default: the second).")
+def plot(result_file: str, what: str, points: str | None, output: str | None, fmt: str, dpi: int, z: str,
+         x_key: str | None, y_key: str | None) -> None:
+    """Draw the figures of a result file, or the maps (--what maps) of a `tehl study` folder (nothing is solved);
+    figure types without data are skipped."""
     # Imported here: only this command needs matplotlib.
     from facegear_tehl.plots import figure_types, plot_result
 
-    result = read_result(result_file)
     source = Path(result_file)
-    folder = Path(output) if output is not None else source.with_name(f"{source.stem}_plots")
-    report = plot_result(result, folder, what=figure_types(what), points=_point_names(points), fmt=fmt, dpi=dpi)
+    if source.is_dir():  # a study folder: maps over its varied keys
+        from facegear_tehl.plots.maps import plot_study
+
+        folder = Path(output) if output is not None else source / "maps"
+        report = plot_study(source, folder, what=what, z=z, x=x_key, y=y_key, points=_point_names(points), fmt=fmt,
+                            dpi=dpi)
+    else:
+        result = read_result(result_file)
+        folder = Path(output) if output is not None else source.with_name(f"{source.stem}_plots")
+        report = plot_result(result, folder, what=figure_types(what), points=_point_names(points), fmt=fmt, dpi=dpi)
     for line in report.skipped:
         click.echo(line)
     if not report.written:
