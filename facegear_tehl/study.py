@@ -57,12 +57,14 @@ class VariantRun:
 @dataclass(frozen=True)
 class VariantOutcome:
     """One variant after this run: status ok | not_converged | failed (a result file's status, or failed with no
-    file when the task raised) | pending (interrupted before it finished); computed here or skipped."""
+    file when the task raised or its file could not be written) | pending (interrupted before it finished);
+    computed here or skipped; whether its result file is in the study folder."""
 
     variant: Variant
     status: str
     message: str
     computed: bool
+    has_file: bool
     seconds: float = 0.0  # the task's own time (computed variants)
 
 
@@ -136,8 +138,7 @@ def run_study(study: Study, folder: Path, *, workers: int = 1, scheduler: str | 
                     outcomes[outcome.variant.index] = outcome
     finally:
         if started:
-            final = tuple(outcomes.get(v.index) or VariantOutcome(v, "pending", "not run yet", False)
-                          for v in study.variants)
+            final = tuple(outcomes.get(v.index) or _unrecorded(folder, v) for v in study.variants)
             index = write_index(study, folder, final)
     return StudyReport(final, time.perf_counter() - start, index)
 
@@ -174,9 +175,9 @@ def _compute(client: object, todo: Sequence[Variant], folder: Path, progress: St
         try:
             solved = future.result()
             write_result(solved.run, folder / variant.file_name)
-            outcome = VariantOutcome(variant, solved.run.status, solved.run.message, True, solved.seconds)
+            outcome = VariantOutcome(variant, solved.run.status, solved.run.message, True, True, solved.seconds)
         except Exception as exc:  # noqa: BLE001 - one failing variant is recorded; the others go on
-            outcome = VariantOutcome(variant, "failed", f"{type(exc).__name__}: {exc}".replace("\n", " "), True)
+            outcome = VariantOutcome(variant, "failed", f"{type(exc).__name__}: {exc}".replace("\n", " "), True, False)
         future.release()
         if progress is not None:
             elapsed = time.perf_counter() - start
@@ -187,7 +188,15 @@ def _compute(client: object, todo: Sequence[Variant], folder: Path, progress: St
 def _read_outcome(folder: Path, variant: Variant) -> VariantOutcome:
     """The outcome of a variant skipped because its file is finished: the file's status and message."""
     result = read_result(folder / variant.file_name)
-    return VariantOutcome(variant, result.status, result.message, False)
+    return VariantOutcome(variant, result.status, result.message, False, True)
+
+
+def _unrecorded(folder: Path, variant: Variant) -> VariantOutcome:
+    """A variant with no outcome when the run stopped: finished if its file was written just before (an
+    interruption between the write and its record), else pending."""
+    if finished(folder / variant.file_name, variant):
+        return _read_outcome(folder, variant)
+    return VariantOutcome(variant, "pending", "not run yet", False, False)
 
 
 def write_index(study: Study, folder: Path, outcomes: Sequence[VariantOutcome]) -> Path:
@@ -201,7 +210,7 @@ def write_index(study: Study, folder: Path, outcomes: Sequence[VariantOutcome]) 
         variant = outcome.variant
         lead = [str(variant.index + 1), *(value_text(value) for _, value in variant.values)]
         path = folder / variant.file_name
-        if outcome.status in ("failed", "pending") and not path.exists():
+        if not outcome.has_file:
             rows.append([*lead, "", outcome.status, "", *([""] * len(COLUMNS)), "", outcome.message])
             continue
         result = read_result(path)

@@ -124,7 +124,7 @@ def _cell(rows: Sequence[dict[str, str]], z: str, point: str) -> tuple[float, bo
     """The value of one cell (NaN: none) and whether it comes from a point that did not converge: the point's,
     or for WORST the worst over the variant's points that have the scalar."""
     found = [(float(row[z]), row["converged"] != "yes") for row in rows
-             if row[z] and (point == WORST and row["point"] or row["point"] == point)]
+             if row.get(z) and (point == WORST and row["point"] or row["point"] == point)]
     if not found:
         return math.nan, False
     pick = min if z in SMALLER_IS_WORSE else max
