@@ -185,8 +185,9 @@ def study(ctx: click.Context, study_file: str, output: str | None, workers: int 
                f"on {where}", err=True)
     report = run_study(plan, folder, workers=count, scheduler=scheduler, progress=_study_progress)
     skipped = len(report.outcomes) - report.computed
-    click.echo(f"{report.computed} variants computed, {skipped} already finished, {len(report.failed)} failed; "
-               f"index: {report.index}")
+    not_converged = sum(o.status == "not_converged" for o in report.outcomes)
+    click.echo(f"{report.computed} variants computed, {skipped} already finished, {len(report.failed)} failed, "
+               f"{not_converged} not converged; index: {report.index}")
     for outcome in report.failed:
         click.echo(f"failed: variant {outcome.variant.index + 1} ({outcome.variant.label}): {outcome.message}",
                    err=True)

@@ -82,13 +82,16 @@ def read_index(folder: Path) -> StudyIndex:
 
 def map_grids(index: StudyIndex, z: str = "h_min", x: str | None = None, y: str | None = None,
               points: Sequence[str] | None = None) -> list[MapGrid]:
-    """The maps of `z` over `x` and `y` (default: the first two varied keys) for each point of `points` (default
+    """The maps of `z` over `x` and `y` (default: the first two varied keys; no `y` when the study varies one key:
+    a single row) for each point of `points` (default
     every point, then WORST), one set per combination of the other varied keys. CaseError naming the option
     for an unknown scalar, key or point."""
     if z not in COLUMNS:
         raise CaseError("--z", z, "a scalar of the study index among: " + ", ".join(COLUMNS))
-    x = x if x is not None else index.keys[0]
-    y = y if y is not None else (index.keys[1] if len(index.keys) > 1 else None)
+    if not index.keys:
+        raise ResultFileError("the study index has no varied keys (columns between variant and point)")
+    x = x if x is not None else next((key for key in index.keys if key != y), index.keys[0])
+    y = y if y is not None else next((key for key in index.keys if key != x), None)
     for option, key in (("--x", x), ("--y", y)):
         if key is not None and key not in index.keys:
             raise CaseError(option, key, "a key the study varies: " + ", ".join(index.keys))
