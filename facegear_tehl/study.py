@@ -36,6 +36,11 @@ from facegear_tehl.study_file import Study, Variant, digest, value_text
 
 INDEX = "index.csv"
 FAILURES = "failures.txt"
+# Dask starts worker processes with MALLOC_TRIM_THRESHOLD_=65536 (its distributed.nanny.pre-spawn-environ), which
+# fixes glibc's mmap threshold: every array above 128 KiB is then mapped and unmapped anew, and a 257^2 solve of
+# the ball-on-disc case takes 2.4 s instead of 1.7 s (scripts/bench_study.py). The local cluster leaves it unset
+# (docs/study.md shows the same for `dask worker`).
+WORKER_ENVIRON = {"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}
 CONNECT_TIMEOUT = "10s"  # a scheduler that does not answer within this is taken as absent (Dask's default: 30 s)
 # Per-point scalars of the index (SI units in its header); a point without one leaves the cell empty.
 POINT_COLUMNS = (("h_c", "m"), ("h_min", "m"), ("film_parameter", "1"), ("p_max", "Pa"), ("dT_max", "K"),
@@ -146,6 +151,7 @@ def run_study(study: Study, folder: Path, *, workers: int = 1, scheduler: str | 
 @contextmanager
 def _client(workers: int, scheduler: str | None) -> Iterator[object]:
     """A Dask client: of the cluster at `scheduler`, else of a local cluster of `workers` processes."""
+    import dask
     from distributed import Client, LocalCluster
 
     if scheduler is not None:
@@ -157,8 +163,9 @@ def _client(workers: int, scheduler: str | None) -> Iterator[object]:
         with client:
             yield client
         return
-    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
-                      silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
+    with dask.config.set(WORKER_ENVIRON), LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                                       dashboard_address=None, silence_logs=logging.ERROR) as cluster, \
+            Client(cluster) as client:
         yield client
 
 

@@ -6,7 +6,8 @@ The study: 24 isothermal variants of cases/ball_on_disc.yaml (6 loads x 4 entrai
   serial   every variant solved by `run.run_case` in this process, one after the other (what `tehl run --jobs 1`
            of each variant costs): the solve time per variant, and their sum;
   N = 1, 2 `study.run_study` on a fresh LocalCluster of N worker processes (threads_per_worker=1) whose workers
-           have loaded the Numba kernels first (cluster start and warm-up timed apart): the study's wall time
+           have loaded the Numba kernels first (cluster start and warm-up timed apart; the workers' environment as
+           `tehl study` sets it, study.WORKER_ENVIRON): the study's wall time
            from the first task submitted to the last file written, and the sum of the tasks' own times.
 Overhead per variant on one worker: (study wall time - sum of the standalone solves) / 24, i.e. scheduling,
 moving the result to this process and writing its file, as far as they keep the worker from solving; and the
@@ -27,7 +28,7 @@ import tempfile
 import time
 
 from facegear_tehl.run import run_case
-from facegear_tehl.study import run_study
+from facegear_tehl.study import WORKER_ENVIRON, run_study
 from facegear_tehl.study_file import load_study
 
 BASE = Path(__file__).resolve().parents[1] / "cases" / "ball_on_disc.yaml"
@@ -61,11 +62,13 @@ def serial(study) -> list[float]:
 
 def on_cluster(study, workers: int, folder: Path) -> tuple[float, float, float]:
     """(cluster start and warm-up, study wall time, sum of the tasks' own times), s."""
+    import dask
     from distributed import Client, LocalCluster
 
     start = time.perf_counter()
-    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
-                      silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
+    with dask.config.set(WORKER_ENVIRON), LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                                       dashboard_address=None, silence_logs=logging.ERROR) as cluster, \
+            Client(cluster) as client:
         client.run(warm_up)
         ready = time.perf_counter() - start
         report = run_study(study, folder, scheduler=cluster.scheduler_address)
