@@ -327,6 +327,9 @@ def test_the_worst_point_is_the_thinnest_film_and_the_highest_pressure(tmp_path)
         (("--x", "gear.shaft_angle"), "error: --x: got 'gear.shaft_angle'; expected a key the study varies"),
         (("--point", "S9"), "error: --point: got 'S9'; expected point names of the study"),
         (("--what", "trends"), "error: --what: got 'trends'; expected maps"),
+        (("--format", "bmp"), "error: --format: got 'bmp'; expected one of png, pdf, svg"),
+        (("--dpi", "0"), "error: --dpi: got 0; expected a positive number"),
+        (("--y", "gear.pinion_torque"), "error: --y: got 'gear.pinion_torque'; expected another varied key"),
     ],
 )
 def test_bad_map_options_exit_2(tmp_path, args, message):

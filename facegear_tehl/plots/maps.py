@@ -19,6 +19,7 @@ import re
 
 import numpy as np
 
+from facegear_tehl.plots import FORMATS
 from facegear_tehl.plots.common import Output, PlotReport, figure
 from facegear_tehl.results import ResultFileError
 from facegear_tehl.schema import CaseError
@@ -138,10 +139,14 @@ def plot_study(folder: Path, out_folder: Path, *, what: str = "maps", z: str = "
                y: str | None = None, points: Sequence[str] | None = None, fmt: str = "png",
                dpi: int = 150) -> PlotReport:
     """Draw the maps of the study folder `folder` into `out_folder` (see `map_grids`); CaseError for a figure type
-    other than maps or all."""
+    other than maps or all, an unknown format or a non-positive dpi."""
     for name in (part.strip() for part in what.split(",")):
         if name not in ("maps", "all"):
             raise CaseError("--what", name, "maps (the figure type of a study folder)")
+    if fmt not in FORMATS:
+        raise CaseError("--format", fmt, "one of " + ", ".join(FORMATS))
+    if dpi <= 0:
+        raise CaseError("--dpi", dpi, "a positive number of dots per inch")
     grids = map_grids(read_index(folder), z, x, y, points)
     out = Output(out_folder, fmt, dpi, PlotReport())
     for grid in grids:
