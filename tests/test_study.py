@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import csv
 import hashlib
+import json
 import math
 import os
 from pathlib import Path
@@ -342,3 +343,26 @@ def test_bad_map_options_exit_2(tmp_path, args, message):
 def test_a_folder_without_an_index_is_not_a_study(tmp_path):
     result = _invoke("plot", tmp_path, "--what", "maps")
     assert result.exit_code == 2 and "not a study folder" in result.output, result.output
+
+
+def test_the_index_reads_lambda_power_loss_and_efficiency_when_the_file_has_them(cluster, tmp_path):
+    """A file given a point's film_parameter and /cycle power_loss and mesh_efficiency (as the mesh cycle writes
+    them: attributes, their units as JSON) shows them in the index of the next run, which computes nothing."""
+    path = _study(tmp_path, "  contact.load: [4.0, 9.0]\n")
+    out = tmp_path / "out"
+    assert _invoke("study", path, "-o", out, "--scheduler", cluster.scheduler_address).exit_code == 0
+    first = _index(out)[0]
+    assert first["film_parameter [1]"] == first["power_loss [W]"] == first["mesh_efficiency [1]"] == ""
+    with h5py.File(out / first["file"], "r+") as h5:
+        point = h5["points/contact"]
+        point.attrs["film_parameter"] = 1.25
+        point.attrs["units"] = json.dumps({**json.loads(point.attrs["units"]), "film_parameter": "1"})
+        cycle = h5.create_group("cycle")
+        cycle.attrs["power_loss"], cycle.attrs["mesh_efficiency"] = 812.5, 0.9921
+        cycle.attrs["units"] = json.dumps({"power_loss": "W", "mesh_efficiency": "1"})
+    again = _invoke("study", path, "-o", out, "--scheduler", cluster.scheduler_address)
+    assert "0 variants computed, 2 already finished" in again.output, again.output
+    first, second = _index(out)
+    assert (first["film_parameter [1]"], first["power_loss [W]"], first["mesh_efficiency [1]"]) == \
+        ("1.25", "812.5", "0.9921")
+    assert second["film_parameter [1]"] == second["power_loss [W]"] == ""
