@@ -2,7 +2,8 @@
 
 Exit codes: 0 ok; 1 unexpected error (or a point whose solve failed; its result is still written);
 2 bad input (case file, options, not a result file): one line `error: <key path>: ...` per problem, no
-output file; 3 not converged (result written, flagged). Warnings (valid but unusual input) go to stderr.
+output file; 3 not converged (result written, flagged), or a variant of a study that failed (the others written).
+Warnings (valid but unusual input) go to stderr.
 """
 
 from __future__ import annotations
@@ -215,6 +216,53 @@ def sweep(
 
 @tehl.command(epilog="""\b
 Examples:
+  tehl study torque_speed.yaml -o maps --workers 2      a local Dask cluster of two worker processes
+  tehl study torque_speed.yaml --scheduler tcp://host:8786   an existing Dask cluster
+  tehl plot maps --what maps --z h_min""")
+@click.argument("study_file", metavar="STUDY")
+@click.option("-o", "--output", help="Folder of the study's result files and index.csv (default: <STUDY name>_study).")
+@click.option("--workers", type=int, help="Worker processes of the local Dask cluster (default: all cores).")
+@click.option("--scheduler", help="Address of an existing Dask scheduler (e.g. tcp://host:8786) instead.")
+@click.pass_context
+def study(ctx: click.Context, study_file: str, output: str | None, workers: int | None, scheduler: str | None) -> None:
+    """Run every variant of STUDY (a base case and the keys it varies) on a Dask cluster: one result file per
+    variant, named by the hash of its case, and index.csv; variants already finished are skipped."""
+    from facegear_tehl.study import run_study
+    from facegear_tehl.study_file import load_study
+
+    plan = load_study(study_file)
+    if scheduler is not None and workers is not None:
+        raise CaseError("--workers", workers, "no --workers with --scheduler (the cluster has its own workers)")
+    count = worker_count(workers, "--workers")
+    folder = Path(output if output is not None else f"{Path(study_file).stem}_study")
+    where = f"the Dask cluster at {scheduler}" if scheduler else f"a local Dask cluster of {count} worker processes"
+    click.echo(f"tehl study: {len(plan.variants)} variants of {plan.base.name} over {', '.join(plan.keys)} "
+               f"on {where}", err=True)
+    report = run_study(plan, folder, workers=count, scheduler=scheduler, progress=_study_progress)
+    skipped = len(report.outcomes) - report.computed
+    not_converged = sum(o.status == "not_converged" for o in report.outcomes)
+    click.echo(f"{report.computed} variants computed, {skipped} already finished, {len(report.failed)} failed, "
+               f"{not_converged} not converged; index: {report.index}")
+    for outcome in report.failed:
+        click.echo(f"failed: variant {outcome.variant.index + 1} ({outcome.variant.label}): {outcome.message}",
+                   err=True)
+    if report.failed:
+        ctx.exit(EXIT_NOT_CONVERGED)
+
+
+def _study_progress(outcome, done: int, total: int, eta: float) -> None:
+    state = outcome.status if outcome.status != "failed" else f"failed: {outcome.message}"
+    click.echo(f"[{done}/{total}] variant {outcome.variant.index + 1} ({outcome.variant.label}): {state}, "
+               f"{outcome.seconds:.1f} s; ETA {_duration(eta)}", err=True)
+
+
+def _duration(seconds: float) -> str:
+    minutes, rest = divmod(round(seconds), 60)
+    return f"{minutes // 60} h {minutes % 60:02d} min" if minutes >= 60 else f"{minutes} min {rest:02d} s"
+
+
+@tehl.command(epilog="""\b
+Examples:
   tehl validate cases/facegear_110.yaml
   tehl init --contact -o ball.yaml && tehl validate ball.yaml""")
 @click.argument("case_file", metavar="CASE")
@@ -289,25 +337,38 @@ def info(result_file: str, si: bool, as_json: bool) -> None:
 @tehl.command(epilog="""\b
 Examples:
   tehl plot facegear_110.h5
-  tehl plot facegear_110.h5 --what fields --point S1,S3 --format pdf
+  tehl plot facegear_110.h5 --what maps --point S1,S3 --format pdf
   tehl plot facegear_110.h5 --what trends,heat -o figures""")
 @click.argument("result_file", metavar="RESULT")
 @click.option("--what", default="default", show_default=True,
               help="Figure types, comma-separated: default (centreline, overview, trends, friction, heat, contact, "
-                   "convergence), all, or any of those and maps, surfaces (a file per point and field).")
+                   "convergence), all, or any of those and maps, surfaces (a file per point and field); for a "
+                   "`tehl study` folder: maps (operating maps over its varied keys, docs/study.md).")
 @click.option("--point", "points", help="Points whose fields and convergence are drawn, comma-separated; default all.")
 @click.option("-o", "--output", help="Folder for the figures (default: <RESULT name>_plots next to RESULT).")
 @click.option("--format", "fmt", default="png", show_default=True, help="png | pdf | svg.")
 @click.option("--dpi", type=int, default=150, show_default=True, help="Resolution of raster figures.")
-def plot(result_file: str, what: str, points: str | None, output: str | None, fmt: str, dpi: int) -> None:
-    """Draw the figures of a result file (nothing is solved); figure types without data are skipped."""
+@click.option("--z", default="h_min", show_default=True, help="Study maps: the scalar of index.csv drawn.")
+@click.option("--x", "x_key", help="Study maps: the varied key along x (default: the first).")
+@click.option("--y", "y_key", help="Study maps: the varied key along y (default: the second).")
+def plot(result_file: str, what: str, points: str | None, output: str | None, fmt: str, dpi: int, z: str,
+         x_key: str | None, y_key: str | None) -> None:
+    """Draw the figures of a result file, or the maps (--what maps) of a `tehl study` folder (nothing is solved);
+    figure types without data are skipped."""
     # Imported here: only this command needs matplotlib.
     from facegear_tehl.plots import figure_types, plot_result
 
-    result = read_result(result_file)
     source = Path(result_file)
-    folder = Path(output) if output is not None else source.with_name(f"{source.stem}_plots")
-    report = plot_result(result, folder, what=figure_types(what), points=_point_names(points), fmt=fmt, dpi=dpi)
+    if source.is_dir():  # a study folder: maps over its varied keys
+        from facegear_tehl.plots.study_maps import plot_study
+
+        folder = Path(output) if output is not None else source / "maps"
+        report = plot_study(source, folder, what=what, z=z, x=x_key, y=y_key, points=_point_names(points), fmt=fmt,
+                            dpi=dpi)
+    else:
+        result = read_result(result_file)
+        folder = Path(output) if output is not None else source.with_name(f"{source.stem}_plots")
+        report = plot_result(result, folder, what=figure_types(what), points=_point_names(points), fmt=fmt, dpi=dpi)
     for line in report.skipped:
         click.echo(line)
     if not report.written:
