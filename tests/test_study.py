@@ -29,6 +29,7 @@ from facegear_tehl.study import run_study
 from facegear_tehl.study_file import load_study
 
 import synthetic
+from test_parallel import _DIMENSION_LINKS, _linked
 
 BASE = synthetic.BALL_ON_DISC
 LOADS = (4.0, 9.0)
@@ -76,7 +77,9 @@ def _contents(path: Path) -> dict[str, object]:
         found.update({f"/.{key}": value for key, value in h5.attrs.items()})
 
         def visit(name, item):
-            found.update({f"/{name}.{key}": value for key, value in item.attrs.items()})
+            # dimension-scale links are object references (different in every file): compared by what they name
+            found.update({f"/{name}.{key}": _linked(h5, key, value) if key in _DIMENSION_LINKS else value
+                          for key, value in item.attrs.items()})
             if isinstance(item, h5py.Dataset):
                 found[f"/{name}"] = item[()]
 

@@ -139,9 +139,9 @@ def plot_study(folder: Path, out_folder: Path, *, what: str = "maps", z: str = "
                y: str | None = None, points: Sequence[str] | None = None, fmt: str = "png",
                dpi: int = 150) -> PlotReport:
     """Draw the maps of the study folder `folder` into `out_folder` (see `map_grids`); CaseError for a figure type
-    other than maps or all, an unknown format or a non-positive dpi."""
+    other than maps (or default, all: the same), an unknown format or a non-positive dpi."""
     for name in (part.strip() for part in what.split(",")):
-        if name not in ("maps", "all"):
+        if name not in ("maps", "default", "all"):
             raise CaseError("--what", name, "maps (the figure type of a study folder)")
     if fmt not in FORMATS:
         raise CaseError("--format", fmt, "one of " + ", ".join(FORMATS))
