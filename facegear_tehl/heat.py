@@ -38,6 +38,10 @@ XU_COEFFICIENTS = (
 # ISO/TR 14179-2 (Schlenk 1994) oil-type factor X_L as used by Fernandes' GEARpie `CONTACT.py`
 # (PHYSICS.md §6.2 [S]); ISO/TR's own table has 1.0 for mineral oil and lower values for synthetics.
 ISO_TR_14179_OIL_FACTOR = {"mineral": 0.846, "pao": 0.65, "ester": 0.65, "pag": 0.585}
+# R_a / R_q of a surface with Gaussian heights: the mean absolute deviation of a normal distribution, sqrt(2/pi) of
+# its standard deviation (Thomas 1999, Rough Surfaces, 2nd ed.: R_a ~ 0.8 R_q); turns the case's RMS roughness R_q
+# into the arithmetic mean roughness R_a that ISO/TR 14179-2 asks for.
+GAUSSIAN_RA_PER_RQ = math.sqrt(2.0 / math.pi)
 
 # Maximum of Jaeger's (1942) high-Péclet kernel over a band of half-width b, in units of q0 sqrt(b)/B
 # (PHYSICS.md §5.2 [V]): uniform flux q0 -> 2 sqrt(2/pi) at the trailing edge (closed form);
