@@ -213,7 +213,8 @@ def info(result_file: str, as_json: bool) -> None:
 @tehl.command()
 @click.argument("result_file", metavar="RESULT")
 @click.option("--what", default="all", show_default=True,
-              help="Figure types, comma-separated: all, fields, trends, friction, heat, contact, convergence.")
+              help="Figure types, comma-separated: all, fields, trends, friction, heat, contact, convergence, "
+                   "cycle.")
 @click.option("--point", "points", help="Points whose fields and convergence are drawn, comma-separated; default all.")
 @click.option("-o", "--output", help="Folder for the figures (default: <RESULT name>_plots next to RESULT).")
 @click.option("--format", "fmt", default="png", show_default=True, help="png | pdf | svg.")

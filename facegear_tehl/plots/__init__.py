@@ -3,7 +3,7 @@ the face gear contact path and convergence (matplotlib; the seed paper's figure 
 
 Everything is read through `results.read_result`; nothing is solved again. `plot_result` draws the figure
 types asked for and reports the files written and, one line each, what it had no data for. One module per
-figure family: `fields`, `trends`, `friction`, `heat`, `contact`, `convergence`; `common` and `over_points`
+figure family: `fields`, `trends`, `friction`, `heat`, `contact`, `convergence`, `cycle`; `common` and `over_points`
 hold what they share. Values are shown in the display units of `facegear_tehl.units`.
 
 Figures are `matplotlib.figure.Figure` objects rendered by the Agg canvas: no display, no pyplot state.
@@ -19,6 +19,7 @@ from pathlib import Path
 from facegear_tehl.plots.common import Output, PlotReport
 from facegear_tehl.plots.contact import draw_contact
 from facegear_tehl.plots.convergence import draw_convergence
+from facegear_tehl.plots.cycle import draw_cycle
 from facegear_tehl.plots.fields import draw_fields
 from facegear_tehl.plots.friction import draw_friction
 from facegear_tehl.plots.heat import draw_heat
@@ -28,7 +29,7 @@ from facegear_tehl.schema import CaseError
 
 __all__ = ["FIGURE_TYPES", "FORMATS", "PlotReport", "check_options", "figure_types", "plot_file", "plot_result"]
 
-FIGURE_TYPES = ("fields", "trends", "friction", "heat", "contact", "convergence")
+FIGURE_TYPES = ("fields", "trends", "friction", "heat", "contact", "convergence", "cycle")
 FORMATS = ("png", "pdf", "svg")
 
 
@@ -60,6 +61,7 @@ def plot_result(
         "heat": lambda: draw_heat(result, out),
         "contact": lambda: draw_contact(result, out),
         "convergence": lambda: draw_convergence(result, selected, out),
+        "cycle": lambda: draw_cycle(result, out),
     }
     for name in FIGURE_TYPES:
         if name in what:
