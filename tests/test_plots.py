@@ -105,14 +105,14 @@ def _skipped(report: PlotReport, what: str) -> list[str]:
 def test_plain_contact_draws_fields_and_convergence_and_skips_the_rest(ball_file, tmp_path):
     report = _plot(ball_file, tmp_path)
     _check_images(report, tmp_path, [f"contact_{f}" for f in FIELD_FIGURES] + ["convergence"])
-    for what in ("trends", "friction", "heat", "contact", "convergence sweep", "fields temperature"):
+    for what in ("trends", "friction", "heat", "contact", "convergence sweep", "fields temperature", "cycle"):
         assert len(_skipped(report, what)) == 1, (what, report.skipped)
 
 
 def test_face_gear_draws_fields_per_point_trends_contact_and_convergence(gear_file, tmp_path):
     report = _plot(gear_file, tmp_path)
     fields = [f"{p}_{f}" for p in ("S1", "S3", "S5") for f in FIELD_FIGURES]
-    _check_images(report, tmp_path, fields + ["trends", *CONTACT_FIGURES, "convergence"])
+    _check_images(report, tmp_path, fields + ["trends", *CONTACT_FIGURES, "convergence", "cycle"])
     assert _skipped(report, "trends ΔT_max") and _skipped(report, "friction") and _skipped(report, "heat")
 
 
@@ -122,7 +122,7 @@ def test_thermal_face_gear_draws_temperature_heat_flux_friction_and_heat(thermal
                "heat_flux_1", "heat_flux_2", "heat_flux_by_pressure", "heat_flux_by_shear")
     fields = [f"S3_{f}" for f in FIELD_FIGURES] + [f"S3_{t}_{k}" for t in thermal for k in ("contour", "surface")]
     heat = ["friction", "heat_power", "heat_oil_film"]
-    _check_images(report, tmp_path, fields + ["trends", *CONTACT_FIGURES, "convergence", *heat])
+    _check_images(report, tmp_path, fields + ["trends", *CONTACT_FIGURES, "convergence", *heat, "cycle"])
     assert report.skipped == ["skipped convergence sweep: no /sweep table in the file (written by tehl sweep)"]
 
 
