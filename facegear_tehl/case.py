@@ -17,7 +17,7 @@ from typing import Any
 import yaml
 
 from facegear_tehl.gears.spec import GearSpec, parse_gear_block
-from facegear_tehl.lubricant import DENSITY_MODELS, KELVIN, RHEOLOGY_MODELS, VISCOSITY_MODELS, Lubricant
+from facegear_tehl.lubricant import DENSITY_MODELS, KELVIN, OIL_TYPES, RHEOLOGY_MODELS, VISCOSITY_MODELS, Lubricant
 from facegear_tehl.materials import Solid
 from facegear_tehl.schema import Block, CaseError, attempt, check, collecting, defaults, warn
 from facegear_tehl.settings import THERMAL_MODELS, OutputSettings, SolverSettings  # also imported from here
@@ -173,6 +173,7 @@ def _lubricant(block: Block) -> Lubricant:
                                                       high=100.0, unit="1/GPa"),
         specific_heat=block.number("specific_heat", d["specific_heat"], positive=True, low=1.0, high=1e5,
                                    unit="J/(kg K)"),
+        oil_type=block.choice("oil_type", OIL_TYPES, d["oil_type"]),
     )
     check(
         lubricant.roelands_log_term > 0.0 or lubricant.viscosity_model != "roelands",

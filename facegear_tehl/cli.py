@@ -22,6 +22,7 @@ import numpy as np
 
 from facegear_tehl import __version__
 from facegear_tehl.case import Case, load_case
+from facegear_tehl.cycle import COARSE_POINT_COUNT, QUADRATURE
 from facegear_tehl.gears.analysis import analyse_gear_pair
 from facegear_tehl.gears.report import contact_table
 from facegear_tehl.parallel import worker_count
@@ -43,7 +44,7 @@ from facegear_tehl.tables import (
     yes_no,
 )
 from facegear_tehl.templates import case_template
-from facegear_tehl.units import PERCENT, Unit, display
+from facegear_tehl.units import CELSIUS, MILLIMETRE, PERCENT, Unit, display
 
 EXIT_ERROR, EXIT_BAD_INPUT, EXIT_NOT_CONVERGED = 1, 2, 3
 
@@ -137,6 +138,9 @@ def run(
     click.echo(summary_table(result.points.values()))
     if result.heat and "point" in result.heat:
         click.echo(heat_budget_table(result))
+    if result.cycle:
+        click.echo(cycle_table(result))
+        click.echo(cycle_summary(result))
     click.echo(f"result: {target} (status {result.status})")
     _exit_on_status(ctx, result)
 
@@ -342,7 +346,7 @@ Examples:
 @click.argument("result_file", metavar="RESULT")
 @click.option("--what", default="default", show_default=True,
               help="Figure types, comma-separated: default (centreline, overview, trends, friction, heat, contact, "
-                   "convergence), all, or any of those and maps, surfaces (a file per point and field); for a "
+                   "convergence, cycle), all, or any of those and maps, surfaces (a file per point and field); for a "
                    "`tehl study` folder: maps (operating maps over its varied keys, docs/study.md).")
 @click.option("--point", "points", help="Points whose fields and convergence are drawn, comma-separated; default all.")
 @click.option("-o", "--output", help="Folder for the figures (default: <RESULT name>_plots next to RESULT).")
@@ -391,6 +395,9 @@ def info_json(result: Result) -> dict[str, Any]:
             name: {**p.scalars, "converged": p.converged, "message": p.message} for name, p in result.points.items()
         },
         "units": {name: dict(p.units) for name, p in result.points.items()},
+        **({"cycle": {**result.cycle_scalars, "units": dict(result.cycle_units),
+                      "columns": {name: column.values.tolist() for name, column in result.cycle.items()}}}
+           if result.cycle else {}),
     }
 
 
@@ -407,7 +414,7 @@ def info_text(result: Result, si: bool = False) -> str:
     if result.overrides:
         header.append(("overrides", ", ".join(f"{k} {_listed(v)}" for k, v in result.overrides.items())))
     for table_name, table in (("contact path", result.contact), ("heat table", result.heat),
-                              ("sweep table", result.sweep)):
+                              ("sweep table", result.sweep), ("cycle", result.cycle)):
         if table:
             header.append((table_name, f"{len(table)} columns: {', '.join(table)}"))
     if result.message:
@@ -429,6 +436,8 @@ def info_text(result: Result, si: bool = False) -> str:
         lines += ["", format_table([group, "unit", *(p.name for p in points)], rows)]
     if result.heat and "point" in result.heat:
         lines += ["", "heat budget:", heat_budget_table(result)]
+    if result.cycle:
+        lines += ["", "meshing cycle:", cycle_table(result), cycle_summary(result)]
     if result.contact_scalars:
         contact_rows = [_scalar_row(key, result.contact_units[key], [value], abs(value), si)
                         for key, value in result.contact_scalars.items()]
@@ -508,6 +517,54 @@ def heat_budget_table(result: Result) -> str:
     rows = [[str(name), *(c.text(columns[c.key][i] if c.key in columns else None) for c in _HEAT)]
             for i, name in enumerate(heat["point"].values)]
     return format_table(["point", *(c.header for c in _HEAT)], rows)
+
+
+# Meshing-cycle columns, keys of the /cycle group.
+_CYCLE = (
+    Column("s", "s", "m", ".2f", MILLIMETRE),
+    Column("K", "load_share", spec=".3f"),
+    Column("p_h", "p_h", "Pa", ".1f"),
+    Column("h_min", "h_min", "m"),
+    Column("lambda", "film_parameter", spec=".2f"),
+    Column("dT_max", "dT_max", "K", ".1f"),
+    Column("flash", "flash_temperature", "K", ".1f"),
+    Column("theta_B,1", "contact_temperature_1", "K", ".1f", CELSIUS),
+    Column("theta_B,2", "contact_temperature_2", "K", ".1f", CELSIUS),
+    Column("mu", "mu", spec=".4f"),
+    Column("mu Xu", "mu_xu", spec=".4f"),
+    Column("P", "sliding_power", "W", ".1f"),
+)
+# Power-loss variants: attr suffix, label; [c] marks the cylindrical-gear correlations.
+_LOSS_VARIANTS = (("", "film mu (solved)"), ("_xu", "Xu et al. (2007) mu along the path [c]"),
+                  ("_iso", "ISO/TR 14179-2 mean mu {mu_iso:.4f} [c]"),
+                  ("_dissipated", "film dissipation, whole domain"))
+
+
+def cycle_table(result: Result) -> str:
+    """One row per point of the /cycle group in path order; '-' where a column is missing."""
+    cycle = result.cycle
+    rows = [[str(name), *(c.text(cycle[c.key].values[i] if c.key in cycle else None) for c in _CYCLE)]
+            for i, name in enumerate(cycle["point"].values)]
+    return format_table(["point", *(c.header for c in _CYCLE)], rows)
+
+
+def cycle_summary(result: Result) -> str:
+    """The mesh power loss and efficiency with their variants, the quadrature, and a note on coarse samples."""
+    scalars = result.cycle_scalars
+    count = int(scalars["point_count"])
+    if not any(f"power_loss{suffix}" in scalars for suffix, _ in _LOSS_VARIANTS):
+        return f"mesh cycle: {count} points; no mesh power loss (see the warnings)"
+    lines = [f"mesh cycle: {count} points, input power T1 w1 = {scalars['input_power'] / 1e3:.2f} kW; "
+             f"power loss = {QUADRATURE}:"]
+    for suffix, label in _LOSS_VARIANTS:
+        if f"power_loss{suffix}" in scalars:
+            lines.append(f"  {label.format(**scalars):<42}  power loss {scalars[f'power_loss{suffix}']:8.1f} W  "
+                         f"efficiency {PERCENT(scalars[f'mesh_efficiency{suffix}']):.3f} %")
+    lines.append("  [c] cylindrical-gear correlations: face gears are outside their scope")
+    if count < COARSE_POINT_COUNT:
+        lines.append(f"  note: {count} points are a coarse sample of the cycle (gear.points: 41 samples it "
+                     "evenly; docs/cycle.md)")
+    return "\n".join(lines)
 
 
 def summary_table(points: Iterable[PointResult]) -> str:

@@ -39,6 +39,10 @@ XU_COEFFICIENTS = (
 # (Fernandes et al. 2015, Tribol. Int. 88:309-316); ISO/TR's own table has 1.0 for mineral oil and lower values
 # for synthetics.
 ISO_TR_14179_OIL_FACTOR = {"mineral": 0.846, "pao": 0.65, "ester": 0.65, "pag": 0.585}
+# R_a / R_q of a surface with Gaussian heights: the mean absolute deviation of a normal distribution, sqrt(2/pi) of
+# its standard deviation (Thomas 1999, Rough Surfaces, 2nd ed.: R_a ~ 0.8 R_q); turns the case's RMS roughness R_q
+# into the arithmetic mean roughness R_a that ISO/TR 14179-2 asks for.
+GAUSSIAN_RA_PER_RQ = math.sqrt(2.0 / math.pi)
 
 # Maximum of Jaeger's (1942) high-Péclet kernel over a band of half-width b, in units of q0 sqrt(b)/B
 # (Jaeger 1942, Proc. R. Soc. N.S.W. 76:203-224): uniform flux q0 -> 2 sqrt(2/pi) at the trailing edge

@@ -35,6 +35,7 @@ KELVIN = 273.15  # K at 0 degC
 VISCOSITY_MODELS = ("roelands", "barus")
 DENSITY_MODELS = ("dowson_higginson", "incompressible")
 RHEOLOGY_MODELS = ("newtonian", "ree_eyring")
+OIL_TYPES = ("mineral", "pao", "ester", "pag")  # base oils of ISO/TR 14179-2's oil factor X_L (heat.py)
 
 # Integer codes used inside Numba kernels.
 ROELANDS, BARUS = 0, 1
@@ -61,6 +62,7 @@ class Lubricant:
     conductivity_pressure_coefficient: float = 0.0  # a of k/k_0 = 1 + a p/(1 + b p), 1/GPa (0: constant k)
     conductivity_pressure_saturation: float = 0.0  # b, 1/GPa
     specific_heat: float = 2000.0  # c_f, J/(kg K)
+    oil_type: str = "mineral"  # base oil, one of OIL_TYPES: only ISO/TR 14179-2's friction coefficient reads it
 
     @property
     def roelands_log_term(self) -> float:

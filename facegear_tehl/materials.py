@@ -15,7 +15,8 @@ class Solid:
     density: rho, kg/m^3.
     thermal_conductivity: k, W/(m K).
     specific_heat: c, J/(kg K).
-    roughness: RMS surface roughness R_q, m (for the empirical friction of heat.py).
+    roughness: RMS surface roughness R_q, m (the empirical friction of heat.py, the film parameter of cycle.py);
+        0: not given (a smooth surface).
     """
 
     elastic_modulus: float

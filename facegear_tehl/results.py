@@ -12,6 +12,8 @@ Layout (format 1.x; docs/cli.md describes it for readers):
     /contact/           gear contact analysis, written if given: one dataset per path column (kind
                         'table'); attrs: scalar geometry (SI) and its units (JSON)
     /heat/              table over points, written if given
+    /cycle/             meshing cycle of a gear case (cycle.py), written if given: one dataset per column along
+                        the path (kind 'table'); attrs: power_loss, mesh_efficiency, ... and their units (JSON)
     /sweep/             grid-convergence table of `tehl sweep` (sweep.py), written if given: one dataset
                         per column (kind 'table'), one row per grid; its derived columns hold NaN where a
                         value is not defined (e.g. the order on the two coarsest grids), never Inf;
@@ -80,6 +82,7 @@ class RunResult:
     failed: names of the points whose solve raised an error.
     contact: path table (gear cases), name -> column; contact_scalars: name -> (value, units).
     heat: table over points, name -> column.
+    cycle: meshing cycle along the path (gear cases), name -> column; cycle_scalars: name -> (value, units).
     sweep: grid-convergence table (one row per grid), name -> column; sweep_scalars: name -> (value, units).
     warnings: remarks on the run that are not failures (e.g. from the contact analysis).
     overrides: command-line options that changed the case (e.g. grid, points).
@@ -93,6 +96,8 @@ class RunResult:
     heat: Mapping[str, Field] = field(default_factory=dict)
     sweep: Mapping[str, Field] = field(default_factory=dict)
     sweep_scalars: Mapping[str, tuple[float, str]] = field(default_factory=dict)
+    cycle: Mapping[str, Field] = field(default_factory=dict)
+    cycle_scalars: Mapping[str, tuple[float, str]] = field(default_factory=dict)
     warnings: tuple[str, ...] = ()
     overrides: Mapping[str, Any] = field(default_factory=dict)
 
@@ -157,6 +162,9 @@ class Result:
     sweep: Mapping[str, Field] = field(default_factory=dict)
     sweep_scalars: Mapping[str, float | int] = field(default_factory=dict)
     sweep_units: Mapping[str, str] = field(default_factory=dict)
+    cycle: Mapping[str, Field] = field(default_factory=dict)
+    cycle_scalars: Mapping[str, float | int] = field(default_factory=dict)
+    cycle_units: Mapping[str, str] = field(default_factory=dict)
 
 
 # ----------------------------------------------------------------------------------------- writing
@@ -176,6 +184,7 @@ def write_result(run: RunResult, path: str | Path) -> Path:
             _write_table(h5, "contact", run.contact, run.contact_scalars)
             _write_table(h5, "heat", run.heat, {})
             _write_table(h5, "sweep", run.sweep, run.sweep_scalars)
+            _write_table(h5, "cycle", run.cycle, run.cycle_scalars)
             h5.flush()
         _fsync(temporary)
         os.replace(temporary, target)
@@ -315,7 +324,9 @@ def _check_run(run: RunResult) -> None:
         _check_point(solution)
     _check_scalars("/contact", run.contact_scalars)
     _check_scalars("/sweep", run.sweep_scalars)
-    for table_name, table in (("contact", run.contact), ("heat", run.heat), ("sweep", run.sweep)):
+    _check_scalars("/cycle", run.cycle_scalars)
+    for table_name, table in (("contact", run.contact), ("heat", run.heat), ("sweep", run.sweep),
+                              ("cycle", run.cycle)):
         for name, column in table.items():
             _check_column(f"/{table_name}/{name}", name, column, allow_nan=table_name == "sweep")
         rows = {name: len(column.values) for name, column in table.items()}
@@ -399,6 +410,8 @@ def read_result(path: str | Path) -> Result:
             contact_scalars, contact_units = _read_scalars(contact) if contact is not None else ({}, {})
             sweep = h5.get("sweep")
             sweep_scalars, sweep_units = _read_scalars(sweep) if sweep is not None else ({}, {})
+            cycle = h5.get("cycle")
+            cycle_scalars, cycle_units = _read_scalars(cycle) if cycle is not None else ({}, {})
             return Result(
                 path=path,
                 format_version=version,
@@ -419,6 +432,9 @@ def read_result(path: str | Path) -> Result:
                 sweep=_read_table(sweep),
                 sweep_scalars=sweep_scalars,
                 sweep_units=sweep_units,
+                cycle=_read_table(cycle),
+                cycle_scalars=cycle_scalars,
+                cycle_units=cycle_units,
             )
         except (KeyError, ValueError, TypeError) as exc:
             raise ResultFileError(f"{path}: damaged tehl result ({_reason(exc)})") from None

@@ -9,6 +9,7 @@ from typing import Sequence
 
 from facegear_tehl.case import Case
 from facegear_tehl.contact import ContactPoint
+from facegear_tehl.cycle import MeshCycle, mesh_cycle, with_film_parameter
 from facegear_tehl.heat_budget import heat_budget
 from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
 from facegear_tehl.points import contact_analysis, select_points
@@ -73,6 +74,12 @@ def run_case(
         overrides["refined_grid"] = {name: grid for name, (_, grid) in refined.items()}
     solutions, heat_table = heat_budget(selected, [_with_path_coordinate(s, p) for s, p in zip(solved, selected)],
                                         case.lubricant)
+    solutions = [with_film_parameter(s, p) for s, p in zip(solutions, selected)]
+    cycle = MeshCycle({}, {}, {})
+    if case.gear is not None:
+        cycle = mesh_cycle(case, selected, solutions, analysis.path, analysis.scalars)
+        solutions = [replace(s, scalars={**s.scalars, **cycle.point_scalars.get(s.name, {})}) for s in solutions]
+        warnings += cycle.notes
     return RunResult(
         case=case,
         points=tuple(solutions),
@@ -80,6 +87,8 @@ def run_case(
         failed=tuple(selected[index].name for index in failed),
         contact=analysis.path,
         contact_scalars=analysis.scalars,
+        cycle=cycle.columns,
+        cycle_scalars=cycle.scalars,
         warnings=warnings,
         overrides=overrides,
     )

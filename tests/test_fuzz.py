@@ -42,7 +42,8 @@ KNOWN_KEYS = set(TOP_LEVEL) | {
     "max_cycles", "tolerance", "load_tolerance", "file", "pinion_teeth", "shaper_teeth", "face_gear_teeth",
     "module", "pressure_angle", "shaft_angle", "pinion_addendum", "face_gear_addendum", "inner_radius",
     "outer_radius", "pinion_speed", "pinion_torque", "load_sharing", "points", "shaft_angle_error", "offset",
-    "pinion_axial_shift", "face_gear_axial_shift", "transition_side",
+    "pinion_axial_shift", "face_gear_axial_shift", "transition_side", "oil_type", "pinion_bulk_temperature",
+    "face_gear_bulk_temperature",
 }
 ERROR_LINE = re.compile(r"error: (?P<key>.+?): got (?P<value>.*); expected (?P<expected>.+)")
 WARNING_LINE = re.compile(r"warning: \S+: .+")
@@ -196,11 +197,12 @@ def test_every_deleted_key_is_accepted_or_named(folder):
 OPTIONAL_KEYS = {  # keys a block may have that the two cases leave out
     ("lubricant",): ["roelands_z", "eyring_stress", "temperature_viscosity", "thermal_expansion",
                      "thermal_conductivity", "conductivity_pressure_coefficient", "conductivity_pressure_saturation",
-                     "specific_heat"],
+                     "specific_heat", "oil_type"],
     ("materials", "body_1"): ["roughness", "density", "thermal_conductivity", "specific_heat"],
     ("solver",): ["domain", "grid_y", "coarsest_grid", "cycles_per_level", "max_cycles", "tolerance", "load_tolerance",
                   "thermal_layers", "max_thermal_iterations", "thermal_tolerance"],
-    ("gear",): ["shaft_angle_error", "offset", "pinion_axial_shift", "face_gear_axial_shift"],
+    ("gear",): ["shaft_angle_error", "offset", "pinion_axial_shift", "face_gear_axial_shift", "pinion_bulk_temperature",
+                "face_gear_bulk_temperature"],
     ("output",): ["file"],
 }
 PLAUSIBLE = st.one_of(st.floats(-1e3, 1e3), st.floats(-1e-2, 1e-2), st.integers(-100, 5000),

@@ -112,7 +112,7 @@ def _skipped(report: PlotReport, what: str) -> list[str]:
 def test_plain_contact_draws_centre_line_overview_and_convergence_and_skips_the_rest(ball_file, tmp_path):
     report = _plot(ball_file, tmp_path)
     _check_images(report, tmp_path, ["contact_centreline", "overview", "convergence"])
-    for what in ("trends", "friction", "heat", "contact", "convergence sweep", "fields temperature"):
+    for what in ("trends", "friction", "heat", "contact", "convergence sweep", "fields temperature", "cycle"):
         assert len(_skipped(report, what)) == 1, (what, report.skipped)
 
 
@@ -120,7 +120,7 @@ def test_the_default_set_is_a_figure_per_point_and_one_per_family(gear_file, tmp
     """Default: one centre-line figure per point and one overview sheet; no map or surface per field."""
     report = _plot(gear_file, tmp_path)
     centre = [f"{p}_centreline" for p in ("S1", "S3", "S5")]
-    _check_images(report, tmp_path, centre + ["overview", "trends", *CONTACT_FIGURES, "convergence"])
+    _check_images(report, tmp_path, centre + ["overview", "trends", *CONTACT_FIGURES, "convergence", "cycle"])
     assert _skipped(report, "trends ΔT") and _skipped(report, "friction") and _skipped(report, "heat")
     everything = _plot(gear_file, tmp_path / "all", what=figure_types("all"))
     per_field = [f"{p}_{f}" for p in ("S1", "S3", "S5") for f in MAP_FIGURES + SURFACE_FIGURES]
@@ -131,7 +131,8 @@ def test_the_default_set_is_a_figure_per_point_and_one_per_family(gear_file, tmp
 def test_thermal_face_gear_draws_temperatures_friction_and_heat_by_default(thermal_file, tmp_path):
     report = _plot(thermal_file, tmp_path, points=["S3"])
     heat = ["friction", "heat_power", "heat_oil_film"]
-    _check_images(report, tmp_path, ["S3_centreline", "overview", "trends", *CONTACT_FIGURES, "convergence", *heat])
+    _check_images(report, tmp_path,
+                  ["S3_centreline", "overview", "trends", *CONTACT_FIGURES, "convergence", *heat, "cycle"])
     assert report.skipped == [
         "skipped fields S3: heat_flux_by_pressure, heat_flux_by_shear: zero to round-off (|value| below 1e-12 of "
         "the largest field in the same units)",
@@ -173,7 +174,7 @@ def test_every_default_figure_fits_its_canvas(thermal_file, tmp_path, monkeypatc
     box larger than the canvas)."""
     figures = _capture(monkeypatch)
     _plot(thermal_file, tmp_path)
-    assert len(figures) == 12
+    assert len(figures) == 13
     for stem, figure in figures.items():
         box = figure.get_tightbbox()
         width, height = figure.get_size_inches()

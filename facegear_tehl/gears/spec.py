@@ -9,7 +9,8 @@ pinion_speed (rpm), pinion_torque (N m), load_sharing (iso_linear | equal | one 
 transition_side (single | double: K of a point exactly at S2 or S4 with a sharing model, loads.load_share),
 points ([S1, ..., S5] by default, any subset of these names, or a count of evenly spaced points over the
 whole path), and the optional misalignment shaft_angle_error (deg), offset (m), pinion_axial_shift (m),
-face_gear_axial_shift (m).
+face_gear_axial_shift (m), and the bulk temperatures pinion_bulk_temperature and face_gear_bulk_temperature
+(degC, default: the oil inlet temperature) to which the flash temperature of each flank adds (cycle.py).
 
 Impossible gears are input errors (`CaseError` naming the key): Ns - N1 not in 1..3, a face width
 outside [L1, L2] or not covering the contact path, a contact ratio outside [1, 2), a face-gear tip that
@@ -26,6 +27,7 @@ import numpy as np
 from facegear_tehl.gears.geometry import PairGeometry, axial_section, pointing_limit, undercut_limit
 from facegear_tehl.gears.loads import LOAD_SHARING_MODELS, TRANSITION_SIDES, contact_ratio
 from facegear_tehl.gears.tca import ALIGNED, MESHING_POINTS, ContactError, ContactPath, Misalignment
+from facegear_tehl.lubricant import KELVIN
 from facegear_tehl.schema import Block, CaseError, check, defaults
 
 RPM = 2.0 * math.pi / 60.0  # rad/s per rev/min
@@ -53,6 +55,8 @@ class GearSpec:
     points: tuple[str, ...] | int = MESHING_POINTS  # names among S1..S5, or a count of evenly spaced points
     transition_side: str = "single"  # of loads.TRANSITION_SIDES: K exactly at S2 and S4 under a sharing model
     misalignment: Misalignment = ALIGNED
+    pinion_bulk_temperature: float | None = None  # K; None: the oil inlet temperature
+    face_gear_bulk_temperature: float | None = None  # K; None: the oil inlet temperature
 
     @property
     def geometry(self) -> PairGeometry:
@@ -122,10 +126,19 @@ def parse_gear_block(block: Block) -> GearSpec:
         points=points,
         transition_side=_transition_side(block, load_sharing),
         misalignment=_misalignment(block, module),
+        pinion_bulk_temperature=_bulk_temperature(block, "pinion_bulk_temperature"),
+        face_gear_bulk_temperature=_bulk_temperature(block, "face_gear_bulk_temperature"),
     )
     block.finish()
     _check_feasible(spec, block)
     return spec
+
+
+def _bulk_temperature(block: Block, key: str) -> float | None:
+    """A bulk temperature, degC in the file (the range of lubricant.inlet_temperature), K; None if absent."""
+    if not block.has(key):
+        return _GEAR[key]
+    return block.number(key, low=-100.0, high=400.0, unit="degC") + KELVIN
 
 
 def _misalignment(block: Block, module: float) -> Misalignment:

@@ -6,7 +6,7 @@ the docstrings).
 Everything is read through `results.read_result`; nothing is solved again. `plot_result` draws the figure
 types asked for and reports the files written and, one line each, what it had no data for. One module per
 figure family: `centreline`, `overview`, `maps`, `surfaces`, `trends`, `friction`, `heat`, `contact`,
-`convergence`; `common`, `field_data`, `over_points` and `case_values` hold what they share. Values are
+`convergence`, `cycle`; `common`, `field_data`, `over_points` and `case_values` hold what they share. Values are
 shown in the display units of `facegear_tehl.units`, temperatures as the rise over the inlet ΔT in K.
 
 Figures are `matplotlib.figure.Figure` objects rendered by the Agg canvas: no display, no pyplot state.
@@ -24,6 +24,7 @@ from facegear_tehl.plots.centreline import draw_centreline
 from facegear_tehl.plots.common import Output, PlotReport
 from facegear_tehl.plots.contact import draw_contact
 from facegear_tehl.plots.convergence import draw_convergence
+from facegear_tehl.plots.cycle import draw_cycle
 from facegear_tehl.plots.field_data import point_fields
 from facegear_tehl.plots.friction import draw_friction
 from facegear_tehl.plots.heat import draw_heat
@@ -37,7 +38,7 @@ from facegear_tehl.schema import CaseError
 __all__ = ["DEFAULT_TYPES", "FIGURE_TYPES", "FORMATS", "PlotReport", "check_options", "figure_types", "plot_file",
            "plot_result"]
 
-DEFAULT_TYPES = ("centreline", "overview", "trends", "friction", "heat", "contact", "convergence")
+DEFAULT_TYPES = ("centreline", "overview", "trends", "friction", "heat", "contact", "convergence", "cycle")
 FIGURE_TYPES = (*DEFAULT_TYPES, "maps", "surfaces")  # maps and surfaces (a file per point and field) on request
 FIELD_TYPES = ("centreline", "overview", "maps", "surfaces")  # the types drawn from the point fields
 _EXPECTED = "figure types among: default, all, " + ", ".join(FIGURE_TYPES)
@@ -77,6 +78,7 @@ def plot_result(
         "heat": lambda: draw_heat(result, out),
         "contact": lambda: draw_contact(result, out),
         "convergence": lambda: draw_convergence(result, selected, case, out),
+        "cycle": lambda: draw_cycle(result, out),
     }
     for name in FIGURE_TYPES:
         if name in what:
