@@ -134,7 +134,7 @@ def mesh_cycle(case: Case, points: Sequence[ContactPoint], solutions: Sequence[P
     bulk = tuple(lubricant.inlet_temperature if t is None else t
                  for t in (gear.pinion_bulk_temperature, gear.face_gear_bulk_temperature))
     columns = {
-        "point": Field(np.array([p.name for p, _ in solved]), "", "meshing point"),
+        "point": Field(np.array([p.name for p, _ in solved]), "-", "meshing point (a name: no unit)"),
         "s": Field(s, "m", "path coordinate: pinion roll distance from the pitch position"),
         "roll_angle": Field(s / geometry["pinion_base_radius"][0], "rad",
                             "pinion roll angle from the pitch position, s / r_b1"),
