@@ -235,3 +235,28 @@ def test_a_film_closing_in_the_side_lobes_is_solved_again_with_more_rows(tmp_pat
     expected = nijenbanning_central(sc.moes_m, sc.moes_l, contact.radius_x / contact.radius_y)
     moes_h_c = point.scalars["h_c"] / (contact.radius_x * (2.0 * sc.hamrock_u) ** 0.5)
     assert abs(moes_h_c / expected - 1.0) <= 0.15 + abs(point.scalars["error_estimate_h_c"])
+
+
+@pytest.mark.parametrize("y_over_a, thermal, asked, chosen", [
+    (0.94, "off", (257, 65), (257, 129)),  # lowest film in a side lobe: twice the rows
+    (0.94, "off", (257, 257), (513, 513)),  # ... unless the rows already match the columns
+    (0.10, "off", (257, 65), (513, 129)),  # at the outlet constriction: both axes
+    (0.10, "off", (513, 513), (1025, 1025)),
+    (0.10, "off", (1025, 257), None),  # beyond MAX_REFINED_GRID
+    (0.10, "full", (513, 129), None),  # a thermal point stops at MAX_REFINED_THERMAL_GRID
+    (0.94, "full", (513, 129), (513, 257)),
+])
+def test_the_finer_grid_follows_where_the_film_is_lowest(y_over_a, thermal, asked, chosen):
+    from dataclasses import replace
+
+    from facegear_tehl.run import _refined
+    from facegear_tehl.settings import SolverSettings
+    from facegear_tehl.solution import Outcome, PointSolution
+
+    a = 2e-3
+    solution = PointSolution(name="contact", outcome=Outcome.FILM_CLOSED, message="the film closes",
+                             scalars={"a": (a, "m"), "y_film_closed": (-y_over_a * a, "m")},
+                             fields={}, axes={}, models={"thermal": thermal})
+    settings = replace(SolverSettings(), grid=asked[0], grid_y=asked[1])
+    finer = _refined(settings, solution)
+    assert (None if finer is None else (finer.grid, finer.nodes_y)) == chosen
