@@ -26,6 +26,7 @@ Each solve is then the same deterministic computation wherever it runs.
 from __future__ import annotations
 
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+import concurrent.futures.process
 from contextlib import closing
 from dataclasses import dataclass, replace
 import multiprocessing
@@ -281,3 +282,7 @@ def _stop_workers(executor: ProcessPoolExecutor) -> None:
     manager = getattr(executor, "_executor_manager_thread", None)
     if manager is not None:
         manager.join(timeout=5.0)
+        if manager.is_alive():  # a loaded machine: take its pipe off the exit hook's list (it ends on its own)
+            wakeups = getattr(concurrent.futures.process, "_threads_wakeups", None)
+            if wakeups is not None:
+                wakeups.pop(manager, None)
