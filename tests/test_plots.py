@@ -345,3 +345,24 @@ def test_cli_missing_or_foreign_file_exits_2(tmp_path):
         assert result.exit_code == 2
         assert result.output.startswith(f"error: {path}:") and result.output.count("\n") == 1
 
+
+
+def test_the_cycle_figure_draws_no_line_across_a_jump_of_the_tooth_load(gear_file, tmp_path, monkeypatch):
+    """As the trends: the load share jumps at s_end - p_b and s_start + p_b (a contact ratio between 1 and 2), and
+    S1, S3, S5 lie on either side of both jumps, so no series joins them (the meshing-point marks are vertical)."""
+    result = read_result(gear_file)
+    start, end, pitch = (result.contact_scalars[k] for k in ("path_start", "path_end", "base_pitch"))
+    jumps_mm = (1e3 * (end - pitch), 1e3 * (start + pitch))
+    figures = _capture(monkeypatch)
+    _plot(gear_file, tmp_path, what=["cycle"])
+    joined = 0
+    for ax in figures["cycle"].axes:
+        for line in ax.get_lines():
+            x = np.asarray(line.get_xdata(), dtype=float)
+            if "ISO/TR" in line.get_label():  # the mean coefficient: a horizontal line across the axes
+                continue
+            if len(x) > 1 and np.ptp(x) > 0.0 and line.get_linestyle() != "None":
+                joined += 1
+                assert not any(x.min() < s < x.max() for s in jumps_mm), (line.get_label(), x)
+    markers = [line for ax in figures["cycle"].axes for line in ax.get_lines() if len(line.get_xdata()) == 1]
+    assert joined == 0 and len(markers) >= 3 * 4, "every series is drawn as markers, one run per point"

@@ -9,6 +9,7 @@ from matplotlib.axes import Axes
 import numpy as np
 
 from facegear_tehl.plots.common import Output, body_names, figure, title
+from facegear_tehl.plots.over_points import continuous_runs
 from facegear_tehl.results import Result
 from facegear_tehl.solution import Field
 from facegear_tehl.units import CELSIUS, MILLIMETRE, PERCENT, Unit, display
@@ -43,12 +44,13 @@ def draw_cycle(result: Result, out: Output) -> None:
     names = [str(n) for n in cycle["point"].values]
     open_points = np.array([n in result.points and not result.points[n].converged for n in names])
     bodies = body_names(result)
+    runs = [[names.index(n) for n in run] for run in continuous_runs(result, names)]
     fig = figure(height=11.0)
     axes = fig.subplots(len(_PANELS), 1, sharex=True)
     for i, (ax, (left, right)) in enumerate(zip(axes, _PANELS)):
         twin = ax.twinx()
-        handles = _series(ax, cycle, s, left, bodies, open_points, "C0")
-        handles += _series(twin, cycle, s, right, bodies, open_points, "C3")
+        handles = _series(ax, cycle, s, left, bodies, open_points, runs, "C0")
+        handles += _series(twin, cycle, s, right, bodies, open_points, runs, "C3")
         unit_left, unit_right = left[0][3], right[0][3]
         ax.set_ylabel(_LEFT_LABELS[i].format(unit_left.label))
         twin.set_ylabel(_RIGHT_LABELS[i].format(unit_right.label))
@@ -65,15 +67,19 @@ def draw_cycle(result: Result, out: Output) -> None:
 
 
 def _series(ax: Axes, cycle: Mapping[str, Field], s: np.ndarray, series: tuple, bodies: tuple[str, str],
-            open_points: np.ndarray, color: str) -> list:
-    """The series of one axis that the file holds; open markers where a point did not converge."""
+            open_points: np.ndarray, runs: list[list[int]], color: str) -> list:
+    """The series of one axis that the file holds, a line through each run of points between two jumps of the
+    tooth load (over_points.continuous_runs: no trend drawn across a jump); open markers where a point did not
+    converge."""
     handles = []
     for k, (key, label, style, unit) in enumerate(series):
         if key not in cycle:
             continue
         values = unit(np.asarray(cycle[key].values, dtype=float))
-        (line,) = ax.plot(s, values, style, color=f"C{(int(color[1]) + k) % 10}", markersize=3,
-                          label=label.format(*bodies))
+        colour = f"C{(int(color[1]) + k) % 10}"
+        segments = [ax.plot(s[run], values[run], style, color=colour, markersize=3,
+                            label=label.format(*bodies) if r == 0 else "_nolegend_")[0] for r, run in enumerate(runs)]
+        line = segments[0]
         if open_points.any():
             ax.plot(s[open_points], values[open_points], "o", color="white", markeredgecolor=line.get_color(),
                     markersize=5)
