@@ -19,7 +19,9 @@ from dataclasses import dataclass
 import math
 
 import numpy as np
-from scipy import optimize, special
+from scipy import special
+
+from facegear_tehl.roots import brentq
 
 
 @dataclass(frozen=True)
@@ -77,7 +79,7 @@ def ellipticity(radius_ratio: float) -> tuple[float, float, float]:
 
     lo = 1e-7
     hi = max(1.0, math.log(2.0 * radius_ratio))
-    log_k = optimize.brentq(f, lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
+    log_k = brentq(f, lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
     k = math.exp(log_k)
     kk, ee = _elliptic_integrals(k)
     return k, kk, ee

@@ -33,7 +33,8 @@ from dataclasses import dataclass
 import math
 
 import numpy as np
-from scipy import optimize
+
+from facegear_tehl.roots import brentq
 
 # Shaper addendum in modules: it cuts the face-gear dedendum 1.25 m (ISO 53:1998 basic rack, h_fP = 1.25 m).
 SHAPER_ADDENDUM_FACTOR = 1.25
@@ -303,7 +304,7 @@ def singular_point(geo: PairGeometry, theta_s: float) -> np.ndarray:
 
     On the working branch 0 < a < alpha (face-gear radii below L0); D > 0 at a = 0 and D < 0 at a = alpha.
     """
-    a = optimize.brentq(lambda x: generation_contact(geo, theta_s, x).D, 0.0, geo.pressure_angle, xtol=1e-15)
+    a = brentq(lambda x: generation_contact(geo, theta_s, x).D, 0.0, geo.pressure_angle, xtol=1e-15)
     return generating_point(geo, theta_s, a)
 
 
@@ -316,7 +317,7 @@ def undercut_limit(geo: PairGeometry) -> float:
 
 def _tip_roll(geo: PairGeometry, a: float) -> float:
     """Shaper roll angle theta_s of the generated point on the face-gear top land at phase a."""
-    return optimize.brentq(
+    return brentq(
         lambda t: axial_section(geo, generating_point(geo, t, a))[0] - geo.tip_depth, 0.0, 3.0, xtol=1e-15
     )
 
@@ -333,5 +334,5 @@ def pointing_limit(geo: PairGeometry) -> float:
         angle = face_gear_angle(geo, generating_point(geo, theta, a)) + geo.q * (a - geo.mu - theta)
         return angle - math.pi / (2.0 * geo.face_gear_teeth)
 
-    a = optimize.brentq(excess, geo.pressure_angle, 1.4, xtol=1e-15)
+    a = brentq(excess, geo.pressure_angle, 1.4, xtol=1e-15)
     return axial_section(geo, generating_point(geo, _tip_roll(geo, a), a))[1]

@@ -29,7 +29,6 @@ from dataclasses import dataclass
 import math
 
 import numpy as np
-from scipy import optimize
 
 from facegear_tehl.gears.geometry import (
     K_AXIS,
@@ -42,6 +41,7 @@ from facegear_tehl.gears.geometry import (
     profile_tangent,
     rotation,
 )
+from facegear_tehl.roots import brentq
 
 MESHING_POINTS = ("S1", "S2", "S3", "S4", "S5")
 _NEWTON_TOLERANCE = 1e-15  # relative step size at which Newton stops (machine precision of positions ~ 0.5 m)
@@ -302,8 +302,8 @@ class ContactPath:
         if self.mis.is_zero:
             s_max = rho_tip - geo.r_p1 * math.sin(geo.pressure_angle)
         else:
-            s_max = optimize.brentq(tip_excess, 0.0, span, xtol=1e-14)
-        s_min = optimize.brentq(depth_excess, -span, 0.0, xtol=1e-14)
+            s_max = brentq(tip_excess, 0.0, span, xtol=1e-14)
+        s_min = brentq(depth_excess, -span, 0.0, xtol=1e-14)
         return s_min, s_max
 
 
