@@ -332,10 +332,15 @@ def _case(raw: Any, text: str, name: str) -> Case:
 def load_case(path: str | Path) -> Case:
     """Read and validate a case file."""
     path = Path(path)
+    return parse_case(read_input(path, "case file"), name=path.stem)
+
+
+def read_input(path: Path, what: str) -> str:
+    """The text of an input file (`what`: "case file", "study file"); CaseError naming the file if it cannot be read
+    or is not UTF-8 text."""
     try:
-        text = path.read_text(encoding="utf-8")
+        return path.read_text(encoding="utf-8")
     except OSError as exc:
-        raise CaseError("(file)", str(path), f"a readable case file ({exc.strerror})") from None
+        raise CaseError("(file)", str(path), f"a readable {what} ({exc.strerror})") from None
     except UnicodeDecodeError:
         raise CaseError("(file)", str(path), "a UTF-8 text file") from None
-    return parse_case(text, name=path.stem)

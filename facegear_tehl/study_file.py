@@ -27,7 +27,7 @@ from typing import Any
 
 import yaml
 
-from facegear_tehl.case import Case, _Loader, parse_case
+from facegear_tehl.case import Case, _Loader, parse_case, read_input
 from facegear_tehl.schema import Block, CaseError, check
 
 HASH_DIGITS = 16  # hex digits of the SHA-256 kept in a file name: 64 bits, no collision among 1e9 variants
@@ -97,13 +97,7 @@ def digest(text: str) -> str:
 def load_study(path: str | Path) -> Study:
     """Read and validate a study file and every variant it makes (CaseError on any problem, nothing run)."""
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise CaseError("(file)", str(path), f"a readable study file ({exc.strerror})") from None
-    except UnicodeDecodeError:
-        raise CaseError("(file)", str(path), "a UTF-8 text file") from None
-    return parse_study(text, path)
+    return parse_study(read_input(path, "study file"), path)
 
 
 def parse_study(text: str, path: Path) -> Study:
