@@ -35,11 +35,15 @@ import secrets
 import numpy as np
 
 from facegear_tehl.case import THERMAL_MODELS, Case
+from facegear_tehl.contact import ContactPoint
+from facegear_tehl.ehl.domain import solution_domain
+from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
 from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.results import RunResult
 from facegear_tehl.run import ehl_solver
 from facegear_tehl.schema import CaseError, check
+from facegear_tehl.settings import SolverSettings
 from facegear_tehl.solution import Field, PointSolution
 from facegear_tehl.tables import COST, cell, format_table, yes_no
 from facegear_tehl.units import PERCENT, display
@@ -187,10 +191,9 @@ def run_sweep(
     target = analysis.points[0] if point is None else select_points(analysis.points, [point], key="--point")[0]
     # The finest grid, the longest solve, starts first so that the others fill the remaining workers.
     finest_first = sorted(range(len(grids)), key=lambda i: -grids[i])
-    tasks = [
-        SolveTask(replace(target, name=f"{target.name}@{grids[i]}"), case.lubricant, case.with_grid(grids[i]).solver)
-        for i in finest_first
-    ]
+    settings = _on_one_domain(target, case, [case.with_grid(g).solver for g in grids])
+    tasks = [SolveTask(replace(target, name=f"{target.name}@{grids[i]}"), case.lubricant, settings[i])
+             for i in finest_first]
     solved, failed_tasks = solve_all(tasks, solver or ehl_solver(), jobs=jobs, progress=progress)
     solutions: list[PointSolution] = [None] * len(grids)
     for task_index, index in enumerate(finest_first):
@@ -212,6 +215,18 @@ def run_sweep(
         overrides=overrides,
     )
     return Sweep(point=target.name, grids=grids, tolerance=tolerance, quantities=quantities, run=run)
+
+
+def _on_one_domain(point: ContactPoint, case: Case, settings: list[SolverSettings]) -> list[SolverSettings]:
+    """The grids' settings on one domain: without `solver.domain`, the one the finest grid's solve would choose
+    (ehl.domain: an inlet lengthened at the spacing of each grid), so that the grids differ in spacing alone."""
+    if case.solver.domain_x is not None and case.solver.domain_y is not None:
+        return settings
+    finest = settings[-1]
+    domain = solution_domain(scaling_for(point, case.lubricant), finest)
+    fx, fy = (domain.nx - 1) // (finest.grid - 1), (domain.ny - 1) // (finest.nodes_y - 1)
+    return [replace(s, grid=(s.grid - 1) * fx + 1, grid_y=(s.nodes_y - 1) * fy + 1, domain_x=domain.x,
+                    domain_y=domain.y) for s in settings]
 
 
 def _quantities(grids: Sequence[int], solutions: Sequence[PointSolution], tolerance: float) -> tuple[Convergence, ...]:

@@ -3,7 +3,7 @@
 The ellipse: steel on steel (E = 200 GPa, nu = 0.3), R_x = 20 mm, R_y = 2000 R_x (Hertz a/b = 99.9), the project's
 default oil law (eta_0 = 0.04 Pa s, alpha = 22 GPa^-1, Roelands + Dowson-Higginson), isothermal Newtonian,
 entrainment along x (the minor axis), pure rolling, solved by `facegear_tehl.ehl.solve.solve_point` on its
-default settings (`SolverSettings()`).
+default settings (`SolverSettings()`) but on Venner & Lubrecht's domain, the line contact's (LINE_DOMAIN).
 
 The line contact: the same R_x and the same maximum Hertz pressure p_h, i.e. w' = pi b p_h/2 with b the minor
 semi-axis (on the ellipse's centre line the Hertz pressure p_h sqrt(1 - x^2/b^2) carries pi b p_h/2 per unit
@@ -32,7 +32,8 @@ STEEL = Solid(elastic_modulus=2.0e11, poisson_ratio=0.3)
 RADIUS_X = 0.02  # m
 RADIUS_RATIO = 2000.0  # R_y/R_x: Hertz ellipticity a/b = 99.9
 OIL = Lubricant(viscosity=0.04, pressure_viscosity=2.2e-8)
-LINE_DOMAIN = (-4.5, 1.5)  # x/b, the elliptical solver's default extent along x (ehl.solve.default_domain)
+LINE_DOMAIN = (-4.5, 1.5)  # x/b: Venner & Lubrecht's extent along x (ehl.domain), given to both solvers
+ELLIPSE_DOMAIN_Y = (-3.0, 3.0)  # y/a: Venner & Lubrecht's
 LINE_ORDER = 2.0  # observed order of h_c of the line solver (tests/test_line_contact.py: 1.98)
 
 
@@ -48,7 +49,7 @@ def main() -> None:
                         "axis (default: SolverSettings())")
     parser.add_argument("--grid-y", type=int, default=None, help="nodes along y, the major axis (default: --grid)")
     args = parser.parse_args()
-    settings = SolverSettings(grid=args.grid, grid_y=args.grid_y)
+    settings = SolverSettings(grid=args.grid, grid_y=args.grid_y, domain_x=LINE_DOMAIN, domain_y=ELLIPSE_DOMAIN_Y)
     e_prime = reduced_modulus(STEEL, STEEL)
     print(f"a/b = 100 ellipse (R_x = {RADIUS_X * 1e3:g} mm, R_y/R_x = {RADIUS_RATIO:g}) vs line contact, "
           f"elliptical grid {settings.grid} x {settings.nodes_y}\n")

@@ -9,8 +9,8 @@ import pytest
 
 from facegear_tehl.case import load_case
 from facegear_tehl.contact import ContactPoint
+from facegear_tehl.ehl.domain import venner_lubrecht_domain
 from facegear_tehl.ehl.scaling import scaling_for
-from facegear_tehl.ehl.solve import default_domain
 from facegear_tehl.heat_budget import heat_budget, point_budget
 from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.run import run_case
@@ -160,7 +160,7 @@ def _in_ellipse_ratios(name, inlet_extension):
     minor semi-axes at the default spacing (6 b over 256 cells) and grid_y."""
     case = load_case("cases/facegear_110.yaml")
     point = select_points(list(contact_analysis(case).points), [name])[0]
-    domain_x, domain_y = default_domain(scaling_for(point, case.lubricant))
+    domain_x, domain_y = venner_lubrecht_domain(scaling_for(point, case.lubricant))
     cells = 256 * (6.0 + inlet_extension) / 6.0
     solver = dataclasses.replace(case.solver, grid=int(cells) + 1, grid_y=65,
                                  domain_x=(domain_x[0] - inlet_extension, domain_x[1]), domain_y=domain_y)

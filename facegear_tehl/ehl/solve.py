@@ -28,6 +28,7 @@ import numpy as np
 
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import grid
+from facegear_tehl.ehl.domain import solution_domain, venner_lubrecht_domain
 from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem, Relaxation
 from facegear_tehl.ehl.report import ORDER, LevelSummary, point_solution, richardson_error, summarise, with_film_state
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
@@ -47,8 +48,6 @@ CYCLES_PER_THERMAL_UPDATE = 2  # V-cycles on the pressure between two updates of
 THERMAL_RELAXATION = 0.7
 VISCOSITY_RELAXATION = 0.4
 MIN_COARSE_THERMAL_GRID = 65  # the coupled problem is solved one grid coarser first only from this grid up
-DOMAIN_HALF_WIDTH = 3.0  # default domain: a square of +-3 semi-axes (Venner & Lubrecht 2000) ...
-DOMAIN_UPSTREAM_SHIFT = 1.5  # ... shifted 1.5 semi-axes upstream: 4.5 upstream, 1.5 downstream of the centre
 
 # Algebraic floor of the pressure iteration (a period-2 flicker at the spike and the free boundary):
 FLOOR_STALL = 0.8  # the change per cycle fell by less than 20 % over two cycles ...
@@ -60,8 +59,10 @@ THERMAL_FLOOR_FRACTION = 0.01  # largest stalled change accepted, as a fraction 
 THERMAL_FLOOR_H_C = 5e-4  # largest relative spread of h_c over the window (its grid error: 1e-3 to 6e-3)
 THERMAL_FLOOR_ERROR_SHARE = 0.5  # or this share of h_c's own error estimate, if larger
 # An outer loop whose change stopped falling above its floor bound (a limit cycle of the hot spot, e.g. 3 K per
-# iteration on a 136 K rise for an a/b = 30 ellipse at 0.8 GPa, 10 m/s, SRR 0.5 on 257 x 65) halves its
-# under-relaxation, down to MIN_RELAXATION_SCALE of the values above, and is judged again on a fresh window.
+# iteration on a 136 K rise for an a/b = 30 ellipse at 0.8 GPa, 10 m/s, SRR 0.5 on 257 x 65), or that stalled below
+# it with h_c unsteady (S3 of the default case on its lengthened 513 x 65 grid: h_c alternating by 0.12 % between
+# iterations, twice the floor's allowance, for 24 iterations), halves its under-relaxation, down to
+# MIN_RELAXATION_SCALE of the values above, and is judged again on a fresh window.
 MIN_RELAXATION_SCALE = 0.125
 # The relaxation of each attempt at a solve that runs away (StagedSolver): the defaults; then Venner's switch as
 # is, with an escalating start; then that with the Gauss-Seidel / Jacobi-distributive changes damped to half
@@ -104,23 +105,12 @@ class _Best:
     iterate: Iterate
 
 
-def default_domain(scaling: Scaling) -> tuple[tuple[float, float], tuple[float, float]]:
-    """[-3, 3]^2 shifted 1.5 against the entrainment direction (in Hertzian units): 4.5 upstream, 1.5 downstream.
-
-    For entrainment along x this is Venner & Lubrecht's X in [-4.5, 1.5], Y in [-3, 3].
-    """
-    dx, dy = scaling.wedge_x, scaling.wedge_y
-    norm = math.hypot(dx, dy)
-    cx, cy = -DOMAIN_UPSTREAM_SHIFT * dx / norm, -DOMAIN_UPSTREAM_SHIFT * dy / norm
-    return (cx - DOMAIN_HALF_WIDTH, cx + DOMAIN_HALF_WIDTH), (cy - DOMAIN_HALF_WIDTH, cy + DOMAIN_HALF_WIDTH)
-
-
 def problem_for(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, scaling: Scaling) -> Problem:
-    """The dimensionless problem of a point on the settings' domain (default_domain when not set)."""
-    if settings.domain_x is None or settings.domain_y is None:
-        domain_x, domain_y = default_domain(scaling)
-    else:
-        domain_x, domain_y = settings.domain_x, settings.domain_y
+    """The dimensionless problem of a point on the settings' domain (Venner & Lubrecht's when not set; a solve
+    lengthens its inlet first, domain.solution_domain)."""
+    domain_x, domain_y = settings.domain_x, settings.domain_y
+    if domain_x is None or domain_y is None:
+        domain_x, domain_y = venner_lubrecht_domain(scaling)
     return Problem(
         lam=scaling.lam,
         deflection_coefficient=scaling.deflection_coefficient,
@@ -216,8 +206,10 @@ class PointSolve:
         """`elapsed`: s already spent on this point (earlier attempts that ran away), counted in its wall time;
         `escalate_start`: a start that runs away begins again from a finer coarsest grid (start());
         `attempt`: which attempt at the point this is (1: the first)."""
-        self.point, self.lubricant, self.settings = point, lubricant, settings
         self.scaling = scaling_for(point, lubricant)
+        self.domain = solution_domain(self.scaling, settings)
+        self.point, self.lubricant, self.asked = point, lubricant, settings
+        self.settings = settings = self.domain.settings(settings)  # the domain and nodes solved on
         shapes = grid.hierarchy_shapes(settings.grid, settings.nodes_y, settings.coarsest_grid)
         self.solver = MultigridSolver(problem_for(point, lubricant, settings, self.scaling), shapes, relaxation)
         self.mode, self.reason = thermal_choice(settings.thermal, point, lubricant)
@@ -455,8 +447,8 @@ class PointSolve:
                 else:
                     history.viscosity_floor = changes[-1]
                 return state, CONVERGED
-            if _stalled(changes[window:]) and min(changes[-THERMAL_FLOOR_WINDOW:]) > floor_bound:
-                relaxation = max(0.5 * relaxation, MIN_RELAXATION_SCALE)  # a limit cycle: relax harder
+            if _stalled(changes[window:]):  # a limit cycle above the floor (or with h_c unsteady): relax harder
+                relaxation = max(0.5 * relaxation, MIN_RELAXATION_SCALE)
                 window = len(changes)
         if status.diverged:
             return self._last_finite(index, model, initial, *last_finite), status
