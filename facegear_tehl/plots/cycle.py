@@ -18,7 +18,7 @@ MESHING_POINTS = ("S1", "S2", "S3", "S4", "S5")
 # Per panel: (key, label, style, unit) on the left axis, then on the right axis; a key the file lacks is left out.
 _PANELS = (
     ((("load_share", "load share K", "o-", Unit("–")),),
-     (("p_h", "p_h (dry Hertz)", "s--", display("Pa")),)),
+     (("p_h", "$p_h$ (dry Hertz)", "s--", display("Pa")),)),
     ((("h_min", "h_min", "o-", display("m")),),
      (("film_parameter", "λ = h_min/σ", "s--", Unit("–")),)),
     ((("dT_max", "ΔT_max (film)", "o-", Unit("K")), ("dT_surface_1_max", "surface rise, {0}", "^-", Unit("K")),
@@ -31,7 +31,7 @@ _PANELS = (
       ("sliding_power_xu", "P with Xu's μ [c]", "s--", Unit("W")))),
 )
 _LEFT_LABELS = ("load share K (–)", "h_min ({0})", "temperature rise (K)", "friction coefficient μ (–)")
-_RIGHT_LABELS = ("p_h ({0})", "film parameter λ (–)", "contact temperature θ_B (°C)", "sliding power (W)")
+_RIGHT_LABELS = ("$p_h$ ({0})", "film parameter λ (–)", "contact temperature θ_B (°C)", "sliding power (W)")
 
 
 def draw_cycle(result: Result, out: Output) -> None:
