@@ -17,14 +17,16 @@ no thermal expansion): the oil has beta = 0.03 1/K, k_f = 0.14 W/(m K), c_f = 20
 (docs/line-contact.md, thermal table), steel solids of k = 46 W/(m K), rho c = 7850 x 470 J/(m^3 K). The line
 contact is solved on 201, 401 and 801 nodes; its reference is the Richardson value of the three finest converged
 grids (observed order), or of the two finest at order 2 when only two converge. The ellipse's dT_max is the
-largest film temperature rise anywhere; the largest rise on its centre line is printed next to it.
+largest film temperature rise anywhere; the largest rise on its centre line is printed next to it. `--newtonian`
+makes the thermal film Newtonian (no tau_0) in both.
 
-    python scripts/line_vs_ellipse.py [--grid 257] [--grid-y 65] [--thermal [--srr 0.3]]
+    python scripts/line_vs_ellipse.py [--grid 257] [--grid-y 65] [--thermal [--srr 0.3] [--newtonian]]
 """
 
 from __future__ import annotations
 
 import argparse
+from dataclasses import replace
 import math
 import time
 import warnings
@@ -106,8 +108,8 @@ def isothermal_table(settings: SolverSettings, e_prime: float) -> None:
                   f"{100 * error:.2f} % | {diff:+.2f} % | {t_ellipse:.0f} s | {t_line:.0f} s |", flush=True)
 
 
-def thermal_table(settings: SolverSettings, e_prime: float, srr: float) -> None:
-    """Thermal Ree-Eyring with sliding: ellipse h_c and dT_max against the line's (201/401/801 nodes)."""
+def thermal_table(settings: SolverSettings, e_prime: float, srr: float, oil: Lubricant) -> None:
+    """Thermal films with sliding: ellipse h_c and dT_max against the line's (201/401/801 nodes)."""
     settings = SolverSettings(grid=settings.grid, grid_y=settings.grid_y, thermal="full")
     print("| p_h (GPa) | u_e (m/s) | SRR | line h_c (nm) 201 / 401 / 801 | line h_c* (nm) | line dT_max (K) "
           "201 / 401 / 801 | line dT_max* (K) | ellipse h_c (nm) | ellipse dT_max (K) (centre line) | "
@@ -122,7 +124,7 @@ def thermal_table(settings: SolverSettings, e_prime: float, srr: float) -> None:
             with warnings.catch_warnings():  # the dense Jacobian of a diverging 801-node solve warns at each step
                 warnings.simplefilter("ignore")
                 for n in THERMAL_LINE_NODES:
-                    lines.append(solve_line(RADIUS_X, w_line, u_e, srr, THERMAL_OIL, STEEL, STEEL, nodes=n,
+                    lines.append(solve_line(RADIUS_X, w_line, u_e, srr, oil, STEEL, STEEL, nodes=n,
                                             domain=LINE_DOMAIN, thermal=True))
             good = [s for s in lines if s.converged]
             h_star, _ = richardson([s.h_c for s in good]) if len(good) >= 2 else (math.nan, math.nan)
@@ -133,13 +135,13 @@ def thermal_table(settings: SolverSettings, e_prime: float, srr: float) -> None:
             point = ContactPoint.from_rolling_sliding("contact", RADIUS_X, RADIUS_X * RADIUS_RATIO, load, u_e, srr,
                                                       0.0, STEEL, STEEL)
             start = time.perf_counter()
-            ellipse = solve_point(point, THERMAL_OIL, settings)
+            ellipse = solve_point(point, oil, settings)
             t_ellipse = time.perf_counter() - start
             h_e, dt_e = ellipse.scalar("h_c"), ellipse.scalar("dT_max")
             centre = int(np.argmin(np.abs(ellipse.axes["y"].values)))
             dt_centre = max(float(ellipse.fields[k].values[centre].max()) for k in
                             ("temperature_mid", "temperature_surface_1", "temperature_surface_2"))
-            dt_centre -= THERMAL_OIL.inlet_temperature
+            dt_centre -= oil.inlet_temperature
             print(f"| {p_h / 1e9:.1f} | {u_e:g} | {srr:g} | {line_h} | {h_star * 1e9:.1f} | {line_t} | {t_star:.1f} | "
                   f"{h_e * 1e9:.1f} | {dt_e:.1f} ({dt_centre:.1f}) | {_ellipse_status(ellipse)} | "
                   f"{100 * (h_e / h_star - 1):+.2f} % | {100 * (dt_e / t_star - 1):+.2f} % | "
@@ -153,14 +155,16 @@ def main() -> None:
     parser.add_argument("--grid-y", type=int, default=None, help="nodes along y, the major axis (default: --grid)")
     parser.add_argument("--thermal", action="store_true", help="thermal Ree-Eyring films with sliding")
     parser.add_argument("--srr", type=float, default=0.3, help="slide-to-roll ratio of --thermal (default 0.3)")
+    parser.add_argument("--newtonian", action="store_true", help="--thermal with a Newtonian film (no tau_0)")
     args = parser.parse_args()
     settings = SolverSettings(grid=args.grid, grid_y=args.grid_y)
     e_prime = reduced_modulus(STEEL, STEEL)
-    kind = f"thermal Ree-Eyring, SRR {args.srr:g}" if args.thermal else "isothermal Newtonian, pure rolling"
+    oil = replace(THERMAL_OIL, rheology="newtonian") if args.newtonian else THERMAL_OIL
+    kind = f"thermal {oil.rheology}, SRR {args.srr:g}" if args.thermal else "isothermal Newtonian, pure rolling"
     print(f"a/b = 100 ellipse (R_x = {RADIUS_X * 1e3:g} mm, R_y/R_x = {RADIUS_RATIO:g}) vs line contact, {kind}, "
           f"elliptical grid {settings.grid} x {settings.nodes_y}\n")
     if args.thermal:
-        thermal_table(settings, e_prime, args.srr)
+        thermal_table(settings, e_prime, args.srr, oil)
     else:
         isothermal_table(settings, e_prime)
 
