@@ -190,7 +190,7 @@ def thermal_loading(point: ContactPoint, lubricant: Lubricant) -> float:
 
 def gupta_reduction(point: ContactPoint, lubricant: Lubricant) -> float:
     """Thermal reduction factor of the central film, phi_T = [1 + 0.1 (1 + 14.8 SRR^0.83) L_th^0.64]^-1
-    (Gupta, Cheng, Zhu & Wang 1992, with SRR the slide-to-roll ratio)."""
+    (Gupta et al. 1992, Tribol. Trans. 35:269, with SRR the slide-to-roll ratio)."""
     srr = abs(point.slide_roll_ratio)
     return 1.0 / (1.0 + 0.1 * (1.0 + 14.8 * srr**0.83) * thermal_loading(point, lubricant) ** 0.64)
 

@@ -320,7 +320,12 @@ class _FilmIteration:
                     break
                 backoffs += 1
                 self.temperature = 0.5 * (saved[0] + self.temperature)
-                if self.rate is not None:
+                if self.rate is not None and saved[1] is self.rate:
+                    # no film state has been solved yet (the first pressure solve, at the rates of the Newtonian
+                    # start): nothing to fall back to, so halve the Ree-Eyring rates themselves, a step back
+                    # towards the Newtonian film the grid sequence converged (801 nodes at 10 m/s need it)
+                    self.rate = 0.5 * self.rate
+                elif self.rate is not None:
                     self.rate = np.sqrt(np.maximum(saved[1], 1e-300) * np.maximum(self.rate, 1e-300))
                 omega, rate_weight = max(MIN_RELAXATION, 0.5 * omega), max(MIN_RELAXATION, 0.5 * rate_weight)
                 continue
