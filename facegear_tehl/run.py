@@ -10,6 +10,8 @@ from typing import Sequence
 from facegear_tehl.case import Case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.cycle import MeshCycle, mesh_cycle, with_film_parameter
+from facegear_tehl.ehl.domain import solution_domain
+from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.heat_budget import heat_budget
 from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
 from facegear_tehl.points import contact_analysis, select_points
@@ -111,11 +113,10 @@ def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
     refined: dict[str, tuple[str, str]] = {}
     asked = {task.point.name: _shape(task.settings) for task in tasks}
     while True:
-        closed = [i for i, s in enumerate(solved)
-                  if _unresolved(s) and _refined(tasks[i].settings, s) is not None]
+        closed = [i for i, s in enumerate(solved) if _unresolved(s) and _next_grid(tasks[i], s) is not None]
         if not closed:
             return solved, failed, refined
-        finer = [replace(tasks[i], settings=_refined(tasks[i].settings, solved[i])) for i in closed]
+        finer = [replace(tasks[i], settings=_next_grid(tasks[i], solved[i])) for i in closed]
         again, _ = solve_all(finer, solver, jobs=jobs, progress=progress)
         for i, task, solution in zip(closed, finer, again):
             tasks[i] = task
@@ -143,11 +144,26 @@ def _unresolved(solution: PointSolution) -> bool:
     return solution.outcome is Outcome.NOT_CONVERGED and abs(estimate) > UNRESOLVED_H_MIN
 
 
+def _next_grid(task: SolveTask, solution: PointSolution) -> SolverSettings | None:
+    """`_refined` settings of the task, unless the nodes its solve would have (the inlet lengthened at their spacing,
+    ehl.domain) pass the largest refined grid."""
+    finer = _refined(task.settings, solution)
+    if finer is None:
+        return None
+    domain = solution_domain(scaling_for(task.point, task.lubricant), finer)
+    return finer if max(domain.nx, domain.ny) <= _largest_grid(solution) else None
+
+
+def _largest_grid(solution: PointSolution) -> int:
+    """MAX_REFINED_GRID, or MAX_REFINED_THERMAL_GRID for a thermal solve."""
+    return MAX_REFINED_GRID if solution.models.get("thermal", "off") == "off" else MAX_REFINED_THERMAL_GRID
+
+
 def _refined(settings: SolverSettings, solution: PointSolution) -> SolverSettings | None:
     """The settings on the next finer grid for a film that `solution` did not resolve: twice the rows alone when its
     lowest film lies in the side lobes and the grid has fewer rows than columns, else twice as fine along each
     axis (SIDE_LOBE); None beyond MAX_REFINED_GRID (MAX_REFINED_THERMAL_GRID for a thermal solve)."""
-    largest = MAX_REFINED_GRID if solution.models.get("thermal", "off") == "off" else MAX_REFINED_THERMAL_GRID
+    largest = _largest_grid(solution)
     if _in_side_lobe(solution) and settings.nodes_y < settings.grid and 2 * settings.nodes_y - 1 <= largest:
         return replace(settings, grid_y=2 * settings.nodes_y - 1)
     if 2 * max(settings.grid, settings.nodes_y) - 1 > largest:

@@ -265,7 +265,9 @@ def sweep_table(
         return np.array([s.scalar(key) if key in s.scalars else math.nan for s in solutions])
 
     table = {
-        "grid": Field(np.array(grids, dtype=float), "1", "nodes per side of the grid"),
+        "grid": Field(np.array(grids, dtype=float), "1",
+                      "nodes per side of the grid asked (along x with grid_y): its spacing over the default 6 "
+                      "semi-axes; a lengthened inlet adds nodes at that spacing (ehl.domain)"),
         "converged": Field(np.array([float(s.converged) for s in solutions]), "1", "1: the solve met its tolerances"),
         "iterations": Field(scalar("iterations"), "1", "V-cycles on the finest grid"),
         "work_units": Field(scalar("work_units"), "1", "work units of the solve"),

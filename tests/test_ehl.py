@@ -125,10 +125,11 @@ def test_inlet_gap_ratio_is_the_rigid_gap_at_the_upstream_boundary_in_films():
     level = SimpleNamespace(x=np.linspace(-4.5, 1.5, 5), y=np.linspace(-3.0, 3.0, 5))
     scaling = SimpleNamespace(wedge_x=1.0, wedge_y=0.0, a=2e-3, b=1e-3)
     assert inlet_gap_ratio(level, scaling, 0.02, 0.04, 1e-6) == pytest.approx((4.5e-3) ** 2 / 0.04 / 1e-6, rel=1e-12)
-    # entrainment at 45 deg: the line leaves through y = -3 a = -6 mm only after x = -4.5 b = -4.5 mm, so x does
+    # entrainment along (1, 1) in Hertzian units (kappa tan psi = 1: psi = 63.4 deg with a = 2 b): the line X = Y = -s
+    # reaches Y = -3 (y = -3 a = -6 mm) before X = -4.5, and leaves there at X = -3 (x = -3 mm)
     c = math.sqrt(0.5)
     scaling = SimpleNamespace(wedge_x=c, wedge_y=c, a=2e-3, b=1e-3)
-    expected = ((4.5e-3) ** 2 / 0.04 + (4.5e-3) ** 2 / 0.08) / 1e-6
+    expected = ((3e-3) ** 2 / 0.04 + (6e-3) ** 2 / 0.08) / 1e-6
     assert inlet_gap_ratio(level, scaling, 0.02, 0.04, 1e-6) == pytest.approx(expected, rel=1e-12)
 
 

@@ -11,8 +11,8 @@ that law: on the face gear points (isothermal Newtonian, fixed spacing) it is 14
 When the case gives no `solver.domain`, the domain is therefore lengthened upstream along the axis through which
 the entrainment line leaves it, doubling that length together with its node count (the spacing of the grid asked
 for is kept, and the grid stays 2^n + 1; from MIN_LENGTHENED_NODES up), until the inlet gap ratio predicted with
-Hamrock & Dowson's (1977) central film reaches INLET_GAP_TARGET. The isothermal formula over-predicts a heated
-film, so the ratio of the solved film is larger still (a conservative choice).
+Hamrock & Dowson's (1977) central film reaches INLET_GAP_TARGET (at most MAX_INLET_DOUBLINGS times). The isothermal
+formula over-predicts a heated film, so the ratio of the solved film is larger still (a conservative choice).
 """
 
 from __future__ import annotations
@@ -34,9 +34,12 @@ INLET_GAP_TARGET = 40.0
 # is as large as the inlet's (S1 of the face gear case: h_c -1.5 % on 65 x 17, -5.8 % on 33 x 17 against the
 # extrapolated value, docs/accuracy.md), and on 129 x 17 (65 x 17 lengthened) S2 ends on a period-2 load flicker.
 MIN_LENGTHENED_NODES = 129
-# Largest node count of a lengthened axis: a user grid of 1025 (or 513 lengthened twice) is not lengthened further,
-# as 2049 nodes along an axis are outside what the solver was tested on here.
-MAX_LENGTHENED_NODES = 1025
+# Doublings at most: a light load (Moes M ~ 3-20, a circle or an a/b = 5 ellipse at 0.3 GPa, 2 m/s) needs two (an inlet
+# of 22.5 semi-axes, 4x the nodes) to reach the target; a third has not been needed in the envelope suite.
+MAX_INLET_DOUBLINGS = 2
+# Largest node count of a lengthened axis: beyond it the lengthened domain keeps this many nodes (a coarser spacing
+# than asked, said in the note), so that its length never depends on the grid (tehl sweep, solver-chosen grids).
+MAX_LENGTHENED_NODES = 2049
 
 
 @dataclass(frozen=True)
@@ -49,6 +52,7 @@ class Domain:
     ny: int
     doublings: int  # times the inlet was lengthened (0: the domain of the settings, or the default one)
     predicted_gap_ratio: float  # inlet gap ratio with the Hamrock & Dowson central film (nan: domain given)
+    capped: bool = False  # the lengthened axis kept MAX_LENGTHENED_NODES nodes, fewer than the spacing asked needs
 
     def settings(self, settings: SolverSettings) -> SolverSettings:
         """`settings` with this domain and its nodes."""
@@ -58,9 +62,10 @@ class Domain:
         """What the lengthening did, for the result's solver description ('' if nothing)."""
         if self.doublings == 0:
             return ""
+        capped = f" (capped at {MAX_LENGTHENED_NODES} nodes: a coarser spacing)" if self.capped else ""
         return (f"inlet lengthened by the solver to X in [{self.x[0]:g}, {self.x[1]:g}], Y in [{self.y[0]:g}, "
-                f"{self.y[1]:g}] on {self.nx} x {self.ny} nodes at the spacing of {asked.grid} x {asked.nodes_y} "
-                f"(predicted inlet gap ratio {self.predicted_gap_ratio:.0f} >= {INLET_GAP_TARGET:g})")
+                f"{self.y[1]:g}] on {self.nx} x {self.ny} nodes at the spacing of {asked.grid} x {asked.nodes_y}"
+                f"{capped} (predicted inlet gap ratio {self.predicted_gap_ratio:.0f}, target {INLET_GAP_TARGET:g})")
 
 
 def venner_lubrecht_domain(scaling: Scaling) -> tuple[tuple[float, float], tuple[float, float]]:
@@ -74,28 +79,24 @@ def venner_lubrecht_domain(scaling: Scaling) -> tuple[tuple[float, float], tuple
     return (cx - DOMAIN_HALF_WIDTH, cx + DOMAIN_HALF_WIDTH), (cy - DOMAIN_HALF_WIDTH, cy + DOMAIN_HALF_WIDTH)
 
 
-def inlet_exit(x: tuple[float, float], y: tuple[float, float], scaling: Scaling) -> tuple[str, float]:
+def inlet_exit(x: tuple[float, float], y: tuple[float, float], scaling: Scaling) -> tuple[str, float, float]:
     """Where the entrainment line through the centre leaves the domain upstream: the axis ("x" or "y") of the
-    boundary it crosses and the distance to it along the line (m)."""
-    cos, sin = scaling.wedge_x, scaling.wedge_y  # entrainment direction in Hertzian units (kappa sin psi for y)
+    boundary it crosses and the exit point (X, Y) in Hertzian units. The line runs along (cos psi, kappa sin psi)
+    in Hertzian units (scaling.wedge_x, wedge_y): X = -s wedge_x, Y = -s wedge_y upstream for s > 0."""
     exits = []
-    for axis, bounds, component, semi_axis in (("x", x, cos, scaling.b), ("y", y, sin, scaling.a)):
+    for axis, bounds, component in (("x", x, scaling.wedge_x), ("y", y, scaling.wedge_y)):
         if component != 0.0:
-            for bound in bounds:
-                t = -bound * semi_axis / component  # the line x = -t cos, y = -t sin runs upstream for t > 0
-                if t > 0.0:
-                    exits.append((t, axis))
-    t, axis = min(exits)
-    return axis, t
+            exits += [(-bound / component, axis) for bound in bounds if -bound / component > 0.0]
+    s, axis = min(exits)
+    return axis, -s * scaling.wedge_x, -s * scaling.wedge_y
 
 
 def rigid_gap_ratio(x: tuple[float, float], y: tuple[float, float], scaling: Scaling, radius_x: float,
                     radius_y: float, h_c: float) -> float:
     """Rigid gap x^2/(2 R_x) + y^2/(2 R_y) where the entrainment line leaves the domain upstream, over h_c (radii
     and h_c in m): how far the inlet reaches, in central films."""
-    _, t = inlet_exit(x, y, scaling)
-    cos, sin = scaling.wedge_x, scaling.wedge_y
-    return ((t * cos) ** 2 / (2.0 * radius_x) + (t * sin) ** 2 / (2.0 * radius_y)) / h_c
+    _, exit_x, exit_y = inlet_exit(x, y, scaling)
+    return ((exit_x * scaling.b) ** 2 / (2.0 * radius_x) + (exit_y * scaling.a) ** 2 / (2.0 * radius_y)) / h_c
 
 
 def predicted_central_film(scaling: Scaling) -> float:
@@ -110,21 +111,22 @@ def solution_domain(scaling: Scaling, settings: SolverSettings) -> Domain:
     if settings.domain_x is not None and settings.domain_y is not None:
         return Domain(settings.domain_x, settings.domain_y, settings.grid, settings.nodes_y, 0, math.nan)
     x, y = venner_lubrecht_domain(scaling)
-    nx, ny, doublings = settings.grid, settings.nodes_y, 0
+    nx, ny, doublings, capped = settings.grid, settings.nodes_y, 0, False
     radii, h_c = (scaling.hertz.radius_x, scaling.hertz.radius_y), predicted_central_film(scaling)
     ratio = rigid_gap_ratio(x, y, scaling, *radii, h_c)
-    while ratio < INLET_GAP_TARGET:
-        axis, _ = inlet_exit(x, y, scaling)
-        nodes = nx if axis == "x" else ny
-        if nodes < MIN_LENGTHENED_NODES or 2 * nodes - 1 > MAX_LENGTHENED_NODES:
+    while ratio < INLET_GAP_TARGET and doublings < MAX_INLET_DOUBLINGS:
+        axis, _, _ = inlet_exit(x, y, scaling)
+        if (nx if axis == "x" else ny) < MIN_LENGTHENED_NODES:
             break
+        nodes = 2 * (nx if axis == "x" else ny) - 1
+        capped = capped or nodes > MAX_LENGTHENED_NODES
         if axis == "x":
-            x, nx = _lengthened(x, scaling.wedge_x), 2 * nx - 1
+            x, nx = _lengthened(x, scaling.wedge_x), min(nodes, MAX_LENGTHENED_NODES)
         else:
-            y, ny = _lengthened(y, scaling.wedge_y), 2 * ny - 1
+            y, ny = _lengthened(y, scaling.wedge_y), min(nodes, MAX_LENGTHENED_NODES)
         doublings += 1
         ratio = rigid_gap_ratio(x, y, scaling, *radii, h_c)
-    return Domain(x, y, nx, ny, doublings, ratio)
+    return Domain(x, y, nx, ny, doublings, ratio, capped)
 
 
 def _lengthened(bounds: tuple[float, float], component: float) -> tuple[float, float]:

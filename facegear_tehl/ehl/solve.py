@@ -28,12 +28,11 @@ import numpy as np
 
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import grid
-from facegear_tehl.ehl.domain import solution_domain, venner_lubrecht_domain
+from facegear_tehl.ehl.domain import predicted_central_film, solution_domain, venner_lubrecht_domain
 from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem, Relaxation
 from facegear_tehl.ehl.report import ORDER, LevelSummary, point_solution, richardson_error, summarise, with_film_state
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
 from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel, thermal_choice
-from facegear_tehl.film_formulas import hamrock_dowson_central
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.settings import SolverSettings
 from facegear_tehl.solution import CONVERGED, Outcome, PointSolution, Status
@@ -60,8 +59,9 @@ THERMAL_FLOOR_H_C = 5e-4  # largest relative spread of h_c over the window (its 
 THERMAL_FLOOR_ERROR_SHARE = 0.5  # or this share of h_c's own error estimate, if larger
 # An outer loop whose change stopped falling above its floor bound (a limit cycle of the hot spot, e.g. 3 K per
 # iteration on a 136 K rise for an a/b = 30 ellipse at 0.8 GPa, 10 m/s, SRR 0.5 on 257 x 65), or that stalled below
-# it with h_c unsteady (S3 of the default case on its lengthened 513 x 65 grid: h_c alternating by 0.12 % between
-# iterations, twice the floor's allowance, for 24 iterations), halves its under-relaxation, down to
+# it without reaching its floor (h_c unsteady or the pressure unsettled: S3 of the default case on its lengthened
+# 513 x 65 grid alternated h_c by 0.12 % between iterations, twice the floor's allowance, for 24 iterations), halves
+# its under-relaxation, down to
 # MIN_RELAXATION_SCALE of the values above, and is judged again on a fresh window.
 MIN_RELAXATION_SCALE = 0.125
 # The relaxation of each attempt at a solve that runs away (StagedSolver): the defaults; then Venner's switch as
@@ -70,10 +70,11 @@ MIN_RELAXATION_SCALE = 0.125
 # undamped and converges damped (a/b = 5, p_h = 1.5 GPa, 0.5 m/s, M = 8.5e3, L = 7.9), as does the thermal
 # a/b = 30, 1.5 GPa, 10 m/s, SRR 0.5 point of the envelope suite, which runs away on its finest grid undamped.
 # Damping is the last resort: it slows the convergence of the points the second attempt converges (two of the
-# default face gear's points on 65 x 17 then end their thermal loops unconverged). A solve that ends short of its
-# tolerances in a limit cycle is tried once more, damped: an a/b = 5 ellipse at 0.3 GPa, 2 m/s (Moes M ~ 20) stalls at
-# a pressure change of 1.1e-3 per cycle and converges damped in a quarter of the time; an a/b = 30 ellipse at 0.8 GPa,
-# 0.5 m/s stalls at 1.6e-2 with h_c 18 % low (0.173 against 0.212 µm) and converges damped (envelope suite).
+# default face gear's points on 65 x 17 then end their thermal loops unconverged). An isothermal Newtonian solve that
+# ends short of its tolerances in a limit cycle is tried once more, damped: an a/b = 5 ellipse at 0.3 GPa, 2 m/s
+# (Moes M ~ 20) stalls at a pressure change of 1.1e-3 per cycle and converges damped in a quarter of the time; an
+# a/b = 30 ellipse at 0.8 GPa, 0.5 m/s stalls at 1.6e-2 with h_c 18 % low (0.173 against 0.212 µm) and converges
+# damped (envelope suite).
 ATTEMPTS = (
     ("the ellipse-scaled switch", Relaxation()),
     ("Venner's switch", Relaxation(scale_switch=False)),
@@ -349,9 +350,7 @@ class PointSolve:
 
     def _central_film_estimate(self) -> float:
         """The Hamrock & Dowson (1977) central film, dimensionless."""
-        s = self.scaling
-        h_c = hamrock_dowson_central(s.hamrock_u, s.hamrock_g, s.hamrock_w, s.ellipticity) * s.hertz.radius_x
-        return h_c / s.film_scale
+        return predicted_central_film(self.scaling) / self.scaling.film_scale
 
     def cycle(self, index: int, max_cycles: int, best: _Best | None = None) -> Status:
         """V-cycles on level `index` until the tolerances are met (or the algebraic floor is reached), at most
@@ -522,7 +521,8 @@ class StagedSolver:
     Convergence policy: a solve that runs away is repeated with the relaxation of the next of ATTEMPTS (the
     ellipse-scaled Gauss-Seidel / Jacobi switch first, then Venner's circle value, then that damped;
     multigrid.Level) and a start that begins again from a finer coarsest grid when it runs away
-    (PointSolve.start); the retry is reported.
+    (PointSolve.start); a first attempt of an isothermal Newtonian solve that stalls short of its tolerances is
+    repeated with the damped relaxation (needs_retry). The retry is reported, and so is a retry that did not help.
     """
 
     def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
@@ -548,10 +548,16 @@ class StagedSolver:
         return stage.finish()
 
     def needs_retry(self, solution: PointSolution) -> bool:
-        """The attempt ran away, or ended in a limit cycle short of its tolerances, and ATTEMPTS has another
-        relaxation to try (a limit cycle goes straight to the damped one: StagedSolver.begin)."""
-        return (solution.outcome in (Outcome.DIVERGED, Outcome.NOT_CONVERGED)
-                and solution.scalar("attempts") < len(ATTEMPTS))
+        """The attempt ran away and ATTEMPTS has another relaxation to try; or a first attempt of an uncoupled
+        (isothermal Newtonian) solve stalled short of its tolerances, a limit cycle of the pressure iteration (it
+        goes straight to the damped relaxation: begin). Coupled solves are not repeated for a stall: their outer
+        loop under-relaxes itself (PointSolve.couple), and a stalled thermal loop estimates its h_min within
+        0.1-0.4 % (run.py)."""
+        attempt = solution.scalar("attempts")
+        if solution.outcome is Outcome.DIVERGED:
+            return attempt < len(ATTEMPTS)
+        uncoupled = solution.models.get("thermal") == "off" and solution.models.get("rheology") == "newtonian"
+        return solution.outcome is Outcome.NOT_CONVERGED and attempt == 1 and uncoupled
 
     def with_retry(self, first: PointSolution, retry: PointSolution) -> PointSolution:
         """The last retry's solution, noted, if it did better than the first attempt (converged, or anything but
@@ -559,9 +565,11 @@ class StagedSolver:
         attempts)."""
         better = (retry.outcome is Outcome.CONVERGED if first.outcome is Outcome.NOT_CONVERGED
                   else retry.outcome is not Outcome.DIVERGED)
-        if not better:  # the first attempt's record, with the time and count of all
+        if not better:  # the first attempt's record, with the time and count of all, and what the retry did
+            note = f"a retry with {ATTEMPTS[int(retry.scalar('attempts')) - 1][0]} ended {retry.outcome.value}"
             return replace(first, scalars={**first.scalars, "wall_time": retry.scalars["wall_time"],
-                                           "attempts": retry.scalars["attempts"]})
+                                           "attempts": retry.scalars["attempts"]},
+                           models={**first.models, "solver": first.models.get("solver", "") + "; " + note})
         attempt = int(retry.scalar("attempts"))
         note = (f"{retry.outcome.value} at attempt {attempt} with {ATTEMPTS[attempt - 1][0]} and an escalating start "
                 f"(first attempt: {first.message})")
@@ -572,6 +580,6 @@ STAGED = StagedSolver()
 
 
 def solve_point(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
-    """Solve the EHL problem of one contact point (thermal model and rheology as the settings say), retrying
-    once a solve that runs away (StagedSolver)."""
+    """Solve the EHL problem of one contact point (thermal model and rheology as the settings say), retrying a
+    solve that runs away or stalls as StagedSolver says."""
     return STAGED(point, lubricant, settings)
