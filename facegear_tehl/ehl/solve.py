@@ -28,7 +28,13 @@ import numpy as np
 
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import grid
-from facegear_tehl.ehl.domain import predicted_central_film, solution_domain, venner_lubrecht_domain
+from facegear_tehl.ehl.domain import (
+    MAX_INLET_DOUBLINGS,
+    RETRY_INLET_DOUBLINGS,
+    predicted_central_film,
+    solution_domain,
+    venner_lubrecht_domain,
+)
 from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem, Relaxation
 from facegear_tehl.ehl.report import ORDER, LevelSummary, point_solution, richardson_error, summarise, with_film_state
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
@@ -206,12 +212,12 @@ class PointSolve:
 
     def __init__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
                  relaxation: Relaxation = Relaxation(), elapsed: float = 0.0, escalate_start: bool = False,
-                 attempt: int = 1):
+                 attempt: int = 1, max_doublings: int = MAX_INLET_DOUBLINGS):
         """`elapsed`: s already spent on this point (earlier attempts that ran away), counted in its wall time;
         `escalate_start`: a start that runs away begins again from a finer coarsest grid (start());
-        `attempt`: which attempt at the point this is (1: the first)."""
+        `attempt`: which attempt at the point this is (1: the first); `max_doublings`: of the inlet (domain.py)."""
         self.scaling = scaling_for(point, lubricant)
-        self.domain = solution_domain(self.scaling, settings)
+        self.domain = solution_domain(self.scaling, settings, max_doublings)
         self.point, self.lubricant, self.asked = point, lubricant, settings
         self.settings = settings = self.domain.settings(settings)  # the domain and nodes solved on
         shapes = grid.hierarchy_shapes(settings.grid, settings.nodes_y, settings.coarsest_grid)
@@ -541,23 +547,24 @@ class StagedSolver:
         if retry_after.outcome is Outcome.NOT_CONVERGED:  # a limit cycle: the damped relaxation, at once
             attempt = len(ATTEMPTS)
         return PointSolve(point, lubricant, settings, ATTEMPTS[attempt - 1][1], elapsed=retry_after.scalar("wall_time"),
-                          escalate_start=True, attempt=attempt).begin()
+                          escalate_start=True, attempt=attempt, max_doublings=RETRY_INLET_DOUBLINGS).begin()
 
     def finish(self, stage: PointSolve) -> PointSolution:
         """The second stage (PointSolve.finish)."""
         return stage.finish()
 
     def needs_retry(self, solution: PointSolution) -> bool:
-        """The attempt ran away and ATTEMPTS has another relaxation to try; or a first attempt of an uncoupled
+        """The attempt ran away and ATTEMPTS has another relaxation to try; or an undamped attempt of an uncoupled
         (isothermal Newtonian) solve stalled short of its tolerances, a limit cycle of the pressure iteration (it
-        goes straight to the damped relaxation: begin). Coupled solves are not repeated for a stall: their outer
-        loop under-relaxes itself (PointSolve.couple), and a stalled thermal loop estimates its h_min within
-        0.1-0.4 % (run.py)."""
+        goes straight to the damped relaxation: begin; should that run away after an earlier attempt ran away too,
+        the first attempt is reported, with_retry). Coupled solves are not repeated for a stall: their outer loop
+        under-relaxes itself (PointSolve.couple), and a stalled thermal loop estimates its h_min within 0.1-0.4 %
+        (run.py)."""
         attempt = solution.scalar("attempts")
         if solution.outcome is Outcome.DIVERGED:
             return attempt < len(ATTEMPTS)
         uncoupled = solution.models.get("thermal") == "off" and solution.models.get("rheology") == "newtonian"
-        return solution.outcome is Outcome.NOT_CONVERGED and attempt == 1 and uncoupled
+        return solution.outcome is Outcome.NOT_CONVERGED and attempt < len(ATTEMPTS) and uncoupled
 
     def with_retry(self, first: PointSolution, retry: PointSolution) -> PointSolution:
         """The last retry's solution, noted, if it did better than the first attempt (converged, or anything but
