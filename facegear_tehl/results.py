@@ -38,14 +38,16 @@ import json
 import os
 from pathlib import Path
 import secrets
-from typing import Any, Mapping
+from typing import TYPE_CHECKING, Any, Mapping
 
-import h5py
 import numpy as np
 
 from facegear_tehl import __version__
 from facegear_tehl.case import Case
 from facegear_tehl.solution import Field, PointSolution
+
+if TYPE_CHECKING:  # h5py is imported where a file is written or read: `tehl validate` does not need it
+    import h5py
 
 FILETYPE = "facegear_tehl result"
 FORMAT_VERSION = "1.2"  # 1.1: /points/<name> attrs outcome; 1.2: dimension scales, integer counts
@@ -172,6 +174,8 @@ class Result:
 
 def write_result(run: RunResult, path: str | Path) -> Path:
     """Write `run` to `path` atomically; the previous file survives any failure or interruption."""
+    import h5py
+
     target = Path(path)
     _check_run(run)
     temporary = target.with_name(f".{target.name}.{secrets.token_hex(6)}.tmp")
@@ -303,6 +307,8 @@ def _stored(name: str, value: Any) -> Any:
 
 
 def _write_dataset(group: h5py.Group, name: str, column: Field, kind: str) -> None:
+    import h5py
+
     values = _stored(name, np.asarray(column.values))
     if values.dtype.kind in "US":
         dataset = group.create_dataset(name, data=values.astype(object), dtype=h5py.string_dtype())
@@ -390,6 +396,8 @@ def _check_column(where: str, name: str, column: Field, allow_nan: bool = False)
 
 def read_result(path: str | Path) -> Result:
     """Read a result file; ResultFileError if it is not a tehl result of a supported format."""
+    import h5py
+
     path = Path(path)
     try:
         h5 = h5py.File(path, "r")
@@ -475,6 +483,8 @@ def _read_table(group: h5py.Group | None) -> dict[str, Field]:
 
 
 def _read_field(dataset: h5py.Dataset) -> Field:
+    import h5py
+
     if h5py.check_string_dtype(dataset.dtype) is not None:
         values = dataset.asstr()[()]
         values = np.asarray(values, dtype=str)
@@ -487,6 +497,8 @@ def non_finite_entries(path: str | Path) -> list[str]:
     """Every dataset and attribute of the HDF5 file at `path` holding NaN or Inf (numbers inside JSON text
     attributes included), as '<object>[.<attribute>]: n NaN, m Inf'; the NaN marking an undefined entry of
     the /sweep table is allowed. Empty for a sound file: checks a file as it is on disk, whoever wrote it."""
+    import h5py
+
     found: list[str] = []
 
     def check(where: str, values: Any, allow_nan: bool = False) -> None:

@@ -4,7 +4,8 @@ computed independently from the published formulas."""
 import numpy as np
 import pytest
 
-from facegear_tehl.lubricant import KELVIN, Lubricant, temperature_coefficient
+from facegear_tehl.lubricant import KELVIN, Lubricant
+from facegear_tehl.lubricant_laws import temperature_coefficient
 
 
 def roelands(**kw):

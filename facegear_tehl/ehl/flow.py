@@ -24,9 +24,11 @@ from numba import njit
 import numpy as np
 
 from facegear_tehl.ehl.layers import cumulative_stencil, simpson_weight
-from facegear_tehl.lubricant import (
-    ROELANDS,
+from facegear_tehl.lubricant import ROELANDS
+from facegear_tehl.lubricant_laws import (
+    density_pressure_factor_at,
     density_ratio_at,
+    density_thermal_factor_at,
     roelands_pressure_factor_at,
     roelands_ratio,
     roelands_temperature_factor_at,
@@ -55,7 +57,17 @@ def layer_integrals(eta, rho):
     The running integrals f0, f1 by the fourth-order cumulative rule, R0, R1, R2 by Simpson's rule (layers.py).
     Exact for constant properties (F0 = 1/eta, F1 = 1/(2 eta), R1 = rho/(6 eta), R2 = rho/(2 eta)).
     """
-    nz = eta.size
+    fluidity = np.empty(eta.size)
+    for k in range(eta.size):
+        fluidity[k] = 1.0 / eta[k]
+    return fluidity_integrals(fluidity, rho)
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def fluidity_integrals(fluidity, rho):
+    """`layer_integrals` from the fluidity 1/eta per layer node (one division per node, not one per stencil
+    weight: layered_coefficients runs at every relaxation sweep)."""
+    nz = fluidity.size
     dz = 1.0 / (nz - 1)
     f0 = 0.0
     f1 = 0.0
@@ -65,11 +77,12 @@ def layer_integrals(eta, rho):
     for k in range(nz):
         if k > 0:
             first, w0, w1, w2, w3 = cumulative_stencil(k, nz)
-            for m, w in enumerate((w0, w1, w2, w3)):
-                if w != 0.0:
-                    g = w * dz / eta[first + m]
-                    f0 += g
-                    f1 += g * (first + m) * dz
+            g0 = w0 * fluidity[first]
+            g1 = w1 * fluidity[first + 1]
+            g2 = w2 * fluidity[first + 2]
+            g3 = w3 * fluidity[first + 3] if w3 != 0.0 else 0.0
+            f0 += dz * (g0 + g1 + g2 + g3)
+            f1 += dz * dz * (first * g0 + (first + 1) * g1 + (first + 2) * g2 + (first + 3) * g3)
         w = simpson_weight(k, nz) * rho[k]
         r0 += w
         r1 += w * f1
@@ -98,22 +111,23 @@ def layered_coefficients(pressure_pa, film, temperature, temperature_factor, vis
     u1, u2: surface velocities divided by |u_e|, in the (x, y) frame (in place).
     """
     nz, ny, nx = temperature.shape
-    eta = np.empty(nz)
+    fluidity = np.empty(nz)
     rho = np.empty(nz)
     roelands = law[0] == ROELANDS
     for j in range(ny):
         for i in range(nx):
             p = pressure_pa[j, i]
             pressure_factor = roelands_pressure_factor_at(p, law)
+            compression = density_pressure_factor_at(p, law)
             for k in range(nz):
                 t = temperature[k, j, i]
                 if roelands:
                     ratio = roelands_ratio(pressure_factor, temperature_factor[k, j, i], law)
                 else:
                     ratio = viscosity_ratio_at(p, t, law)
-                eta[k] = max(ratio * viscosity_factor[k, j, i], 1e-300)
-                rho[k] = density_ratio_at(p, t, law)
-            f0, f1, r0, r1, r2 = layer_integrals(eta, rho)
+                fluidity[k] = 1.0 / max(ratio * viscosity_factor[k, j, i], 1e-300)
+                rho[k] = compression * density_thermal_factor_at(t, law)
+            f0, f1, r0, r1, r2 = fluidity_integrals(fluidity, rho)
             h = max(film[j, i], 0.0)
             if f0 > 0.0:
                 eps[j, i] = 12.0 * (f1 * r2 / f0 - r1) * h * h * h / lam

@@ -30,6 +30,15 @@ MAX_STRESS_RATIO = 600.0  # |tau|/tau_0 cap inside sinh (overflow guard, far bey
 MIN_VISCOSITY_FACTOR = 1e-12  # floor of eta*/eta (r/sinh r underflows to 0 near the cap)
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _sinh_cosh(r):
+    """(sinh r, cosh r) for r >= 0 from one expm1 (the two functions cost one exponential each): with
+    e - 1 = expm1(r), sinh r = (e - 1)(1 + 1/e)/2 without cancellation at small r, cosh r = (e + 1/e)/2."""
+    em1 = math.expm1(r)
+    inverse = 1.0 / (em1 + 1.0)
+    return 0.5 * em1 * (1.0 + inverse), 0.5 * (em1 + 1.0 + inverse)
+
+
 @njit(cache=True, error_model="numpy")
 def _shear_rate(tx, ty, eta, tau0):
     """(gamma_dot_x, gamma_dot_y, d gamma/d tau as (a, b, c) of the symmetric 2x2 Jacobian)."""
@@ -37,9 +46,10 @@ def _shear_rate(tx, ty, eta, tau0):
     if not math.isfinite(tau0) or te == 0.0:
         return tx / eta, ty / eta, 1.0 / eta, 0.0, 1.0 / eta
     r = min(te / tau0, MAX_STRESS_RATIO)
-    amp = tau0 / eta * math.sinh(r)  # |gamma_dot|
+    sinh, cosh = _sinh_cosh(r)
+    amp = tau0 / eta * sinh  # |gamma_dot|
     gx, gy = amp * tx / te, amp * ty / te
-    d_amp = math.cosh(r) / eta  # d|gamma_dot|/d|tau|
+    d_amp = cosh / eta  # d|gamma_dot|/d|tau|
     ratio = amp / te  # |gamma_dot|/|tau|
     nx, ny = tx / te, ty / te
     a = d_amp * nx * nx + ratio * (1.0 - nx * nx)

@@ -1,0 +1,57 @@
+"""Anderson acceleration (ehl/anderson.py) against exact fixed points."""
+
+import numpy as np
+
+from facegear_tehl.ehl.anderson import Anderson
+
+
+def _linear_map(n: int, rate: float, seed: int = 3) -> tuple[np.ndarray, np.ndarray]:
+    """A contraction x -> A x + b with spectral radius `rate`, and its fixed point by a direct solve."""
+    rng = np.random.default_rng(seed)
+    a = rng.random((n, n))
+    a *= rate / np.abs(np.linalg.eigvals(a)).max()
+    b = rng.random(n)
+    return a, b
+
+
+def test_anderson_solves_a_linear_fixed_point_where_the_plain_iteration_crawls():
+    # spectral radius 0.95: the plain iteration gains a factor 0.95^60 ~ 0.05 in 60 steps; Anderson's iterates are
+    # GMRES's (Walker & Ni 2011, thm 2.2), with depth 10 exact to round-off on this 30-dimensional map
+    a, b = _linear_map(30, 0.95)
+    exact = np.linalg.solve(np.eye(30) - a, b)
+    plain, accelerated, anderson = np.zeros(30), np.zeros(30), Anderson(10)
+    for _ in range(60):
+        plain = plain + (a @ plain + b - plain)
+        accelerated = anderson.step(accelerated, a @ accelerated + b - accelerated)
+    assert np.abs(plain - exact).max() > 1e-2 * np.abs(exact).max()
+    assert np.abs(accelerated - exact).max() < 1e-10 * np.abs(exact).max()
+
+
+def test_anderson_without_history_takes_the_plain_step_and_reset_forgets():
+    anderson = Anderson(3)
+    x, f = np.array([1.0, 2.0]), np.array([0.5, -0.25])
+    assert np.array_equal(anderson.step(x, f), x + f)
+    anderson.reset()
+    assert np.array_equal(anderson.step(x + f, 2 * f), x + 3 * f)
+
+
+def test_anderson_weighted_least_squares_is_invariant_to_a_common_scale():
+    # one scalar weight on every component changes nothing (gamma minimises a scaled norm)
+    a, b = _linear_map(12, 0.8, seed=5)
+    runs = []
+    for weight in (1.0, 1e-3):
+        x, anderson = np.zeros(12), Anderson(3)
+        for _ in range(8):
+            x = anderson.step(x, a @ x + b - x, weight)
+        runs.append(x)
+    assert np.allclose(runs[0], runs[1], rtol=1e-9, atol=0.0)
+
+
+def test_anderson_restarts_when_the_step_grows_and_takes_the_plain_step_on_non_finite_history():
+    anderson = Anderson(3)
+    anderson.step(np.zeros(2), np.array([1.0, 1.0]))
+    # the step grew (|f| 2 > 1): the history is dropped, so this is the plain step
+    assert np.array_equal(anderson.step(np.ones(2), np.array([2.0, 2.0])), np.array([3.0, 3.0]))
+    anderson.step(np.full(2, 3.0), np.array([1.0, 0.5]))
+    # a non-finite step: no least squares on it, the plain (non-finite) step shows the runaway
+    assert not np.isfinite(anderson.step(np.full(2, 4.0), np.array([np.inf, 0.0]))).all()
