@@ -63,10 +63,10 @@ ANDERSON_DEPTH = 3
 # the default case were left in a flicker of 0.15-1.4 K, neither converged nor at the thermal floor; 0.1 converged
 # both (60 and 25 outer iterations; 0.03 took S2 of the default case 44 instead of 27).
 ENERGY_FORCING = 0.1
-# V-cycles of the isothermal pressure before the coarse stage's outer loop, and of the `full` finest grid on the
-# interpolated film state before its outer loop: the film state changes next, so converging the pressure first
-# (12 and 6 cycles at S1) was wasted; 4 and 2 saved 14 cycles at S1 with the same outer iterations.
-COARSE_START_CYCLES = 4
+# V-cycles of the `full` finest grid on the interpolated film state before its outer loop: the film state changes
+# next, so converging the pressure first (6 cycles at S1) was wasted; 2 saved 4 cycles at S1 with the same outer
+# iterations. (The isothermal pressure before the coarse stage's loop keeps its max_cycles: with 4 cycles the
+# envelope's thermal a/b = 30, 1.5 GPa, SRR 2 point ran away in its first outer iteration.)
 FINE_START_CYCLES = CYCLES_PER_THERMAL_UPDATE
 MIN_COARSE_THERMAL_GRID = 65  # the coupled problem is solved one grid coarser first only from this grid up
 
@@ -316,11 +316,11 @@ class PointSolve:
     def _coarse_thermal_stage(self) -> PointSolution | PointSolve:
         """Thermal full multigrid, first stage: the coupled problem one grid coarser than the finest (`reduced`
         stops after the fine stage's single film-state evaluation, `full` couples again there). The isothermal
-        pressure is cycled first, COARSE_START_CYCLES at most: the coupled loop goes on from where it got."""
+        pressure is cycled first; its tolerance is not required, the coupled loop goes on from where it got."""
         index, status = self.start(below_top=1)
         state = None
         if status.converged:
-            self.cycle(index, COARSE_START_CYCLES)
+            self.cycle(index, self.settings.max_cycles)
             state, status = self.couple(index)
             if state is not None and not status.diverged:
                 self.coarse_state = state
