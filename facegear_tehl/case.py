@@ -9,6 +9,7 @@ are kept, with a warning in `Case.warnings`.
 
 from __future__ import annotations
 
+from collections.abc import Hashable
 from dataclasses import dataclass, replace
 from pathlib import Path
 import re
@@ -36,7 +37,19 @@ USUAL_SPEED = (1e-3, 100.0)  # m/s: slow-roll tribometer tests up to the pitch-l
 
 class _Loader(yaml.SafeLoader):
     """Safe YAML loader that also reads YAML 1.2 floats such as `2.0e11` or `1e-3` as numbers
-    (PyYAML's YAML 1.1 rule wants a dot and a signed exponent and would read them as strings)."""
+    (PyYAML's YAML 1.1 rule wants a dot and a signed exponent and would read them as strings), and refuses a key
+    given twice in one mapping (YAML requires unique keys; PyYAML would keep the last one silently)."""
+
+    def construct_mapping(self, node: yaml.MappingNode, deep: bool = False) -> dict:
+        first: dict[Any, int] = {}
+        for key_node, _ in node.value:
+            key = self.construct_object(key_node, deep=deep)
+            if isinstance(key, Hashable) and key in first:
+                raise yaml.constructor.ConstructorError(
+                    None, None, f"duplicate key {key!r} (first given at line {first[key] + 1})", key_node.start_mark)
+            if isinstance(key, Hashable):
+                first[key] = key_node.start_mark.line
+        return super().construct_mapping(node, deep)
 
 
 _Loader.add_implicit_resolver(

@@ -84,6 +84,7 @@ BAD_CASES = {
     "grid_y 9": (_replace("  grid: 257", "  grid: 257\n  grid_y: 9"), "solver.grid_y", "at least solver.coarsest_grid"),
     "domain without the contact": (_replace("x: [-4.5, 1.5]", "x: [-0.5, 1.5]"), "solver.domain.x", "containing"),
     "broken yaml": (_replace("  radius_x: 0.0127", "  radius_x: [0.0127"), "(file)", "syntax error at line 7"),
+    "duplicate key": (_replace("  load: 6.272", "  load: 6.272\n  load: 7.0"), "(file)", "duplicate key 'load'"),
     "missing file": (None, "(file)", "readable case file"),
 }
 
