@@ -113,10 +113,11 @@ def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
     refined: dict[str, tuple[str, str]] = {}
     asked = {task.point.name: _shape(task.settings) for task in tasks}
     while True:
-        closed = [i for i, s in enumerate(solved) if _unresolved(s) and _next_grid(tasks[i], s) is not None]
+        next_grids = {i: _next_grid(tasks[i], s) for i, s in enumerate(solved) if _unresolved(s)}
+        closed = [i for i, settings in next_grids.items() if settings is not None]
         if not closed:
             return solved, failed, refined
-        finer = [replace(tasks[i], settings=_next_grid(tasks[i], solved[i])) for i in closed]
+        finer = [replace(tasks[i], settings=next_grids[i]) for i in closed]
         again, _ = solve_all(finer, solver, jobs=jobs, progress=progress)
         for i, task, solution in zip(closed, finer, again):
             tasks[i] = task
