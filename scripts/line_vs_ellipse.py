@@ -60,6 +60,16 @@ def ellipse_load(p_h: float, e_prime: float) -> float:
     return 1000.0 * (p_h / reference.p_max) ** 3
 
 
+def _limit_contacts(e_prime: float):
+    """(p_h Pa, u_e m/s, ellipse load N, line load w' N/m) of the comparison: p_h 0.8 and 1.5 GPa, u_e 2 and 10 m/s,
+    the line carrying the ellipse centre line's pi b p_h/2."""
+    for p_h in (0.8e9, 1.5e9):
+        load = ellipse_load(p_h, e_prime)
+        hertz = hertz_contact(RADIUS_X, RADIUS_X * RADIUS_RATIO, load, e_prime)
+        for u_e in (2.0, 10.0):
+            yield p_h, u_e, load, math.pi * hertz.b * hertz.p_max / 2.0
+
+
 def _ellipse_status(solution) -> str:
     return solution.outcome.name.lower() + (f" ({solution.message})" if solution.message else "")
 
@@ -81,32 +91,28 @@ def isothermal_table(settings: SolverSettings, e_prime: float) -> None:
     print("| p_h (GPa) | u_e (m/s) | ellipse h_c (nm) | ellipse status | line h_c (nm) | line error | "
           "ellipse - line | ellipse time | line time |")
     print("|---|---|---|---|---|---|---|---|---|")
-    for p_h in (0.8e9, 1.5e9):
-        load = ellipse_load(p_h, e_prime)
-        hertz = hertz_contact(RADIUS_X, RADIUS_X * RADIUS_RATIO, load, e_prime)
-        w_line = math.pi * hertz.b * hertz.p_max / 2.0
-        for u_e in (2.0, 10.0):
-            point = ContactPoint.from_rolling_sliding("contact", RADIUS_X, RADIUS_X * RADIUS_RATIO, load, u_e, 0.0,
-                                                      0.0, STEEL, STEEL)
-            start = time.perf_counter()
-            try:
-                ellipse = solve_point(point, OIL, settings)
-                h_ellipse = ellipse.scalar("h_c")
-                status = _ellipse_status(ellipse)
-            except Exception as error:  # the elliptical solver may raise where it diverges: report it
-                h_ellipse, status = math.nan, f"raised {type(error).__name__}: {error}"
-            t_ellipse = time.perf_counter() - start
-            start = time.perf_counter()
-            lines = [solve_line(RADIUS_X, w_line, u_e, 0.0, OIL, STEEL, STEEL, nodes=n, domain=LINE_DOMAIN)
-                     for n in (801, 1601)]
-            t_line = time.perf_counter() - start
-            coarse, fine = lines[0].h_c, lines[1].h_c
-            h_line = fine + (fine - coarse) / (2.0**LINE_ORDER - 1.0)
-            error = abs(h_line - fine) / h_line
-            ok = "" if all(s.converged for s in lines) else " (line NOT converged)"
-            diff = 100.0 * (h_ellipse / h_line - 1.0)
-            print(f"| {p_h / 1e9:.1f} | {u_e:g} | {h_ellipse * 1e9:.1f} | {status} | {h_line * 1e9:.1f}{ok} | "
-                  f"{100 * error:.2f} % | {diff:+.2f} % | {t_ellipse:.0f} s | {t_line:.0f} s |", flush=True)
+    for p_h, u_e, load, w_line in _limit_contacts(e_prime):
+        point = ContactPoint.from_rolling_sliding("contact", RADIUS_X, RADIUS_X * RADIUS_RATIO, load, u_e, 0.0,
+                                                  0.0, STEEL, STEEL)
+        start = time.perf_counter()
+        try:
+            ellipse = solve_point(point, OIL, settings)
+            h_ellipse = ellipse.scalar("h_c")
+            status = _ellipse_status(ellipse)
+        except Exception as error:  # the elliptical solver may raise where it diverges: report it
+            h_ellipse, status = math.nan, f"raised {type(error).__name__}: {error}"
+        t_ellipse = time.perf_counter() - start
+        start = time.perf_counter()
+        lines = [solve_line(RADIUS_X, w_line, u_e, 0.0, OIL, STEEL, STEEL, nodes=n, domain=LINE_DOMAIN)
+                 for n in (801, 1601)]
+        t_line = time.perf_counter() - start
+        coarse, fine = lines[0].h_c, lines[1].h_c
+        h_line = fine + (fine - coarse) / (2.0**LINE_ORDER - 1.0)
+        error = abs(h_line - fine) / h_line
+        ok = "" if all(s.converged for s in lines) else " (line NOT converged)"
+        diff = 100.0 * (h_ellipse / h_line - 1.0)
+        print(f"| {p_h / 1e9:.1f} | {u_e:g} | {h_ellipse * 1e9:.1f} | {status} | {h_line * 1e9:.1f}{ok} | "
+              f"{100 * error:.2f} % | {diff:+.2f} % | {t_ellipse:.0f} s | {t_line:.0f} s |", flush=True)
 
 
 def thermal_table(settings: SolverSettings, e_prime: float, srr: float, oil: Lubricant) -> None:
@@ -116,37 +122,33 @@ def thermal_table(settings: SolverSettings, e_prime: float, srr: float, oil: Lub
           "201 / 401 / 801 | line dT_max* (K) | ellipse h_c (nm) | ellipse dT_max (K) (centre line) | "
           "ellipse status | h_c: ellipse - line | dT_max: ellipse - line | mu line / ellipse | ellipse time |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
-    for p_h in (0.8e9, 1.5e9):
-        load = ellipse_load(p_h, e_prime)
-        hertz = hertz_contact(RADIUS_X, RADIUS_X * RADIUS_RATIO, load, e_prime)
-        w_line = math.pi * hertz.b * hertz.p_max / 2.0
-        for u_e in (2.0, 10.0):
-            lines = []
-            with warnings.catch_warnings():  # the dense Jacobian of a diverging 801-node solve warns at each step
-                warnings.simplefilter("ignore")
-                for n in THERMAL_LINE_NODES:
-                    lines.append(solve_line(RADIUS_X, w_line, u_e, srr, oil, STEEL, STEEL, nodes=n,
-                                            domain=LINE_DOMAIN, thermal=True))
-            good = [s for s in lines if s.converged]
-            h_star, _ = richardson([s.h_c for s in good]) if len(good) >= 2 else (math.nan, math.nan)
-            # dT_max converges at first order or better: the finest converged value, the extrapolation beside it
-            t_star, _ = richardson([s.dT_max for s in good]) if len(good) >= 2 else (math.nan, math.nan)
-            line_h = " / ".join(f"{s.h_c * 1e9:.1f}" if s.converged else "n.c." for s in lines)
-            line_t = " / ".join(f"{s.dT_max:.1f}" if s.converged else "n.c." for s in lines)
-            point = ContactPoint.from_rolling_sliding("contact", RADIUS_X, RADIUS_X * RADIUS_RATIO, load, u_e, srr,
-                                                      0.0, STEEL, STEEL)
-            start = time.perf_counter()
-            ellipse = solve_point(point, oil, settings)
-            t_ellipse = time.perf_counter() - start
-            h_e, dt_e = ellipse.scalar("h_c"), ellipse.scalar("dT_max")
-            centre = int(np.argmin(np.abs(ellipse.axes["y"].values)))
-            dt_centre = max(float(ellipse.fields[k].values[centre].max()) for k in
-                            ("temperature_mid", "temperature_surface_1", "temperature_surface_2"))
-            dt_centre -= oil.inlet_temperature
-            print(f"| {p_h / 1e9:.1f} | {u_e:g} | {srr:g} | {line_h} | {h_star * 1e9:.1f} | {line_t} | {t_star:.1f} | "
-                  f"{h_e * 1e9:.1f} | {dt_e:.1f} ({dt_centre:.1f}) | {_ellipse_status(ellipse)} | "
-                  f"{100 * (h_e / h_star - 1):+.2f} % | {100 * (dt_e / t_star - 1):+.2f} % | "
-                  f"{good[-1].friction:.4f} / {ellipse.scalar('mu'):.4f} | {t_ellipse:.0f} s |", flush=True)
+    for p_h, u_e, load, w_line in _limit_contacts(e_prime):
+        lines = []
+        with warnings.catch_warnings():  # the dense Jacobian of a diverging 801-node solve warns at each step
+            warnings.simplefilter("ignore")
+            for n in THERMAL_LINE_NODES:
+                lines.append(solve_line(RADIUS_X, w_line, u_e, srr, oil, STEEL, STEEL, nodes=n,
+                                        domain=LINE_DOMAIN, thermal=True))
+        good = [s for s in lines if s.converged]
+        h_star, _ = richardson([s.h_c for s in good]) if len(good) >= 2 else (math.nan, math.nan)
+        # dT_max converges at first order or better: the finest converged value, the extrapolation beside it
+        t_star, _ = richardson([s.dT_max for s in good]) if len(good) >= 2 else (math.nan, math.nan)
+        line_h = " / ".join(f"{s.h_c * 1e9:.1f}" if s.converged else "n.c." for s in lines)
+        line_t = " / ".join(f"{s.dT_max:.1f}" if s.converged else "n.c." for s in lines)
+        point = ContactPoint.from_rolling_sliding("contact", RADIUS_X, RADIUS_X * RADIUS_RATIO, load, u_e, srr,
+                                                  0.0, STEEL, STEEL)
+        start = time.perf_counter()
+        ellipse = solve_point(point, oil, settings)
+        t_ellipse = time.perf_counter() - start
+        h_e, dt_e = ellipse.scalar("h_c"), ellipse.scalar("dT_max")
+        centre = int(np.argmin(np.abs(ellipse.axes["y"].values)))
+        dt_centre = max(float(ellipse.fields[k].values[centre].max()) for k in
+                        ("temperature_mid", "temperature_surface_1", "temperature_surface_2"))
+        dt_centre -= oil.inlet_temperature
+        print(f"| {p_h / 1e9:.1f} | {u_e:g} | {srr:g} | {line_h} | {h_star * 1e9:.1f} | {line_t} | {t_star:.1f} | "
+              f"{h_e * 1e9:.1f} | {dt_e:.1f} ({dt_centre:.1f}) | {_ellipse_status(ellipse)} | "
+              f"{100 * (h_e / h_star - 1):+.2f} % | {100 * (dt_e / t_star - 1):+.2f} % | "
+              f"{good[-1].friction:.4f} / {ellipse.scalar('mu'):.4f} | {t_ellipse:.0f} s |", flush=True)
 
 
 def main() -> None:
