@@ -8,6 +8,7 @@ from pathlib import Path
 import sys
 from types import ModuleType
 
+import numpy as np
 import pytest
 
 SCRIPT = Path(__file__).resolve().parents[1] / "scripts" / "envelope.py"
@@ -92,3 +93,22 @@ def test_select_by_pattern_and_model(cases):
     assert [c.name for c in envelope.select(cases, "ab30_ph1.5_u2_iso", None)] == ["ab30_ph1.5_u2_iso"]
     assert all(c.thermal for c in envelope.select(cases, "ab100_*", True))
     assert not any(c.thermal for c in envelope.select(cases, "skew", False))
+
+
+def _solution(energy_balance_error: float, outcome=None):
+    from facegear_tehl.solution import Field, Outcome, PointSolution
+
+    scalars = {"h_c": (1e-7, "m"), "h_min": (5e-8, "m"), "p_max": (1e9, "Pa"),
+               "energy_balance_error": (energy_balance_error, "1")}
+    return PointSolution(name="c", outcome=outcome or Outcome.CONVERGED, message="", scalars=scalars,
+                         fields={"pressure": Field(np.ones((3, 3)), "Pa")}, axes={})
+
+
+@pytest.mark.parametrize(("imbalance", "passes"), [(0.004, True), (-0.009, True), (0.012, False), (-0.03, False)])
+def test_check_holds_converged_thermal_cases_to_a_closed_energy_balance(imbalance, passes):
+    """Issue 19: the energy balance closes to 1 % on every converged thermal envelope case; a larger imbalance (of
+    either sign) fails the case's check, so the suite exits 1."""
+    check = envelope.check_solution(_solution(imbalance))
+    assert (check == "ok") is passes
+    if not passes:
+        assert "energy balance" in check
