@@ -181,6 +181,35 @@ def test_thermal_floor_is_a_stalled_small_change_with_a_steady_film():
     assert _at_thermal_floor(flicker, alternating, bound=0.01 * 98.0, h_c_error=1.7e-3)
 
 
+def test_a_flickering_pressure_feeds_the_film_state_the_mean_of_its_two_phases():
+    """On a period-2 flicker of the pressure (the change per cycle stalled below 10x the tolerance) the outer
+    loop evaluates the film state at the mean of the last two iterates and ends on it (solve.PointSolve
+    ._settled_pressure, ._settle): the film is affine in (P, H_0), so the mean film handed to the energy equation
+    is the film the solver computes for the mean iterate; a pressure still converging is used as it is."""
+    from facegear_tehl.ehl.multigrid import Iterate
+    from facegear_tehl.ehl.solve import PointSolve
+
+    point, lubricant, settings = plain(SLIDING, grid=33)
+    solve = PointSolve(point, lubricant, settings)
+    solver, top = solve.solver, len(solve.solver.levels) - 1
+    level = solver.levels[top]
+    xx, yy = np.meshgrid(level.x, level.y)
+    phase_a = np.sqrt(np.maximum(1.0 - xx**2 - yy**2, 0.0))
+    phase_b = phase_a * (1.0 + 0.02 * np.exp(-((xx - 0.9) / 0.2) ** 2))  # the outlet side raised
+    solver.restore(top, Iterate(phase_b, 0.30))
+    solve.before_cycle = (solver.snapshot(top), level.film.copy())
+    solver.restore(top, Iterate(phase_a, 0.32))
+    solve.history.changes = [math.nan, 2.9e-4, 2.8e-4, 2.9e-4]
+    pressure, film = solve._settled_pressure(top)
+    assert np.allclose(pressure, 0.5 * (phase_a + phase_b))
+    solve._settle(top)
+    assert solver.h0 == pytest.approx(0.31)
+    assert np.allclose(level.pressure, pressure) and np.allclose(level.film, film, rtol=1e-12, atol=1e-14)
+    solve.history.changes = [math.nan, 2.9e-4, 1.5e-4, 0.9e-4]  # still falling: no flicker
+    pressure, film = solve._settled_pressure(top)
+    assert pressure is level.pressure and film is level.film
+
+
 def test_error_estimates_of_dT_max_and_mu_come_from_the_coarse_thermal_stage():
     """error_estimate_dT_max = (f_h - f_2h)/(2^1 - 1)/f_h (first order: the maximum sits at the pressure spike),
     error_estimate_mu the same at second order, from the coarse stage's figures; NaN without that stage."""
