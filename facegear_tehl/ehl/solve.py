@@ -36,7 +36,7 @@ from facegear_tehl.ehl.domain import (
     solution_domain,
     venner_lubrecht_domain,
 )
-from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem, Relaxation
+from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem, Relaxation, at_load_fraction
 from facegear_tehl.ehl.report import ORDER, LevelSummary, point_solution, richardson_error, summarise, with_film_state
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
 from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel, thermal_choice
@@ -103,6 +103,19 @@ ATTEMPTS = (
     ("Venner's switch, damped", Relaxation(scale_switch=False, under_gs=0.15, under_jd=0.1)),
 )
 MIN_RISE = 1.0  # K: tolerances relative to the temperature rise use at least this rise (near-isothermal films)
+# Load continuation of a retry's full-multigrid start (PointSolve.start): above Moes M = CONTINUATION_MOES_M the
+# coarse grids cannot carry the film of the full load (on 17^2 the discrete deflection of the Hertz pressure alone
+# departs from the Hertz gap by 3-9 central films for a/b = 5-30 at 2.5 GPa, 0.5 m/s), and the start ran away or
+# closed the film on every grid up to 1025^2 (a/b = 5, 2.5 GPa, 0.5 m/s, M = 4.0e4). The start then solves the
+# contact at CONTINUATION_MOES_M / M of its load, where the full-multigrid start from 17^2 converges with an open
+# film (a/b = 5, M = 1000), and raises the load on the finest level of the start by LOAD_STEP per step with
+# CYCLES_PER_LOAD_STEP V-cycles each: a step of 2 ran away at once there, 1.25 with 3 cycles reached the full load.
+CONTINUATION_MOES_M = 1000.0
+LOAD_STEP = 1.25
+CYCLES_PER_LOAD_STEP = 3
+# H = h R_x/b^2 of the central film against the load at fixed radii: h_c ~ W^-0.067 (Hamrock & Dowson 1977) and
+# b ~ W^(1/3) (Hertz): each load step moves H_0 by the central film's predicted change.
+FILM_LOAD_EXPONENT = -0.067 - 2.0 / 3.0
 
 
 @dataclass
@@ -215,6 +228,15 @@ def _stalled(changes: list[float]) -> bool:
     return min(recent[n // 2:]) > THERMAL_FLOOR_STALL * min(recent[:n // 2])
 
 
+def _at_load(summary: LevelSummary, fraction: float) -> LevelSummary:
+    """A level summary solved at `fraction` of the load in the full load's Hertzian units: H = h R_x/b^2 and
+    P = p/p_h with b^2 and p_h scaling as f^(2/3) and f^(1/3) (multigrid.at_load_fraction)."""
+    if fraction == 1.0:
+        return summary
+    return replace(summary, h_c=summary.h_c * fraction ** (2.0 / 3.0), h_min=summary.h_min * fraction ** (2.0 / 3.0),
+                   p_max=summary.p_max * fraction ** (1.0 / 3.0))
+
+
 def _h_c_error(h_c: float, coarse_h_c: float) -> float:
     """|Richardson estimate| of the relative error of h_c (m) from h_c one grid coarser (m); 0 without it."""
     return abs(richardson_error(h_c, coarse_h_c, ORDER)) if math.isfinite(coarse_h_c) and h_c != 0.0 else 0.0
@@ -251,10 +273,11 @@ class PointSolve:
 
     def __init__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
                  relaxation: Relaxation = Relaxation(), elapsed: float = 0.0, escalate_start: bool = False,
-                 attempt: int = 1, max_doublings: int = MAX_INLET_DOUBLINGS):
+                 attempt: int = 1, max_doublings: int = MAX_INLET_DOUBLINGS, load_continuation: bool = False):
         """`elapsed`: s already spent on this point (earlier attempts that ran away), counted in its wall time;
         `escalate_start`: a start that runs away begins again from a finer coarsest grid (start());
-        `attempt`: which attempt at the point this is (1: the first); `max_doublings`: of the inlet (domain.py)."""
+        `attempt`: which attempt at the point this is (1: the first); `max_doublings`: of the inlet (domain.py);
+        `load_continuation`: above Moes M = CONTINUATION_MOES_M the start begins at a fraction of the load."""
         self.scaling = scaling_for(point, lubricant)
         self.domain = solution_domain(self.scaling, settings, max_doublings)
         self.point, self.lubricant, self.asked = point, lubricant, settings
@@ -268,6 +291,8 @@ class PointSolve:
         self.coarsest = settings.coarsest_grid  # nodes of the coarsest grid's shorter side (start())
         self.start_notes: list[str] = []  # starts that ran away, from the coarsest grid they began on
         self.escalate_start = escalate_start
+        # the load fraction the full-multigrid start begins at (_full_multigrid)
+        self.start_load_fraction = min(1.0, CONTINUATION_MOES_M / self.scaling.moes_m) if load_continuation else 1.0
         self.attempt = attempt
         self.elapsed = elapsed  # s spent up to the last pause (a solve paused between stages has no clock)
         self._clock = time.perf_counter() - elapsed
@@ -372,14 +397,38 @@ class PointSolve:
 
     def _full_multigrid(self, last: int) -> tuple[int, Status]:
         """Full multigrid from the Hertz start on the coarsest grid up to level `last`; appends a summary per
-        level. Returns the finest level that stayed sound (a level that runs away is undone) and the status."""
+        level. With a `start_load_fraction` below 1 the levels up to the one below `last` are solved at that
+        fraction of the load, whose load is then raised to the full load there (_raise_load: a grid four times
+        cheaper than `last`, and a level summary at the full load for the error estimates), and `last` is
+        interpolated from it. Returns the finest level that stayed sound (a level that runs away is undone) and
+        the status."""
         solver, settings = self.solver, self.settings
-        solver.start_from_hertz(self._central_film_estimate())
-        for _ in range(settings.cycles_per_level):
-            solver.cycle(0)
-        self.summaries.append(summarise(solver.levels[0]))
-        saved = solver.snapshot(0)
-        for index in range(1, last + 1):
+        problem, fraction = solver.problem, self.start_load_fraction
+        ramp = max(last - 1, 0) if fraction < 1.0 else last  # the level whose load is raised
+        solver.problem = at_load_fraction(problem, fraction)
+        index = 0
+        try:
+            solver.start_from_hertz(self._central_film_estimate() * fraction ** FILM_LOAD_EXPONENT)
+            for _ in range(settings.cycles_per_level):
+                solver.cycle(0)
+            self.summaries.append(_at_load(summarise(solver.levels[0]), fraction))
+            index, status = self._climb(1, ramp, fraction)
+            if status.converged and fraction < 1.0:
+                status = self._raise_load(index, problem, fraction)
+                if status.converged:
+                    self.summaries[-1] = summarise(solver.levels[index])
+                    index, status = self._climb(index + 1, last, 1.0)
+        finally:
+            solver.problem = problem
+            solver.update_film(solver.levels[index])
+        return index, status
+
+    def _climb(self, first: int, last: int, fraction: float) -> tuple[int, Status]:
+        """Full-multigrid steps from level `first - 1` (solved) up to level `last` at `fraction` of the load (the
+        solver's problem); returns the finest sound level and the status."""
+        solver, settings = self.solver, self.settings
+        saved = solver.snapshot(first - 1)
+        for index in range(first, last + 1):
             solver.interpolate_up(index)
             for _ in range(settings.cycles_per_level):
                 solver.cycle(index)
@@ -390,8 +439,31 @@ class PointSolve:
                 message = f"diverged during the full-multigrid start on the {level.nx} x {level.ny} grid"
                 return index - 1, Status(Outcome.DIVERGED, message)
             saved = solver.snapshot(index)
-            self.summaries.append(summarise(level))
-        return last, CONVERGED
+            self.summaries.append(_at_load(summarise(level), fraction))
+        return max(last, first - 1), CONVERGED
+
+    def _raise_load(self, index: int, problem: Problem, fraction: float) -> Status:
+        """Raise the load of level `index` from `fraction` to the full load of `problem` by LOAD_STEP per step,
+        H_0 moved by the predicted change of the central film (FILM_LOAD_EXPONENT), CYCLES_PER_LOAD_STEP
+        V-cycles per step. A step that runs away restores the last sound load's iterate and reports it."""
+        solver = self.solver
+        level = solver.levels[index]
+        while fraction < 1.0:
+            saved, previous = solver.snapshot(index), fraction
+            fraction = min(LOAD_STEP * fraction, 1.0)
+            h_c = solver.central_film(level)
+            solver.problem = at_load_fraction(problem, fraction)
+            solver.h0 += h_c * ((fraction / previous) ** FILM_LOAD_EXPONENT - 1.0)
+            solver.update_film(level)
+            for _ in range(CYCLES_PER_LOAD_STEP):
+                solver.cycle(index)
+            runaway = abs(solver.force_error(level)) > DIVERGED_LOAD_ERROR * solver.problem.load_integral
+            if not _finite(level) or runaway:
+                solver.problem = at_load_fraction(problem, previous)
+                solver.restore(index, saved)
+                return Status(Outcome.DIVERGED, f"diverged raising the load of the full-multigrid start from "
+                                                f"{previous:.3g} to {fraction:.3g} on the {level.nx} x {level.ny} grid")
+        return CONVERGED
 
     def _central_film_estimate(self) -> float:
         """The Hamrock & Dowson (1977) central film, dimensionless."""
@@ -570,7 +642,9 @@ class StagedSolver:
     ellipse-scaled Gauss-Seidel / Jacobi switch first, then Venner's circle value, then that damped;
     multigrid.Level) and a start that begins again from a finer coarsest grid when it runs away
     (PointSolve.start); an undamped attempt that stalls short of its tolerances is repeated with the damped
-    relaxation (needs_retry). The retry is reported, and so is a retry that did not help.
+    relaxation (needs_retry), and so is an undamped attempt whose film closed; the damped attempt starts a heavily
+    loaded point at a fraction of its load (PointSolve: CONTINUATION_MOES_M). The retry is reported, and so is a
+    retry that did not help.
     """
 
     def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
@@ -586,10 +660,11 @@ class StagedSolver:
         if retry_after is None:
             return PointSolve(point, lubricant, settings).begin()
         attempt = int(retry_after.scalar("attempts")) + 1
-        if retry_after.outcome is Outcome.NOT_CONVERGED:  # a limit cycle: the damped relaxation, at once
+        if retry_after.outcome in (Outcome.NOT_CONVERGED, Outcome.FILM_CLOSED):  # the damped relaxation, at once
             attempt = len(ATTEMPTS)
         return PointSolve(point, lubricant, settings, ATTEMPTS[attempt - 1][1], elapsed=retry_after.scalar("wall_time"),
-                          escalate_start=True, attempt=attempt, max_doublings=RETRY_INLET_DOUBLINGS).begin()
+                          escalate_start=True, attempt=attempt, max_doublings=RETRY_INLET_DOUBLINGS,
+                          load_continuation=attempt == len(ATTEMPTS)).begin()
 
     def finish(self, stage: PointSolve) -> PointSolution:
         """The second stage (PointSolve.finish)."""
@@ -601,9 +676,12 @@ class StagedSolver:
         attempt ran away too, the first attempt is reported, with_retry). A thermal stall is often the pressure's:
         the thermal a/b = 100 ellipse at 0.8 GPa, 10 m/s, SRR 0.5 of the envelope suite ends its outer loop with the
         temperature change below tolerance (0.05 of 0.14 K) but the pressure on a 2e-3 period-2 flicker, and
-        converges damped in a quarter of the time."""
+        converges damped in a quarter of the time. A film that closed on an undamped attempt may be the relaxation's:
+        an a/b = 5 ellipse at 2.5 GPa, 0.5 m/s (Moes M = 4.0e4) on 513^2 ends undamped in a 5e-3 limit cycle with its
+        side lobes closed, and converges damped from a start at a fraction of its load with h_min = 65 nm."""
         attempt = solution.scalar("attempts")
-        return solution.outcome in (Outcome.DIVERGED, Outcome.NOT_CONVERGED) and attempt < len(ATTEMPTS)
+        retried = (Outcome.DIVERGED, Outcome.NOT_CONVERGED, Outcome.FILM_CLOSED)
+        return solution.outcome in retried and attempt < len(ATTEMPTS)
 
     def with_retry(self, first: PointSolution, retry: PointSolution) -> PointSolution:
         """The last retry's solution, noted, if it did better than the first attempt (converged, or anything but
