@@ -97,11 +97,19 @@ MIN_RELAXATION_SCALE = 0.125
 # (Moes M ~ 20) stalls at a pressure change of 1.1e-3 per cycle and converges damped in a quarter of the time; an
 # a/b = 30 ellipse at 0.8 GPa, 0.5 m/s stalls at 1.6e-2 with h_c 18 % low (0.173 against 0.212 µm) and converges
 # damped (envelope suite).
-ATTEMPTS = (
-    ("the ellipse-scaled switch", Relaxation()),
-    ("Venner's switch", Relaxation(scale_switch=False)),
-    ("Venner's switch, damped", Relaxation(scale_switch=False, under_gs=0.15, under_jd=0.1)),
+# A heavily loaded point (Moes M above CONTINUATION_MOES_M) whose damped attempt runs away too, or whose film closed, is
+# tried a fourth time, damped, from a start at a fraction of its load (PointSolve._full_multigrid): the a/b = 5
+# ellipse at 2.5 GPa, 0.5 m/s (M = 4.0e4) converges so on 513^2 with h_min = 65 nm, after its undamped attempt ended
+# in a limit cycle with the side lobes closed. It comes last: an a/b = 30 ellipse at 1.5 GPa, 0.5 m/s (M = 5.4e4)
+# converges damped from a 65^2 coarsest grid on 513^2 and stalls in a 2e-2 limit cycle from the continued start.
+DAMPED = Relaxation(scale_switch=False, under_gs=0.15, under_jd=0.1)
+ATTEMPTS = (  # what the attempt is called, its relaxation, whether its start begins at a fraction of the load
+    ("the ellipse-scaled switch", Relaxation(), False),
+    ("Venner's switch", Relaxation(scale_switch=False), False),
+    ("Venner's switch, damped", DAMPED, False),
+    ("Venner's switch, damped, from a fraction of the load", DAMPED, True),
 )
+DAMPED_ATTEMPT = 3  # the first attempt (1-based) with the damped relaxation
 MIN_RISE = 1.0  # K: tolerances relative to the temperature rise use at least this rise (near-isothermal films)
 # Load continuation of a retry's full-multigrid start (PointSolve.start): above Moes M = CONTINUATION_MOES_M the
 # coarse grids cannot carry the film of the full load (on 17^2 the discrete deflection of the Hertz pressure alone
@@ -642,8 +650,8 @@ class StagedSolver:
     ellipse-scaled Gauss-Seidel / Jacobi switch first, then Venner's circle value, then that damped;
     multigrid.Level) and a start that begins again from a finer coarsest grid when it runs away
     (PointSolve.start); an undamped attempt that stalls short of its tolerances is repeated with the damped
-    relaxation (needs_retry), and so is an undamped attempt whose film closed; the damped attempt starts a heavily
-    loaded point at a fraction of its load (PointSolve: CONTINUATION_MOES_M). The retry is reported, and so is a
+    relaxation (needs_retry); a heavily loaded point whose film closed or whose damped attempt failed as well gets a
+    last, damped attempt from a start at a fraction of its load (next_attempt). The retry is reported, and so is a
     retry that did not help.
     """
 
@@ -659,12 +667,11 @@ class StagedSolver:
         next relaxation of ATTEMPTS and an escalating start, and its wall time counts the earlier attempts'."""
         if retry_after is None:
             return PointSolve(point, lubricant, settings).begin()
-        attempt = int(retry_after.scalar("attempts")) + 1
-        if retry_after.outcome in (Outcome.NOT_CONVERGED, Outcome.FILM_CLOSED):  # the damped relaxation, at once
-            attempt = len(ATTEMPTS)
-        return PointSolve(point, lubricant, settings, ATTEMPTS[attempt - 1][1], elapsed=retry_after.scalar("wall_time"),
+        attempt = next_attempt(retry_after)
+        _, relaxation, continued = ATTEMPTS[attempt - 1]
+        return PointSolve(point, lubricant, settings, relaxation, elapsed=retry_after.scalar("wall_time"),
                           escalate_start=True, attempt=attempt, max_doublings=RETRY_INLET_DOUBLINGS,
-                          load_continuation=attempt == len(ATTEMPTS)).begin()
+                          load_continuation=continued).begin()
 
     def finish(self, stage: PointSolve) -> PointSolution:
         """The second stage (PointSolve.finish)."""
@@ -679,9 +686,7 @@ class StagedSolver:
         converges damped in a quarter of the time. A film that closed on an undamped attempt may be the relaxation's:
         an a/b = 5 ellipse at 2.5 GPa, 0.5 m/s (Moes M = 4.0e4) on 513^2 ends undamped in a 5e-3 limit cycle with its
         side lobes closed, and converges damped from a start at a fraction of its load with h_min = 65 nm."""
-        attempt = solution.scalar("attempts")
-        retried = (Outcome.DIVERGED, Outcome.NOT_CONVERGED, Outcome.FILM_CLOSED)
-        return solution.outcome in retried and attempt < len(ATTEMPTS)
+        return next_attempt(solution) is not None
 
     def with_retry(self, first: PointSolution, retry: PointSolution) -> PointSolution:
         """The last retry's solution, noted, if it did better than the first attempt (converged, or anything but
@@ -698,6 +703,25 @@ class StagedSolver:
         note = (f"{retry.outcome.value} at attempt {attempt} with {ATTEMPTS[attempt - 1][0]} and an escalating start "
                 f"(first attempt: {first.message})")
         return replace(retry, models={**retry.models, "solver": retry.models["solver"] + "; " + note})
+
+
+def next_attempt(solution: PointSolution) -> int | None:
+    """The attempt (1-based, ATTEMPTS) after `solution`'s, or None: the next relaxation after one that ran away; the
+    damped one after an undamped attempt's stall (a limit cycle); for a point above Moes M = CONTINUATION_MOES_M the
+    start at a fraction of the load after a film that closed or a damped attempt that ran away (needs_retry)."""
+    attempt = int(solution.scalar("attempts"))
+    if solution.outcome is Outcome.DIVERGED:
+        following = attempt + 1
+    elif solution.outcome is Outcome.NOT_CONVERGED:  # a damped attempt's stall is reported as it is
+        following = DAMPED_ATTEMPT
+    elif solution.outcome is Outcome.FILM_CLOSED:
+        following = len(ATTEMPTS)
+    else:
+        return None
+    if following <= attempt or following > len(ATTEMPTS):
+        return None
+    heavy = solution.scalar("moes_m") > CONTINUATION_MOES_M
+    return following if heavy or not ATTEMPTS[following - 1][2] else None
 
 
 STAGED = StagedSolver()
