@@ -11,7 +11,15 @@ import pytest
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.multigrid import at_load_fraction
 from facegear_tehl.ehl.scaling import scaling_for
-from facegear_tehl.ehl.solve import ATTEMPTS, CONTINUATION_MOES_M, DAMPED, PointSolve, next_attempt, problem_for
+from facegear_tehl.ehl.solve import (
+    ATTEMPTS,
+    CONTINUATION_MOES_M,
+    DAMPED,
+    FILM_CLOSED_MESSAGE,
+    PointSolve,
+    next_attempt,
+    problem_for,
+)
 from facegear_tehl.film_formulas import nijenbanning_central
 from facegear_tehl.lubricant import KELVIN, Lubricant
 from facegear_tehl.materials import Solid
@@ -41,23 +49,30 @@ def test_a_load_fraction_is_the_hertzian_problem_of_the_lighter_contact():
         assert getattr(got, name) == pytest.approx(getattr(expected, name), rel=1e-9)
 
 
-def _solution(outcome: Outcome, attempt: int, moes_m: float) -> PointSolution:
-    return PointSolution("P", outcome, "", {"attempts": (float(attempt), "1"), "moes_m": (moes_m, "1")}, {}, {}, {}, {})
+def _solution(outcome: Outcome, attempt: int, moes_m: float, message: str = "") -> PointSolution:
+    return PointSolution("P", outcome, message, {"attempts": (float(attempt), "1"), "moes_m": (moes_m, "1")}, {}, {},
+                         {}, {})
 
 
-@pytest.mark.parametrize(("outcome", "attempt", "moes_m", "expected"), [
-    (Outcome.DIVERGED, 1, 10.0, 2),
-    (Outcome.NOT_CONVERGED, 1, 10.0, 3),  # a stall: the damped relaxation at once
-    (Outcome.NOT_CONVERGED, 3, 1e5, None),  # a damped stall is reported as it is
-    (Outcome.DIVERGED, 3, 10.0, None),  # a light load has no continued start
-    (Outcome.DIVERGED, 3, 1e5, 4),
-    (Outcome.FILM_CLOSED, 1, 10.0, None),  # a light film that closes goes to a finer grid (run.solve_refining)
-    (Outcome.FILM_CLOSED, 2, 1e5, 4),
-    (Outcome.FILM_CLOSED, 4, 1e5, None),
-    (Outcome.CONVERGED, 1, 1e5, None),
+STALL = FILM_CLOSED_MESSAGE + "; not converged after 42 cycles on the finest grid"
+
+
+@pytest.mark.parametrize(("outcome", "attempt", "moes_m", "message", "expected"), [
+    (Outcome.DIVERGED, 1, 10.0, "", 2),
+    (Outcome.NOT_CONVERGED, 1, 10.0, "", 3),  # a stall: the damped relaxation at once
+    (Outcome.NOT_CONVERGED, 3, 1e5, "", None),  # a damped stall is reported as it is
+    (Outcome.DIVERGED, 3, 10.0, "", None),  # a light load has no continued start
+    (Outcome.DIVERGED, 3, 1e5, "", 4),
+    (Outcome.FILM_CLOSED, 1, 1e5, STALL, None),  # the first attempt's closed film goes to a finer grid (run.py)
+    (Outcome.FILM_CLOSED, 2, 10.0, STALL, 3),  # a retry's stall that closed the film: as a stall
+    (Outcome.FILM_CLOSED, 2, 1e5, FILM_CLOSED_MESSAGE, 4),
+    (Outcome.FILM_CLOSED, 2, 10.0, FILM_CLOSED_MESSAGE, None),
+    (Outcome.FILM_CLOSED, 3, 1e5, STALL, 4),
+    (Outcome.FILM_CLOSED, 4, 1e5, STALL, None),
+    (Outcome.CONVERGED, 1, 1e5, "", None),
 ])
-def test_next_attempt(outcome, attempt, moes_m, expected):
-    assert next_attempt(_solution(outcome, attempt, moes_m)) == expected
+def test_next_attempt(outcome, attempt, moes_m, message, expected):
+    assert next_attempt(_solution(outcome, attempt, moes_m, message)) == expected
     if expected is not None:
         assert ATTEMPTS[expected - 1][2] == (expected == len(ATTEMPTS))
 

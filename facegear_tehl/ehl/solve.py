@@ -97,10 +97,10 @@ MIN_RELAXATION_SCALE = 0.125
 # (Moes M ~ 20) stalls at a pressure change of 1.1e-3 per cycle and converges damped in a quarter of the time; an
 # a/b = 30 ellipse at 0.8 GPa, 0.5 m/s stalls at 1.6e-2 with h_c 18 % low (0.173 against 0.212 µm) and converges
 # damped (envelope suite).
-# A heavily loaded point (Moes M above CONTINUATION_MOES_M) whose damped attempt runs away too, or whose film closed, is
-# tried a fourth time, damped, from a start at a fraction of its load (PointSolve._full_multigrid): the a/b = 5
-# ellipse at 2.5 GPa, 0.5 m/s (M = 4.0e4) converges so on 513^2 with h_min = 65 nm, after its undamped attempt ended
-# in a limit cycle with the side lobes closed. It comes last: an a/b = 30 ellipse at 1.5 GPa, 0.5 m/s (M = 5.4e4)
+# A heavily loaded point (Moes M above CONTINUATION_MOES_M) whose damped attempt runs away too, or whose film closed in
+# a stall, is tried a fourth time, damped, from a start at a fraction of its load (PointSolve._full_multigrid): the
+# a/b = 5 ellipse at 2.5 GPa, 0.5 m/s (M = 4.0e4) converges so on 513^2 with h_min = 65 nm, after its undamped attempt
+# ended in a limit cycle with the side lobes closed. It comes last: an a/b = 30 ellipse at 1.5 GPa, 0.5 m/s (M = 5.4e4)
 # converges damped from a 65^2 coarsest grid on 513^2 and stalls in a 2e-2 limit cycle from the continued start.
 DAMPED = Relaxation(scale_switch=False, under_gs=0.15, under_jd=0.1)
 ATTEMPTS = (  # what the attempt is called, its relaxation, whether its start begins at a fraction of the load
@@ -110,6 +110,7 @@ ATTEMPTS = (  # what the attempt is called, its relaxation, whether its start be
     ("Venner's switch, damped, from a fraction of the load", DAMPED, True),
 )
 DAMPED_ATTEMPT = 3  # the first attempt (1-based) with the damped relaxation
+FILM_CLOSED_MESSAGE = "the film closes (h_min <= 0: solid contact, outside the EHL model)"
 MIN_RISE = 1.0  # K: tolerances relative to the temperature rise use at least this rise (near-isothermal films)
 # Load continuation of a retry's full-multigrid start (PointSolve.start): above Moes M = CONTINUATION_MOES_M the
 # coarse grids cannot carry the film of the full load (on 17^2 the discrete deflection of the Hertz pressure alone
@@ -626,7 +627,7 @@ class PointSolve:
         """The PointSolution of level `index`; a film that closes (h_min <= 0) is never reported as converged."""
         level = self.solver.levels[index]
         if level.film.min() <= 0.0:
-            message = "the film closes (h_min <= 0: solid contact, outside the EHL model)"
+            message = FILM_CLOSED_MESSAGE
             message += "; " + status.message if status.message else ""
             status = Status(Outcome.DIVERGED if status.diverged else Outcome.FILM_CLOSED, message)
         return point_solution(self, level, status, state, time.perf_counter() - self._clock)
@@ -707,15 +708,21 @@ class StagedSolver:
 
 def next_attempt(solution: PointSolution) -> int | None:
     """The attempt (1-based, ATTEMPTS) after `solution`'s, or None: the next relaxation after one that ran away; the
-    damped one after an undamped attempt's stall (a limit cycle); for a point above Moes M = CONTINUATION_MOES_M the
-    start at a fraction of the load after a film that closed or a damped attempt that ran away (needs_retry)."""
+    damped one after an undamped attempt's stall (a limit cycle), and after a retry's stall that closed the film (the
+    a/b = 5 ellipse at 2.5 GPa, 0.5 m/s, Moes M = 4.0e4, on 513^2: its undamped retry closes the side lobes in a 6e-3
+    limit cycle, the damped one converges with h_min = 66 nm); for a point above Moes M = CONTINUATION_MOES_M the
+    start at a fraction of the load after a damped attempt that ran away or closed the film, or a retry whose film
+    closed in a converged iteration. The first attempt's closed film is left to a finer grid (run.solve_refining):
+    the thin film of cases/hard (M = 2.5e3) converges damped on 257^2 with h_min = 0.5 nm (its error estimate
+    -41 %), and with 4.3 nm on the 513^2 grid the refinement gives it."""
     attempt = int(solution.scalar("attempts"))
     if solution.outcome is Outcome.DIVERGED:
         following = attempt + 1
     elif solution.outcome is Outcome.NOT_CONVERGED:  # a damped attempt's stall is reported as it is
         following = DAMPED_ATTEMPT
-    elif solution.outcome is Outcome.FILM_CLOSED:
-        following = len(ATTEMPTS)
+    elif solution.outcome is Outcome.FILM_CLOSED and attempt > 1:  # a retry's film closed: in a stall, as a stall
+        stalled = solution.message != FILM_CLOSED_MESSAGE
+        following = max(attempt + 1, DAMPED_ATTEMPT) if stalled else len(ATTEMPTS)
     else:
         return None
     if following <= attempt or following > len(ATTEMPTS):
