@@ -97,11 +97,13 @@ MIN_RELAXATION_SCALE = 0.125
 # (Moes M ~ 20) stalls at a pressure change of 1.1e-3 per cycle and converges damped in a quarter of the time; an
 # a/b = 30 ellipse at 0.8 GPa, 0.5 m/s stalls at 1.6e-2 with h_c 18 % low (0.173 against 0.212 µm) and converges
 # damped (envelope suite).
-# A heavily loaded point (Moes M above CONTINUATION_MOES_M) whose damped attempt runs away too, or whose film closed in
-# a stall, is tried a fourth time, damped, from a start at a fraction of its load (PointSolve._full_multigrid): the
-# a/b = 5 ellipse at 2.5 GPa, 0.5 m/s (M = 4.0e4) converges so on 513^2 with h_min = 65 nm, after its undamped attempt
-# ended in a limit cycle with the side lobes closed. It comes last: an a/b = 30 ellipse at 1.5 GPa, 0.5 m/s (M = 5.4e4)
-# converges damped from a 65^2 coarsest grid on 513^2 and stalls in a 2e-2 limit cycle from the continued start.
+# A retry whose film closes in a limit cycle is treated as a stall (next_attempt). A heavily loaded point (Moes M above
+# CONTINUATION_MOES_M) whose damped attempt runs away or closes its film, or whose retry closes its film in a converged
+# iteration, is tried a fourth time, damped, from a start at a fraction of its load (PointSolve._full_multigrid): the
+# thermal a/b = 100 ellipse at 2.5 GPa, 10 m/s, SRR 0.5 (M = 8.9e4) ran away on every grid up to 513 x 129 and
+# converges so there; the circle at 2.5 GPa, 0.5 m/s, eta_0 = 0.01 Pa s (M = 1.5e4) on 1025^2. It comes last: an
+# a/b = 30 ellipse at 1.5 GPa, 0.5 m/s (M = 5.4e4) converges damped from a 65^2 coarsest grid on 513^2 and stalls in
+# a 2e-2 limit cycle from the continued start.
 DAMPED = Relaxation(scale_switch=False, under_gs=0.15, under_jd=0.1)
 ATTEMPTS = (  # what the attempt is called, its relaxation, whether its start begins at a fraction of the load
     ("the ellipse-scaled switch", Relaxation(), False),
@@ -112,12 +114,12 @@ ATTEMPTS = (  # what the attempt is called, its relaxation, whether its start be
 DAMPED_ATTEMPT = 3  # the first attempt (1-based) with the damped relaxation
 FILM_CLOSED_MESSAGE = "the film closes (h_min <= 0: solid contact, outside the EHL model)"
 MIN_RISE = 1.0  # K: tolerances relative to the temperature rise use at least this rise (near-isothermal films)
-# Load continuation of a retry's full-multigrid start (PointSolve.start): above Moes M = CONTINUATION_MOES_M the
+# Load continuation of the last retry's start (PointSolve._full_multigrid): above Moes M = CONTINUATION_MOES_M the
 # coarse grids cannot carry the film of the full load (on 17^2 the discrete deflection of the Hertz pressure alone
 # departs from the Hertz gap by 3-9 central films for a/b = 5-30 at 2.5 GPa, 0.5 m/s), and the start ran away or
 # closed the film on every grid up to 1025^2 (a/b = 5, 2.5 GPa, 0.5 m/s, M = 4.0e4). The start then solves the
 # contact at CONTINUATION_MOES_M / M of its load, where the full-multigrid start from 17^2 converges with an open
-# film (a/b = 5, M = 1000), and raises the load on the finest level of the start by LOAD_STEP per step with
+# film (a/b = 5, M = 1000), and raises the load on the level below the finest by LOAD_STEP per step with
 # CYCLES_PER_LOAD_STEP V-cycles each: a step of 2 ran away at once there, 1.25 with 3 cycles reached the full load.
 CONTINUATION_MOES_M = 1000.0
 LOAD_STEP = 1.25
