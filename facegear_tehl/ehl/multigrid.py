@@ -12,7 +12,7 @@ Algorithm of Venner & Lubrecht (2000, ch. 8), written for any ellipticity and en
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 import math
 
 import numpy as np
@@ -41,6 +41,18 @@ class Problem:
     domain_x: tuple[float, float]
     domain_y: tuple[float, float]
     load_integral: float = 2.0 * math.pi / 3.0
+
+
+def at_load_fraction(problem: Problem, fraction: float) -> Problem:
+    """The same contact carrying `fraction` of its load, in the Hertzian units of the full load's grid.
+
+    With W -> f W at fixed radii p_h and b scale as f^(1/3) (Hertz; Johnson 1985, §4.2), so lambda =
+    12 eta_0 u_e R_x^2/(p_h b^3) scales as f^(-4/3) and the lubricant laws see p_h f^(1/3); C_d = 2 p_h a R_x/(pi E'
+    b^2), the ellipticity and the gap geometry do not change. The domain keeps its extent in semi-axes."""
+    if fraction == 1.0:
+        return problem
+    return replace(problem, lam=problem.lam * fraction ** (-4.0 / 3.0),
+                   p_hertz=problem.p_hertz * fraction ** (1.0 / 3.0))
 
 
 @dataclass(frozen=True)

@@ -36,7 +36,7 @@ from facegear_tehl.ehl.domain import (
     solution_domain,
     venner_lubrecht_domain,
 )
-from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem, Relaxation
+from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem, Relaxation, at_load_fraction
 from facegear_tehl.ehl.report import ORDER, LevelSummary, point_solution, richardson_error, summarise, with_film_state
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
 from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel, thermal_choice
@@ -110,12 +110,36 @@ MIN_RELAXATION_SCALE = 0.125
 # (Moes M ~ 20) stalls at a pressure change of 1.1e-3 per cycle and converges damped in a quarter of the time; an
 # a/b = 30 ellipse at 0.8 GPa, 0.5 m/s stalls at 1.6e-2 with h_c 18 % low (0.173 against 0.212 µm) and converges
 # damped (envelope suite).
-ATTEMPTS = (
-    ("the ellipse-scaled switch", Relaxation()),
-    ("Venner's switch", Relaxation(scale_switch=False)),
-    ("Venner's switch, damped", Relaxation(scale_switch=False, under_gs=0.15, under_jd=0.1)),
+# A retry whose film closes in a limit cycle is treated as a stall (next_attempt). A heavily loaded point (Moes M above
+# CONTINUATION_MOES_M) whose damped attempt runs away or closes its film, or whose retry closes its film in a converged
+# iteration, is tried a fourth time, damped, from a start at a fraction of its load (PointSolve._full_multigrid): the
+# thermal a/b = 100 ellipse at 2.5 GPa, 10 m/s, SRR 0.5 (M = 8.9e4) ran away on every grid up to 513 x 129 and
+# converges so there; the circle at 2.5 GPa, 0.5 m/s, eta_0 = 0.01 Pa s (M = 1.5e4) on 1025^2. It comes last: an
+# a/b = 30 ellipse at 1.5 GPa, 0.5 m/s (M = 5.4e4) converges damped from a 65^2 coarsest grid on 513^2 and stalls in
+# a 2e-2 limit cycle from the continued start.
+DAMPED = Relaxation(scale_switch=False, under_gs=0.15, under_jd=0.1)
+ATTEMPTS = (  # what the attempt is called, its relaxation, whether its start begins at a fraction of the load
+    ("the ellipse-scaled switch", Relaxation(), False),
+    ("Venner's switch", Relaxation(scale_switch=False), False),
+    ("Venner's switch, damped", DAMPED, False),
+    ("Venner's switch, damped, from a fraction of the load", DAMPED, True),
 )
+DAMPED_ATTEMPT = 3  # the first attempt (1-based) with the damped relaxation
+FILM_CLOSED_MESSAGE = "the film closes (h_min <= 0: solid contact, outside the EHL model)"
 MIN_RISE = 1.0  # K: tolerances relative to the temperature rise use at least this rise (near-isothermal films)
+# Load continuation of the last retry's start (PointSolve._full_multigrid): above Moes M = CONTINUATION_MOES_M the
+# coarse grids cannot carry the film of the full load (on 17^2 the discrete deflection of the Hertz pressure alone
+# departs from the Hertz gap by 3-9 central films for a/b = 5-30 at 2.5 GPa, 0.5 m/s), and the start ran away or
+# closed the film on every grid up to 1025^2 (a/b = 5, 2.5 GPa, 0.5 m/s, M = 4.0e4). The start then solves the
+# contact at CONTINUATION_MOES_M / M of its load, where the full-multigrid start from 17^2 converges with an open
+# film (a/b = 5, M = 1000), and raises the load on the level below the finest by LOAD_STEP per step with
+# CYCLES_PER_LOAD_STEP V-cycles each: a step of 2 ran away at once there, 1.25 with 3 cycles reached the full load.
+CONTINUATION_MOES_M = 1000.0
+LOAD_STEP = 1.25
+CYCLES_PER_LOAD_STEP = 3
+# H = h R_x/b^2 of the central film against the load at fixed radii: h_c ~ W^-0.067 (Hamrock & Dowson 1977) and
+# b ~ W^(1/3) (Hertz): each load step moves H_0 by the central film's predicted change.
+FILM_LOAD_EXPONENT = -0.067 - 2.0 / 3.0
 
 
 @dataclass
@@ -228,6 +252,15 @@ def _stalled(changes: list[float]) -> bool:
     return min(recent[n // 2:]) > THERMAL_FLOOR_STALL * min(recent[:n // 2])
 
 
+def _at_load(summary: LevelSummary, fraction: float) -> LevelSummary:
+    """A level summary solved at `fraction` of the load in the full load's Hertzian units: H = h R_x/b^2 and
+    P = p/p_h with b^2 and p_h scaling as f^(2/3) and f^(1/3) (multigrid.at_load_fraction)."""
+    if fraction == 1.0:
+        return summary
+    return replace(summary, h_c=summary.h_c * fraction ** (2.0 / 3.0), h_min=summary.h_min * fraction ** (2.0 / 3.0),
+                   p_max=summary.p_max * fraction ** (1.0 / 3.0))
+
+
 def _h_c_error(h_c: float, coarse_h_c: float) -> float:
     """|Richardson estimate| of the relative error of h_c (m) from h_c one grid coarser (m); 0 without it."""
     return abs(richardson_error(h_c, coarse_h_c, ORDER)) if math.isfinite(coarse_h_c) and h_c != 0.0 else 0.0
@@ -264,10 +297,11 @@ class PointSolve:
 
     def __init__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
                  relaxation: Relaxation = Relaxation(), elapsed: float = 0.0, escalate_start: bool = False,
-                 attempt: int = 1, max_doublings: int = MAX_INLET_DOUBLINGS):
+                 attempt: int = 1, max_doublings: int = MAX_INLET_DOUBLINGS, load_continuation: bool = False):
         """`elapsed`: s already spent on this point (earlier attempts that ran away), counted in its wall time;
         `escalate_start`: a start that runs away begins again from a finer coarsest grid (start());
-        `attempt`: which attempt at the point this is (1: the first); `max_doublings`: of the inlet (domain.py)."""
+        `attempt`: which attempt at the point this is (1: the first); `max_doublings`: of the inlet (domain.py);
+        `load_continuation`: above Moes M = CONTINUATION_MOES_M the start begins at a fraction of the load."""
         self.scaling = scaling_for(point, lubricant)
         self.domain = solution_domain(self.scaling, settings, max_doublings)
         self.point, self.lubricant, self.asked = point, lubricant, settings
@@ -281,6 +315,8 @@ class PointSolve:
         self.coarsest = settings.coarsest_grid  # nodes of the coarsest grid's shorter side (start())
         self.start_notes: list[str] = []  # starts that ran away, from the coarsest grid they began on
         self.escalate_start = escalate_start
+        # the load fraction the full-multigrid start begins at (_full_multigrid)
+        self.start_load_fraction = min(1.0, CONTINUATION_MOES_M / self.scaling.moes_m) if load_continuation else 1.0
         self.attempt = attempt
         self.before_cycle: tuple[Iterate, np.ndarray] | None = None  # the iterate and film before the last V-cycle
         self.elapsed = elapsed  # s spent up to the last pause (a solve paused between stages has no clock)
@@ -386,14 +422,38 @@ class PointSolve:
 
     def _full_multigrid(self, last: int) -> tuple[int, Status]:
         """Full multigrid from the Hertz start on the coarsest grid up to level `last`; appends a summary per
-        level. Returns the finest level that stayed sound (a level that runs away is undone) and the status."""
+        level. With a `start_load_fraction` below 1 the levels up to the one below `last` are solved at that
+        fraction of the load, whose load is then raised to the full load there (_raise_load: a grid four times
+        cheaper than `last`, and a level summary at the full load for the error estimates), and `last` is
+        interpolated from it. Returns the finest level that stayed sound (a level that runs away is undone) and
+        the status."""
         solver, settings = self.solver, self.settings
-        solver.start_from_hertz(self._central_film_estimate())
-        for _ in range(settings.cycles_per_level):
-            solver.cycle(0)
-        self.summaries.append(summarise(solver.levels[0]))
-        saved = solver.snapshot(0)
-        for index in range(1, last + 1):
+        problem, fraction = solver.problem, self.start_load_fraction
+        ramp = max(last - 1, 0) if fraction < 1.0 else last  # the level whose load is raised
+        solver.problem = at_load_fraction(problem, fraction)
+        index = 0
+        try:
+            solver.start_from_hertz(self._central_film_estimate() * fraction ** FILM_LOAD_EXPONENT)
+            for _ in range(settings.cycles_per_level):
+                solver.cycle(0)
+            self.summaries.append(_at_load(summarise(solver.levels[0]), fraction))
+            index, status = self._climb(1, ramp, fraction)
+            if status.converged and fraction < 1.0:
+                status = self._raise_load(index, problem, fraction)
+                if status.converged:
+                    self.summaries[-1] = summarise(solver.levels[index])
+                    index, status = self._climb(index + 1, last, 1.0)
+        finally:
+            solver.problem = problem
+            solver.update_film(solver.levels[index])
+        return index, status
+
+    def _climb(self, first: int, last: int, fraction: float) -> tuple[int, Status]:
+        """Full-multigrid steps from level `first - 1` (solved) up to level `last` at `fraction` of the load (the
+        solver's problem); returns the finest sound level and the status."""
+        solver, settings = self.solver, self.settings
+        saved = solver.snapshot(first - 1)
+        for index in range(first, last + 1):
             solver.interpolate_up(index)
             for _ in range(settings.cycles_per_level):
                 solver.cycle(index)
@@ -404,8 +464,31 @@ class PointSolve:
                 message = f"diverged during the full-multigrid start on the {level.nx} x {level.ny} grid"
                 return index - 1, Status(Outcome.DIVERGED, message)
             saved = solver.snapshot(index)
-            self.summaries.append(summarise(level))
-        return last, CONVERGED
+            self.summaries.append(_at_load(summarise(level), fraction))
+        return max(last, first - 1), CONVERGED
+
+    def _raise_load(self, index: int, problem: Problem, fraction: float) -> Status:
+        """Raise the load of level `index` from `fraction` to the full load of `problem` by LOAD_STEP per step,
+        H_0 moved by the predicted change of the central film (FILM_LOAD_EXPONENT), CYCLES_PER_LOAD_STEP
+        V-cycles per step. A step that runs away restores the last sound load's iterate and reports it."""
+        solver = self.solver
+        level = solver.levels[index]
+        while fraction < 1.0:
+            saved, previous = solver.snapshot(index), fraction
+            fraction = min(LOAD_STEP * fraction, 1.0)
+            h_c = solver.central_film(level)
+            solver.problem = at_load_fraction(problem, fraction)
+            solver.h0 += h_c * ((fraction / previous) ** FILM_LOAD_EXPONENT - 1.0)
+            solver.update_film(level)
+            for _ in range(CYCLES_PER_LOAD_STEP):
+                solver.cycle(index)
+            runaway = abs(solver.force_error(level)) > DIVERGED_LOAD_ERROR * solver.problem.load_integral
+            if not _finite(level) or runaway:
+                solver.problem = at_load_fraction(problem, previous)
+                solver.restore(index, saved)
+                return Status(Outcome.DIVERGED, f"diverged raising the load of the full-multigrid start from "
+                                                f"{previous:.3g} to {fraction:.3g} on the {level.nx} x {level.ny} grid")
+        return CONVERGED
 
     def _central_film_estimate(self) -> float:
         """The Hamrock & Dowson (1977) central film, dimensionless."""
@@ -600,7 +683,7 @@ class PointSolve:
         """The PointSolution of level `index`; a film that closes (h_min <= 0) is never reported as converged."""
         level = self.solver.levels[index]
         if level.film.min() <= 0.0:
-            message = "the film closes (h_min <= 0: solid contact, outside the EHL model)"
+            message = FILM_CLOSED_MESSAGE
             message += "; " + status.message if status.message else ""
             status = Status(Outcome.DIVERGED if status.diverged else Outcome.FILM_CLOSED, message)
         return point_solution(self, level, status, state, time.perf_counter() - self._clock)
@@ -624,7 +707,9 @@ class StagedSolver:
     ellipse-scaled Gauss-Seidel / Jacobi switch first, then Venner's circle value, then that damped;
     multigrid.Level) and a start that begins again from a finer coarsest grid when it runs away
     (PointSolve.start); an undamped attempt that stalls short of its tolerances is repeated with the damped
-    relaxation (needs_retry). The retry is reported, and so is a retry that did not help.
+    relaxation (needs_retry); a heavily loaded point whose film closed or whose damped attempt failed as well gets a
+    last, damped attempt from a start at a fraction of its load (next_attempt). The retry is reported, and so is a
+    retry that did not help.
     """
 
     def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
@@ -639,11 +724,11 @@ class StagedSolver:
         next relaxation of ATTEMPTS and an escalating start, and its wall time counts the earlier attempts'."""
         if retry_after is None:
             return PointSolve(point, lubricant, settings).begin()
-        attempt = int(retry_after.scalar("attempts")) + 1
-        if retry_after.outcome is Outcome.NOT_CONVERGED:  # a limit cycle: the damped relaxation, at once
-            attempt = len(ATTEMPTS)
-        return PointSolve(point, lubricant, settings, ATTEMPTS[attempt - 1][1], elapsed=retry_after.scalar("wall_time"),
-                          escalate_start=True, attempt=attempt, max_doublings=RETRY_INLET_DOUBLINGS).begin()
+        attempt = next_attempt(retry_after)
+        _, relaxation, continued = ATTEMPTS[attempt - 1]
+        return PointSolve(point, lubricant, settings, relaxation, elapsed=retry_after.scalar("wall_time"),
+                          escalate_start=True, attempt=attempt, max_doublings=RETRY_INLET_DOUBLINGS,
+                          load_continuation=continued).begin()
 
     def finish(self, stage: PointSolve) -> PointSolution:
         """The second stage (PointSolve.finish)."""
@@ -655,9 +740,10 @@ class StagedSolver:
         attempt ran away too, the first attempt is reported, with_retry). A thermal stall is often the pressure's:
         the thermal a/b = 100 ellipse at 0.8 GPa, 10 m/s, SRR 0.5 of the envelope suite ends its outer loop with the
         temperature change below tolerance (0.05 of 0.14 K) but the pressure on a 2e-3 period-2 flicker, and
-        converges damped in a quarter of the time."""
-        attempt = solution.scalar("attempts")
-        return solution.outcome in (Outcome.DIVERGED, Outcome.NOT_CONVERGED) and attempt < len(ATTEMPTS)
+        converges damped in a quarter of the time. A film that closed on an undamped attempt may be the relaxation's:
+        an a/b = 5 ellipse at 2.5 GPa, 0.5 m/s (Moes M = 4.0e4) on 513^2 ends undamped in a 5e-3 limit cycle with its
+        side lobes closed, and converges damped from a start at a fraction of its load with h_min = 65 nm."""
+        return next_attempt(solution) is not None
 
     def with_retry(self, first: PointSolution, retry: PointSolution) -> PointSolution:
         """The last retry's solution, noted, if it did better than the first attempt (converged, or anything but
@@ -674,6 +760,31 @@ class StagedSolver:
         note = (f"{retry.outcome.value} at attempt {attempt} with {ATTEMPTS[attempt - 1][0]} and an escalating start "
                 f"(first attempt: {first.message})")
         return replace(retry, models={**retry.models, "solver": retry.models["solver"] + "; " + note})
+
+
+def next_attempt(solution: PointSolution) -> int | None:
+    """The attempt (1-based, ATTEMPTS) after `solution`'s, or None: the next relaxation after one that ran away; the
+    damped one after an undamped attempt's stall (a limit cycle), and after a retry's stall that closed the film (the
+    a/b = 5 ellipse at 2.5 GPa, 0.5 m/s, Moes M = 4.0e4, on 513^2: its undamped retry closes the side lobes in a 6e-3
+    limit cycle, the damped one converges with h_min = 66 nm); for a point above Moes M = CONTINUATION_MOES_M the
+    start at a fraction of the load after a damped attempt that ran away or closed the film, or a retry whose film
+    closed in a converged iteration. The first attempt's closed film is left to a finer grid (run.solve_refining):
+    the thin film of cases/hard (M = 2.5e3) converges damped on 257^2 with h_min = 0.5 nm (its error estimate
+    -41 %), and with 4.3 nm on the 513^2 grid the refinement gives it."""
+    attempt = int(solution.scalar("attempts"))
+    if solution.outcome is Outcome.DIVERGED:
+        following = attempt + 1
+    elif solution.outcome is Outcome.NOT_CONVERGED:  # a damped attempt's stall is reported as it is
+        following = DAMPED_ATTEMPT
+    elif solution.outcome is Outcome.FILM_CLOSED and attempt > 1:  # a retry's film closed: in a stall, as a stall
+        stalled = solution.message != FILM_CLOSED_MESSAGE
+        following = max(attempt + 1, DAMPED_ATTEMPT) if stalled else len(ATTEMPTS)
+    else:
+        return None
+    if following <= attempt or following > len(ATTEMPTS):
+        return None
+    heavy = solution.scalar("moes_m") > CONTINUATION_MOES_M
+    return following if heavy or not ATTEMPTS[following - 1][2] else None
 
 
 STAGED = StagedSolver()
