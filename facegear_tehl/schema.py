@@ -33,7 +33,9 @@ class CaseError(ValueError):
         shown = _SHORT.repr(value)  # bounded: a YAML alias can make a value too large to print in full
         if len(shown) > 60:
             shown = shown[:57] + "..."
-        key = key if key.isprintable() else repr(key)  # one line: a key from the file may hold a newline
+        # one line: a key from the file may hold a newline; only such a part of the path is quoted, so that the
+        # message still starts with the block it belongs to (solver.domain.'\x01', not 'solver.domain.\x01')
+        key = ".".join(part if part.isprintable() else repr(part) for part in key.split("."))
         super().__init__(f"{key}: got {shown}; expected {expected}")
 
 

@@ -87,8 +87,8 @@ def _key_path(path: tuple) -> str:
 
 
 def _display(key: str) -> str:
-    """A key path as the one-line message shows it."""
-    return key if key.isprintable() else repr(key)
+    """A key path as the one-line message shows it: a part that is not printable quoted."""
+    return ".".join(part if part.isprintable() else repr(part) for part in key.split("."))
 
 
 def _entry(data: Any, path: tuple) -> Any:
@@ -361,3 +361,12 @@ def test_a_value_shown_in_a_message_stays_short(folder):
     code, stdout, stderr = _validate(folder, text)
     assert _check_answer(code, stdout, stderr) == ["name", *(f"a{i}" for i in range(9))]  # a0..a8: unknown keys
     assert all(len(line) < 300 for line in stderr.splitlines())
+
+
+def test_a_key_that_is_not_printable_is_named_under_its_block(folder):
+    """Found by the fuzz test above: an unassigned code point as a key under solver.domain was named as one quoted
+    path ('solver.domain.\\U00018cd6'), which hid the block it belongs to; only the part is quoted now."""
+    case = _load(BASES["gear"])
+    case["solver"]["domain"] = {"\U00018cd6": 0}
+    named = _check_answer(*_validate(folder, _dump(case)))
+    assert named and all(key.startswith("solver.domain") for key in named), named
