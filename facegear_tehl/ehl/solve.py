@@ -501,7 +501,7 @@ class PointSolve:
         solver, settings, history = self.solver, self.settings, self.history
         level = solver.levels[index]
         load_integral = solver.problem.load_integral
-        previous, previous_h0 = level.pressure.copy(), solver.h0
+        previous = level.pressure.copy()
         means = 0  # period-2 cycles replaced by the mean of their phases (PHASE_MEAN_BAND)
         for extra in itertools.count():
             change = float(np.abs(level.pressure - previous).sum() / max(np.abs(level.pressure).sum(), 1e-300))
@@ -532,10 +532,10 @@ class PointSolve:
             if (extra >= 3 and means < MAX_PHASE_MEANS
                     and FLOOR_BAND * settings.tolerance <= change < PHASE_MEAN_BAND * settings.tolerance
                     and change > FLOOR_STALL * history.changes[-3]):
-                solver.restore(index, Iterate(0.5 * (level.pressure + previous), 0.5 * (solver.h0 + previous_h0)))
+                self._restore_mean(index)
                 means += 1
-            previous, previous_h0 = level.pressure.copy(), solver.h0
-            self.before_cycle = (Iterate(previous, previous_h0), level.film.copy())
+            previous = level.pressure.copy()
+            self.before_cycle = (Iterate(previous, solver.h0), level.film.copy())
             solver.cycle(index)
             history.cycles += 1
             if not _finite(level):
@@ -642,9 +642,13 @@ class PointSolve:
         """Leave level `index` on the mean of its last two iterates if its pressure flickers (_settled_pressure):
         the result then does not depend on the phase the loop stops on."""
         if self._flickering(index):
-            iterate = self.before_cycle[0]
-            self.solver.restore(index, Iterate(0.5 * (self.solver.levels[index].pressure + iterate.pressure),
-                                               0.5 * (self.solver.h0 + iterate.h0)))
+            self._restore_mean(index)
+
+    def _restore_mean(self, index: int) -> None:
+        """Level `index` on the mean of its pressure and H_0 and those before the last V-cycle (`before_cycle`)."""
+        iterate = self.before_cycle[0]
+        self.solver.restore(index, Iterate(0.5 * (self.solver.levels[index].pressure + iterate.pressure),
+                                           0.5 * (self.solver.h0 + iterate.h0)))
 
     def _last_finite(self, index: int, model: FilmThermalModel, initial: FilmState | None, iterate: Iterate,
                      state: FilmState | None) -> FilmState | None:
