@@ -217,10 +217,6 @@ def _check_feasible(spec: GearSpec, block: Block) -> None:
                         "a shaft angle for which the face gear has an undercut and a pointing limit") from None
     check(l2 > l1, block.key_path("face_gear_teeth"), spec.face_gear_teeth,
           f"a face gear with pointing limit L2 = {l2:.4g} m above undercut limit L1 = {l1:.4g} m")
-    check(spec.inner_radius >= l1, block.key_path("inner_radius"), spec.inner_radius,
-          f"at least the undercut limit L1 = {l1:.5g} m (the face gear is undercut below it)")
-    check(spec.outer_radius <= l2, block.key_path("outer_radius"), spec.outer_radius,
-          f"at most the pointing limit L2 = {l2:.5g} m (the face-gear teeth are pointed beyond it)")
     try:
         path = ContactPath(geo, spec.misalignment)
         s_min, s_max = path.limits()
@@ -236,6 +232,15 @@ def _check_feasible(spec: GearSpec, block: Block) -> None:
           f"addenda giving a contact ratio in [1, 2); these give {eps:.4f}")
     radii = [axial_section(geo, st.point - st.face_gear_origin)[1] for st in samples]
     lowest, highest = min(radii), max(radii)
+    check(l1 <= lowest and highest <= l2, block.key_path("face_gear_teeth"), spec.face_gear_teeth,
+          f"a pair whose contact path, at face-gear radii {lowest:.5g} to {highest:.5g} m, lies inside the usable "
+          f"face width [L1, L2] = [{l1:.5g}, {l2:.5g}] m (no face width fits this path: change the teeth numbers, "
+          "the pressure angle or the shaft angle)")
+    usable = f"; the usable face width of this gear is [L1, L2] = [{l1:.5g}, {l2:.5g}] m"
+    check(spec.inner_radius >= l1, block.key_path("inner_radius"), spec.inner_radius,
+          f"at least the undercut limit L1 = {l1:.5g} m (the face gear is undercut below it){usable}")
+    check(spec.outer_radius <= l2, block.key_path("outer_radius"), spec.outer_radius,
+          f"at most the pointing limit L2 = {l2:.5g} m (the face-gear teeth are pointed beyond it){usable}")
     if lowest < spec.inner_radius or highest > spec.outer_radius:
         key = block.key_path("inner_radius" if lowest < spec.inner_radius else "outer_radius")
         value = spec.inner_radius if lowest < spec.inner_radius else spec.outer_radius

@@ -170,3 +170,29 @@ def test_contact_table():
     s1 = lines[2].split()
     assert s1[1:4] == ["-15.177", "18.914", "14147"] and s1[7] == "556"
     assert "-0.000" not in table
+
+
+@pytest.mark.parametrize("overrides", [{"inner_radius": 0.30}, {"outer_radius": 0.70}])
+def test_a_face_width_outside_the_limits_names_the_usable_width_and_following_it_validates(overrides):
+    """A designer of a new gear does not know L1 and L2: either radius outside them names both, and a face width
+    inside the range the message gives is accepted (the shipped case's 0.468 .. 0.548 m lies inside it)."""
+    with pytest.raises(CaseError) as error:
+        spec(EXAMPLE_A, **overrides)
+    low, high = (float(v) for v in str(error.value).split("[L1, L2] = [")[1].split("] m")[0].split(", "))
+    assert low < 0.468 < 0.548 < high
+    gear = spec(EXAMPLE_A, inner_radius=low + 0.1 * (high - low), outer_radius=high - 0.1 * (high - low))
+    assert gear.inner_radius > low and gear.outer_radius < high
+
+
+def test_a_contact_path_reaching_into_the_undercut_zone_is_a_design_error():
+    """25/28/40 at 110 deg: few face-gear teeth for the shaper (q = Ns/N2 = 0.7) push the undercut limit L1 above
+    the localised contact path, which runs about the pitch radius L0 = m N2/2 (Litvin et al. 2000): no face width
+    can hold it, and the message names the path's radii (bracketing L0) and [L1, L2] instead of asking for a
+    face width that cannot exist."""
+    with pytest.raises(CaseError) as error:
+        spec(EXAMPLE_A, face_gear_teeth=40, inner_radius=0.01, outer_radius=10.0)
+    message = str(error.value)
+    assert error.value.key == "gear.face_gear_teeth" and "no face width fits this path" in message
+    lowest, highest = (float(v) for v in message.split("radii ")[1].split(" m,")[0].split(" to "))
+    l1 = float(message.split("[L1, L2] = [")[1].split(",")[0])
+    assert lowest < 6.35e-3 * 40 / 2 < highest and lowest < l1
