@@ -101,3 +101,25 @@ def test_a_heavy_ellipse_converges_only_from_a_start_at_a_fraction_of_its_load()
     h_nij = (nijenbanning_central(scaling.moes_m, scaling.moes_l, point.radius_x / point.radius_y)
              * math.sqrt(2.0 * scaling.hamrock_u) * point.radius_x)
     assert 0.55 < solution.scalar("h_c") / h_nij < 1.0
+
+
+def test_an_unconverged_iterate_that_does_not_carry_the_load_reports_no_film():
+    """A solve that ends unconverged with its pressure carrying twice the load (the force balance, a conservation
+    law, off by 100 %) reports neither a film nor fields, and says why; within UNBALANCED_LOAD it still reports its
+    film, flagged by its outcome."""
+    from facegear_tehl.ehl.report import UNBALANCED_LOAD
+    from facegear_tehl.solution import Status
+
+    solve = PointSolve(_point(1e3, speed=2.0), OIL, SolverSettings(grid=65, thermal="off"))
+    index, _ = solve.start(below_top=0)
+    assert solve.cycle(index, 30).converged
+    level = solve.solver.levels[index]
+    balanced = solve.report(index, Status(Outcome.NOT_CONVERGED, "budget spent"), None)
+    assert abs(balanced.scalar("load_error")) <= UNBALANCED_LOAD and "h_c" in balanced.scalars
+    level.pressure *= 2.0
+    solve.solver.update_film(level)
+    unbalanced = solve.report(index, Status(Outcome.NOT_CONVERGED, "budget spent"), None)
+    load = level.load_integral() / solve.solver.problem.load_integral
+    assert unbalanced.scalar("load_error") == pytest.approx(load - 1.0) and load == pytest.approx(2.0, rel=0.05)
+    assert "h_c" not in unbalanced.scalars and "h_min" not in unbalanced.scalars and not unbalanced.fields
+    assert unbalanced.message.startswith("budget spent; ") and "does not carry the load" in unbalanced.message
