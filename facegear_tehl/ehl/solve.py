@@ -591,6 +591,15 @@ class PointSolve:
                 tolerance, floor_bound = settings.thermal_tolerance * rise, THERMAL_FLOOR_FRACTION * rise
             else:
                 tolerance, floor_bound = settings.thermal_tolerance, FLOOR_BAND * settings.thermal_tolerance
+            if outer > 0 and not status.converged and max(changes[-2:]) < tolerance:
+                # the film state has converged and the pressure has not: a limit cycle of the V-cycle that two
+                # cycles per update never leave (the phase mean of `cycle` needs three on one film state). On the
+                # quick 65 x 17 grid a face gear point (a/b = 40, 0.2 GPa) alternated its load error between
+                # -1.9e-4 and +2.2e-4 at a change of 1.43e-3 per cycle for 30 outer iterations, its temperatures
+                # settled to 1e-4 K: the pressure is cycled to its tolerance on the converged state.
+                status = self.cycle(index, settings.max_cycles)
+                if status.diverged:
+                    break
             if outer > 0 and status.converged and changes[-1] < tolerance:
                 self._settle(index)
                 return state, CONVERGED
