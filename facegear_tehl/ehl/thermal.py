@@ -202,10 +202,13 @@ def thermal_loading(point: ContactPoint, lubricant: Lubricant) -> float:
 
 
 def gupta_reduction(point: ContactPoint, lubricant: Lubricant) -> float:
-    """Thermal reduction factor of the central film, phi_T = [1 + 0.1 (1 + 14.8 SRR^0.83) L_th^0.64]^-1
-    (Gupta et al. 1992, Tribol. Trans. 35:269, with SRR the slide-to-roll ratio)."""
-    srr = abs(point.slide_roll_ratio)
-    return 1.0 / (1.0 + 0.1 * (1.0 + 14.8 * srr**0.83) * thermal_loading(point, lubricant) ** 0.64)
+    """Thermal reduction factor of the central film (Gupta, Cheng, Zhu, Forster & Schrand 1992, Tribol. Trans.
+    35:269-274), phi_T = [1 - 13.2 (p_h/E') L_th^0.42] / [1 + 0.213 (1 + 2.23 SRR^0.83) L_th^0.64], with p_h the
+    Hertz pressure, E' the reduced modulus (Hamrock's 2/[(1 - nu1^2)/E1 + (1 - nu2^2)/E2]) and SRR the slide-to-roll
+    ratio; as quoted by Arana et al. (2019, Proc. IMechE J 233:303, eq. 24)."""
+    srr, loading = abs(point.slide_roll_ratio), thermal_loading(point, lubricant)
+    numerator = 1.0 - 13.2 * point.hertz.p_max / point.reduced_modulus * loading**0.42
+    return numerator / (1.0 + 0.213 * (1.0 + 2.23 * srr**0.83) * loading**0.64)
 
 
 # `auto`: predicted error of each model relative to `full`, as a share of the Gupta film reduction 1 - phi_T
