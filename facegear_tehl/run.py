@@ -34,10 +34,9 @@ UNRESOLVED_H_MIN = 0.1
 # COARSE_ESTIMATE is solved again on the next grid as a failure is (`_next_grid`, same caps); the finer solution is
 # kept if it converges, else the coarser converged one with the reason. Why 10 %: the estimate is (f_h - f_2h)/3, so
 # beyond it the two grids differ by more than 30 %, outside the asymptotic range the estimate assumes (its own
-# error is then of its size: a/b = 5, 1.5 GPa, 0.5 m/s estimates 260 % on 257^2 and h_min rises by 38 % to 513^2);
-# and 10 % is the scatter of the film formulas a user would otherwise take (Hamrock & Dowson 1977 fit their
-# numerical h_min within about 5-10 %), so an unresolved h_min beyond it says less than a formula. Below it the
-# envelope's resolved films sit (0.01-9.6 % on 257 x 65; the default face gear case about 0.1 %).
+# error is then of its size: a/b = 5, 1.5 GPa, 0.5 m/s estimates 260 % on 257^2 and h_min rises by 38 % to 513^2).
+# Below it sit the films the grid asked for resolves (the operating-envelope suite's 0.01-9.6 % on 257 x 65, the
+# default face gear case's about 0.1 %): they are left alone.
 COARSE_ESTIMATE = 0.1
 # Where the film is lowest decides the direction: in the side lobes (|y| > SIDE_LOBE a) the film's narrow
 # constriction runs along x and is resolved by rows, so a grid with fewer rows than columns doubles its rows

@@ -134,7 +134,7 @@ def test_a_converged_film_beyond_the_bound_is_refined_until_within_it(tmp_path):
     """The circle converges on the 33^2 grid asked with h_min estimated 42 % off (h_c 19 %): the run solves it again
     on 65^2 (12 %) and 129^2 (2.4 %), where it stops, and says so in the log, the point's models and the overrides.
     Independent check: Hamrock & Dowson's (1977) minimum film, which the 33^2 film misses by 32 %, is within 6 % of
-    the refined one (the fit's own accuracy is about 5 %; the grid's estimate 2.4 %)."""
+    the refined one (4 % below it; the grid's own estimate is 2.4 %)."""
     from click.testing import CliRunner
 
     from facegear_tehl.case import load_case
