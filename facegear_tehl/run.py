@@ -3,14 +3,14 @@ behind `tehl run`, for notebooks and scripts)."""
 
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import dataclass, replace
 import math
 from typing import Sequence
 
 from facegear_tehl.case import Case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.cycle import MeshCycle, mesh_cycle, with_film_parameter
-from facegear_tehl.ehl.domain import solution_domain
+from facegear_tehl.ehl.domain import MIN_LENGTHENED_NODES, solution_domain
 from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.heat_budget import heat_budget
 from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
@@ -30,6 +30,16 @@ MAX_REFINED_GRID = 1025
 # (a/b = 30, 1.5 GPa, 0.5 m/s, SRR 0.5: 495 s in all up to 1025 x 1025).
 MAX_REFINED_THERMAL_GRID = 513
 UNRESOLVED_H_MIN = 0.1
+# A converged point whose own error estimate of h_min or h_c (Richardson, from the grid below: ehl.report) exceeds
+# COARSE_ESTIMATE is solved again on the next grid as a failure is (`_next_grid`, same caps); the finer solution is
+# kept if it converges, else the coarser converged one with the reason. Why 10 %: the estimate is (f_h - f_2h)/3, so
+# beyond it the two grids differ by more than 30 %, outside the asymptotic range the estimate assumes (its own
+# error is then of its size: a/b = 5, 1.5 GPa, 0.5 m/s estimates 260 % on 257^2 and h_min rises by 38 % to 513^2).
+# Below it sit the films the grid asked for resolves (the operating-envelope suite's 0.01-9.6 % on 257 x 65, the
+# default face gear case's about 0.1 %): they are left alone. So are trial grids, fewer than MIN_LENGTHENED_NODES
+# along x (not lengthened either, ehl.domain): asked for a quick look, their error is expected to be large (the
+# default face gear case on 65 x 17: h_c 1.5 % low); they are refined only when they fail.
+COARSE_ESTIMATE = 0.1
 # Where the film is lowest decides the direction: in the side lobes (|y| > SIDE_LOBE a) the film's narrow
 # constriction runs along x and is resolved by rows, so a grid with fewer rows than columns doubles its rows
 # alone (an a/b = 5 ellipse at p_h = 1.5 GPa, 0.5 m/s, Moes M = 8.5e3, closes its film at y = 0.94 a on 257 x 65
@@ -74,10 +84,10 @@ def run_case(
     tasks = [SolveTask(point, case.lubricant, case.solver) for point in selected]
     solved, failed, refined = solve_refining(tasks, solver or ehl_solver(), jobs=jobs, progress=progress)
     by_name = {s.name: s for s in solved}
-    warnings = analysis.warnings + tuple(refinement_note(name, asked, grid, by_name[name])
-                                         for name, (asked, grid) in refined.items())
+    warnings = analysis.warnings + tuple(refinement_note(name, refinement, by_name[name])
+                                         for name, refinement in refined.items())
     if refined:
-        overrides["refined_grid"] = {name: grid for name, (_, grid) in refined.items()}
+        overrides["refined_grid"] = {name: refinement.grid for name, refinement in refined.items()}
     solutions, heat_table = heat_budget(selected, [_with_path_coordinate(s, p) for s, p in zip(solved, selected)],
                                         case.lubricant)
     solutions = [with_film_parameter(s, p) for s, p in zip(solutions, selected)]
@@ -100,40 +110,92 @@ def run_case(
     )
 
 
+@dataclass(frozen=True)
+class Refinement:
+    """What the solver did about a point whose grid asked for did not resolve its film (grids as "nx x ny")."""
+
+    asked: str  # the grid asked for
+    grid: str  # the grid of the reported solution
+    reason: str  # why a converged solve was not enough ("" for a solve that failed: `_coarse_reason`)
+    tried: str = ""  # a finer grid whose solve did not converge, the coarser converged solution kept ("" if none)
+    outcome: str = ""  # how the solve on `tried` ended
+
+
 def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *, jobs: int | None = None,
                    progress: Progress | None = None
-                   ) -> tuple[list[PointSolution], tuple[int, ...], dict[str, tuple[str, str]]]:
-    """`parallel.solve_all`, then every point whose grid could not resolve its film (`_unresolved`) solved again
-    on grids twice as fine until it can or the grid would pass MAX_REFINED_GRID (a finer grid also lets the
-    retry's start begin on a finer coarsest grid). Returns the solutions in task
-    order (a refined point's wall time counts its coarser attempts), the indices of those that raised, and per
-    refined point (grid asked, grid solved on)."""
+                   ) -> tuple[list[PointSolution], tuple[int, ...], dict[str, Refinement]]:
+    """`parallel.solve_all`, then every point whose grid could not resolve its film (`_unresolved`, or converged with
+    an error estimate above COARSE_ESTIMATE, `_coarse`, unless asked on a trial grid) solved again on grids twice as
+    fine until it can or the grid would pass MAX_REFINED_GRID (a finer grid also lets the retry's start begin on a
+    finer coarsest grid). A finer solve that does not converge after a converged one ends the refinement of that
+    point with the converged one (the finer outcome in its message). Returns the solutions in task order (a refined
+    point's wall time counts its coarser attempts), the indices of those that raised, and per refined point what the
+    solver did."""
     tasks = list(tasks)
     solved, failed = solve_all(tasks, solver, jobs=jobs, progress=progress)
-    refined: dict[str, tuple[str, str]] = {}
+    refined: dict[str, Refinement] = {}
     asked = {task.point.name: _shape(task.settings) for task in tasks}
+    # points whose converged solution stays as it is: asked on a trial grid, or a finer grid failed after it
+    kept = {i for i, task in enumerate(tasks) if task.settings.grid < MIN_LENGTHENED_NODES}
     while True:
-        next_grids = {i: _next_grid(tasks[i], s) for i, s in enumerate(solved) if _unresolved(s)}
+        next_grids = {i: _next_grid(tasks[i], s) for i, s in enumerate(solved)
+                      if _unresolved(s) or (_coarse(s) and i not in kept)}
         closed = [i for i, settings in next_grids.items() if settings is not None]
         if not closed:
             return solved, failed, refined
         finer = [replace(tasks[i], settings=next_grids[i]) for i in closed]
         again, _ = solve_all(finer, solver, jobs=jobs, progress=progress)
         for i, task, solution in zip(closed, finer, again):
+            name, previous = task.point.name, solved[i]
+            first = refined.get(name, Refinement(asked[name], asked[name], _coarse_reason(previous)))
+            spent = previous.scalars.get("wall_time", (0.0, "s"))[0] + solution.scalars.get("wall_time", (0.0, "s"))[0]
+            if previous.converged and not solution.converged:
+                kept.add(i)
+                refinement = replace(first, tried=_shape(task.settings), outcome=solution.outcome.value)
+                note = (f"grid {refinement.tried} tried by the solver ended {refinement.outcome}; the result is the "
+                        f"converged {refinement.grid} solution" + (f" ({_coarse_reason(previous)})" if _coarse(previous)
+                                                                   else ""))
+                solver_note = previous.models.get("solver", "") + "; " + note
+                solved[i] = replace(previous, message=note, scalars={**previous.scalars, "wall_time": (spent, "s")},
+                                    models={**previous.models, "solver": solver_note})
+                refined[name] = refinement
+                continue
             tasks[i] = task
-            note = (f"grid {_shape(task.settings)} chosen by the solver ({asked[task.point.name]} did not resolve "
-                    f"the film)")
-            spent = solved[i].scalars.get("wall_time", (0.0, "s"))[0] + solution.scalars.get("wall_time", (0.0, "s"))[0]
+            note = (f"grid {_shape(task.settings)} chosen by the solver ({asked[name]} did not resolve the film"
+                    + (f": {first.reason})" if first.reason else ")"))
             solved[i] = replace(solution, scalars={**solution.scalars, "wall_time": (spent, "s")},
                                 models={**solution.models, "solver": solution.models.get("solver", "") + "; " + note})
-            refined[task.point.name] = (asked[task.point.name], _shape(task.settings))
+            refined[name] = replace(first, grid=_shape(task.settings))
 
 
-def refinement_note(name: str, asked: str, grid: str, solution: PointSolution) -> str:
+def refinement_note(name: str, refinement: Refinement, solution: PointSolution) -> str:
     """What the solver did about a grid that did not resolve the film of point `name`, and how it ended."""
-    done = (f"solved on {grid}" if not _unresolved(solution)
-            else f"finer grids up to {grid} did not resolve it either ({solution.outcome.value})")
-    return f"{name}: the {asked} grid did not resolve the film; {done} (chosen by the solver)"
+    if refinement.tried:
+        done = f"{refinement.tried} ended {refinement.outcome}; the result is the converged {refinement.grid} solution"
+    elif _unresolved(solution):
+        done = f"finer grids up to {refinement.grid} did not resolve it either ({solution.outcome.value})"
+    else:
+        done = f"solved on {refinement.grid}"
+    if _coarse(solution):
+        done += f", {_coarse_reason(solution)}"
+    why = f" ({refinement.reason})" if refinement.reason else ""
+    return f"{name}: the {refinement.asked} grid did not resolve the film{why}; {done} (chosen by the solver)"
+
+
+def _coarse_reason(solution: PointSolution) -> str:
+    """The error estimates of a converged solve, against COARSE_ESTIMATE ("" for a solve that did not converge)."""
+    if not solution.converged:
+        return ""
+    h_c, h_min = (100 * solution.scalars.get(f"error_estimate_{key}", (0.0, "1"))[0] for key in ("h_c", "h_min"))
+    return f"converged with h_c estimated {h_c:.2g} % and h_min {h_min:.2g} % off, bound {100 * COARSE_ESTIMATE:.0f} %"
+
+
+def _coarse(solution: PointSolution) -> bool:
+    """The solve converged, but estimates its own h_min or h_c error above COARSE_ESTIMATE (NaN: no estimate)."""
+    if not solution.converged:
+        return False
+    return any(abs(solution.scalars.get(f"error_estimate_{key}", (0.0, "1"))[0]) > COARSE_ESTIMATE
+               for key in ("h_c", "h_min"))
 
 
 def _unresolved(solution: PointSolution) -> bool:

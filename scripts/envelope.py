@@ -9,11 +9,11 @@ A deliberate design, not a full factorial (`envelope_cases`):
 Each contact: steel on steel, R_x = 20 mm, R_y/R_x from the exact Hertz ellipticity relation for the wanted
 a/b (brentq), the load for the wanted p_h; Roelands viscosity, Dowson-Higginson density.
 
-Solves them all with the project's parallel runner and prints a markdown table (outcome, cycles, thermal outer
-iterations, wall time, h_c, h_min, p_max, error estimates, the energy balance of thermal cases, a check of the
-fields and of that balance, the message of a case that did not converge), a summary per model, p_h and a/b, the
-failures grouped by outcome and message, and the median and worst wall time. Exit code 1 if any case did not
-converge or a solution fails its check.
+Solves them all with the project's parallel runner and prints a markdown table (outcome, grid, cycles, thermal
+outer iterations, wall time, h_c, h_min, p_max, error estimates, the energy balance of thermal cases, a check of
+the fields and of that balance, the message of a case that did not converge or kept a coarser grid), a summary per
+model, p_h and a/b, the failures grouped by outcome and message, and the median and worst wall time. Exit code 1 if
+any case did not converge or a solution fails its check.
 
     python scripts/envelope.py [--grid 257] [--grid-y 65] [--jobs N] [--only PATTERN[,PATTERN]]
                                [--thermal-only | --iso-only] [--map FILE.png] [--save DIR] [--list]
@@ -288,8 +288,8 @@ class Row:
         return _scalar(self.solution, "wall_time")
 
 
-COLUMNS = ("case", "a/b", "p_h GPa", "u_e m/s", "SRR", "skew deg", "eta_0 Pa s", "model", "outcome", "cycles",
-           "outer it.", "wall s", "h_c µm", "h_min µm", "p_max GPa", "err h_c %", "err h_min %", "energy %",
+COLUMNS = ("case", "a/b", "p_h GPa", "u_e m/s", "SRR", "skew deg", "eta_0 Pa s", "model", "outcome", "grid",
+           "cycles", "outer it.", "wall s", "h_c µm", "h_min µm", "p_max GPa", "err h_c %", "err h_min %", "energy %",
            "check", "message")
 
 
@@ -298,12 +298,19 @@ def row_cells(row: Row) -> list[str]:
     return [
         c.name, f"{c.ellipticity:g}", f"{c.hertz_pressure * 1e-9:g}", f"{c.entrainment_speed:g}",
         f"{c.slide_roll_ratio:g}", f"{c.skew:g}", f"{c.viscosity:g}", c.model, s.outcome.value,
-        _cell(s, "iterations", 1.0, ".0f"), _cell(s, "thermal_iterations", 1.0, ".0f"),
+        _grid(s), _cell(s, "iterations", 1.0, ".0f"), _cell(s, "thermal_iterations", 1.0, ".0f"),
         _cell(s, "wall_time", 1.0, ".1f"), _cell(s, "h_c", 1e6, ".4g"), _cell(s, "h_min", 1e6, ".4g"),
         _cell(s, "p_max", 1e-9, ".3f"), _cell(s, "error_estimate_h_c", 100.0, ".2g"),
         _cell(s, "error_estimate_h_min", 100.0, ".2g"), _cell(s, "energy_balance_error", 100.0, ".2g"),
-        row.check, "" if s.converged else s.message,
+        row.check, s.message,
     ]
+
+
+def _grid(solution: PointSolution) -> str:
+    """The nodes of the grid the solution is on ("nx x ny"; its inlet may have been lengthened: ehl.domain)."""
+    if "grid" not in solution.scalars:
+        return "–"
+    return f"{_scalar(solution, 'grid'):.0f} x {_scalar(solution, 'grid_y'):.0f}"
 
 
 def markdown_table(rows: Sequence[Row]) -> str:
@@ -537,8 +544,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     print()
     print(summary(rows, total, args.grid, args.grid_y))
     by_name = {row.solution.name: row.solution for row in rows}
-    for name, (asked, solved_on) in refined.items():
-        print(f"- {refinement_note(name, asked, solved_on, by_name[name])}")
+    for name, refinement in refined.items():
+        print(f"- {refinement_note(name, refinement, by_name[name])}")
     if args.save:
         write_csv(rows, args.save / "envelope.csv")
     if args.map:

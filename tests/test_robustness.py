@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 import yaml
 
+from facegear_tehl import run as run_module
 from facegear_tehl.case import parse_case
 from facegear_tehl.cli import tehl
 from facegear_tehl.points import contact_analysis
@@ -183,7 +184,7 @@ def test_hard_case_script_prints_the_table(tmp_path):
     assert non_finite_entries(tmp_path / "skew_45.h5") == []
 
 
-def test_a_film_that_closes_is_solved_again_on_a_finer_grid(tmp_path):
+def test_a_film_that_closes_is_solved_again_on_a_finer_grid(tmp_path, monkeypatch):
     """The hard case of Moes M = 5000, L = 10 closes its film on 129^2 and 257^2: the run solves it again on
     grids twice as fine until the film stays open (513^2), and says so in the log, the point's models, the
     run's warnings and overrides. Its h_c lies within its own error estimate (34 %: 513^2 is still coarse for this
@@ -193,6 +194,9 @@ def test_a_film_that_closes_is_solved_again_on_a_finer_grid(tmp_path):
     from facegear_tehl.ehl.scaling import scaling_for
     from facegear_tehl.film_formulas import nijenbanning_central
 
+    # The refinement is capped at 513 here: this test pins the refinement of a film that closes. Converged on 513^2
+    # with h_min estimated 34 % off, the point would go on to 1025^2 (run.COARSE_ESTIMATE, tests/test_refinement.py).
+    monkeypatch.setattr(run_module, "MAX_REFINED_GRID", 513)
     target = tmp_path / "m5000.h5"
     result = CliRunner().invoke(tehl, ["run", str(synthetic.CASES / "hard" / "heavy_m5000_l10.yaml"), "-o",
                                        str(target), "--jobs", "1"])
@@ -211,7 +215,7 @@ def test_a_film_that_closes_is_solved_again_on_a_finer_grid(tmp_path):
     assert abs(moes_h_c / expected - 1.0) <= 0.15 + abs(point.scalars["error_estimate_h_c"])
 
 
-def test_a_film_closing_in_the_side_lobes_is_solved_again_with_more_rows(tmp_path):
+def test_a_film_closing_in_the_side_lobes_is_solved_again_with_more_rows(tmp_path, monkeypatch):
     """An a/b = 5 ellipse at p_h = 1.5 GPa, 0.5 m/s (Moes M = 8.5e3) closes its film in the side lobes on the
     257 x 65 grid it asks for: the run doubles the rows alone (257 x 129, then 257 x 257, where it converges),
     not the columns, and its h_c lies within its own error estimate plus 15 % (the fit's accuracy) of the
@@ -220,6 +224,8 @@ def test_a_film_closing_in_the_side_lobes_is_solved_again_with_more_rows(tmp_pat
     from facegear_tehl.ehl.scaling import scaling_for
     from facegear_tehl.film_formulas import nijenbanning_central
 
+    # Capped at 257 (as above): converged on 257^2 with h_min estimated 260 % off, the point would go on to 513^2.
+    monkeypatch.setattr(run_module, "MAX_REFINED_GRID", 257)
     case_file = synthetic.CASES / "hard" / "side_lobes_ab5.yaml"
     target = tmp_path / "side_lobes.h5"
     result = CliRunner().invoke(tehl, ["run", str(case_file), "-o", str(target), "--jobs", "1"])

@@ -273,6 +273,8 @@ def _models(solve: PointSolve) -> dict[str, str]:
     if solve.start_notes:
         models["solver"] += (f"; full-multigrid start from the {solve.coarsest} x {solve.coarsest} grid (chosen by the "
                              f"solver: the start ran away from {'; from '.join(solve.start_notes)})")
+    if solve.coarse_stage_note:
+        models["solver"] += "; " + solve.coarse_stage_note
     if solve.start_load_fraction < 1.0:
         models["solver"] += (f"; full-multigrid start at {solve.start_load_fraction:.3g} of the load (Moes M "
                              f"{solve.scaling.moes_m:.3g}), raised to the full load one grid below the finest")

@@ -69,6 +69,13 @@ ENERGY_FORCING = 0.1
 # envelope's thermal a/b = 30, 1.5 GPa, SRR 2 point ran away in its first outer iteration.)
 FINE_START_CYCLES = CYCLES_PER_THERMAL_UPDATE
 MIN_COARSE_THERMAL_GRID = 65  # the coupled problem is solved one grid coarser first only from this grid up
+# Coarse-stage fallback: a damped attempt (DAMPED_ATTEMPT on) whose coarse thermal stage runs away solves the coupled
+# problem on the finest grid alone, from the converged isothermal solution there (PointSolve._couple_on_finest). The
+# thermal a/b = 30 ellipse at 1.5 GPa, 0.5 m/s, SRR 0.5 (Moes M = 5.4e4, L = 7.9) has an isothermal film that 513^2
+# resolves and 257^2 does not: on 513^2 its damped attempts ran away in the coarse stage on 257^2 (the isothermal
+# cycles there, then the first film-state update not finite); on 513^2 alone the damped attempt converges the
+# isothermal film and then the coupled loop in 14 outer iterations. Only from the damped attempt on: the attempts
+# before it are where the points that converge today do so, unchanged.
 
 # Algebraic floor of the pressure iteration (a period-2 flicker at the spike and the free boundary):
 FLOOR_STALL = 0.8  # the change per cycle fell by less than 20 % over two cycles ...
@@ -318,6 +325,7 @@ class PointSolve:
         # the load fraction the full-multigrid start begins at (_full_multigrid)
         self.start_load_fraction = min(1.0, CONTINUATION_MOES_M / self.scaling.moes_m) if load_continuation else 1.0
         self.attempt = attempt
+        self.coarse_stage_note = ""  # why the coupled problem was solved on the finest grid alone (_couple_on_finest)
         self.before_cycle: tuple[Iterate, np.ndarray] | None = None  # the iterate and film before the last V-cycle
         self.elapsed = elapsed  # s spent up to the last pause (a solve paused between stages has no clock)
         self._clock = time.perf_counter() - elapsed
@@ -376,7 +384,19 @@ class PointSolve:
                 self.coarse_state = state
                 self.elapsed = time.perf_counter() - self._clock
                 return self
+            if self.attempt >= DAMPED_ATTEMPT:
+                return self._couple_on_finest(status)
         return self.report(index, status, state)
+
+    def _couple_on_finest(self, status: Status) -> PointSolution:
+        """After the coarse thermal stage ran away with `status`, the coupled problem on the finest grid alone, from
+        its converged isothermal solution (`_solve_finest` on a new hierarchy with the same coarsest grid): the grid
+        below the finest may not hold a film the finest resolves (the coarse-stage fallback above ATTEMPTS)."""
+        level = self.solver.levels[-2]
+        self.coarse_stage_note = (f"the coupled problem one grid coarser ({level.nx} x {level.ny}) ran away "
+                                  f"({status.message}): coupled on the finest grid from its isothermal solution")
+        self._new_hierarchy(grid.hierarchy_shapes(self.settings.grid, self.settings.nodes_y, self.coarsest))
+        return self._solve_finest()
 
     def _solve_finest(self) -> PointSolution:
         """Full multigrid to the finest grid, cycles to tolerance there, then (thermal or Ree-Eyring films) the
@@ -412,11 +432,16 @@ class PointSolve:
     def _restart(self, shapes: list[tuple[int, int]], status: Status) -> None:
         """A new hierarchy (coarsest grid first in `shapes`) after the start ran away with `status`; the work
         done so far is kept in the count."""
+        self._new_hierarchy(shapes)
+        self.start_notes.append(f"{self.coarsest} x {self.coarsest}: {status.message}")
+        self.coarsest = shapes[0][0] if shapes[0][0] <= shapes[0][1] else shapes[0][1]
+
+    def _new_hierarchy(self, shapes: list[tuple[int, int]]) -> None:
+        """A new multigrid solver on `shapes` (coarsest first), summaries and history begun again; the work done so
+        far is kept in the count."""
         work = self.solver.work_units
         self.solver = MultigridSolver(self.solver.problem, shapes, self.solver.relaxation)
         self.solver.work_units = work
-        self.start_notes.append(f"{self.coarsest} x {self.coarsest}: {status.message}")
-        self.coarsest = shapes[0][0] if shapes[0][0] <= shapes[0][1] else shapes[0][1]
         self.summaries = []
         self.history = History(cycles=self.settings.cycles_per_level)
 
