@@ -1,6 +1,7 @@
 """Per-point cost and results of a gear case, for before/after comparisons of the solver: each point solved in
 turn in one process (one BLAS thread, kernels loaded first, as `tehl run --jobs 1` solves it), with its outer
-iterations, V-cycles, work units, CPU time (time.process_time) and h_c, h_min, dT_max, mu, energy balance and
+iterations, V-cycles, work units, energy-equation column sweeps (the finest grid's sweeps count 1, a coarser grid's
+its share of the nodes), CPU time (time.process_time) and h_c, h_min, dT_max, mu, energy balance and
 their error estimates.
 
     python scripts/bench_points.py [CASE] [--points S1 S3 | --count 41] [--thermal full] [--rheology ree_eyring]
@@ -22,12 +23,26 @@ import time
 from threadpoolctl import threadpool_limits
 
 from facegear_tehl.case import load_case
+from facegear_tehl.ehl import energy
 from facegear_tehl.ehl.solve import solve_point
 from facegear_tehl.points import contact_analysis
 
 HERE = Path(__file__).resolve().parents[1]
 RESULTS = ("h_c", "h_min", "dT_max", "mu")  # compared against their own error estimates (error_estimate_<name>)
-COUNTS = ("thermal_iterations", "iterations", "work_units")
+COUNTS = ("thermal_iterations", "iterations", "work_units", "energy_sweeps")
+SWEEPS = [0.0]  # column nodes swept by the energy equation in the solve under way
+
+
+def _counted(sweep_columns):
+    """energy.sweep_columns, adding the column nodes it sweeps to SWEEPS."""
+    def counted(temperature, *args):
+        done, change = sweep_columns(temperature, *args)
+        SWEEPS[0] += done * temperature[0].size
+        return done, change
+    return counted
+
+
+energy.sweep_columns = _counted(energy.sweep_columns)  # thermal.py calls it through the module
 
 
 def solve_points(case_path: Path, names: list[str] | None, count: int | None, thermal: str | None,
@@ -43,11 +58,13 @@ def solve_points(case_path: Path, names: list[str] | None, count: int | None, th
     with threadpool_limits(limits=1):
         solve_point(points[0], lubricant, dataclasses.replace(settings, grid=33, grid_y=None))  # load the kernels
         for point in points:
+            SWEEPS[0] = 0.0
             start = time.process_time()
             solution = solve_point(point, lubricant, settings)
             cpu = time.process_time() - start
-            row = {"point": point.name, "outcome": solution.outcome.value, "cpu": cpu}
-            for key in (*COUNTS, *RESULTS, "energy_balance_error", *(f"error_estimate_{k}" for k in RESULTS)):
+            row = {"point": point.name, "outcome": solution.outcome.value, "cpu": cpu,
+                   "energy_sweeps": SWEEPS[0] / (solution.scalar("grid") * solution.scalar("grid_y"))}
+            for key in (*COUNTS[:-1], *RESULTS, "energy_balance_error", *(f"error_estimate_{k}" for k in RESULTS)):
                 row[key] = solution.scalars[key][0] if key in solution.scalars else math.nan
             rows.append(row)
             print(json.dumps(row), flush=True)
@@ -67,7 +84,8 @@ def _cell(key: str, value: float) -> str:
 
 
 COLUMNS = (("outcome", "outcome"), ("thermal_iterations", "outer iterations"), ("iterations", "V-cycles"),
-           ("work_units", "work units"), ("cpu", "CPU s"), ("h_c", "h_c µm"), ("h_min", "h_min µm"),
+           ("work_units", "work units"), ("energy_sweeps", "energy sweeps"), ("cpu", "CPU s"), ("h_c", "h_c µm"),
+           ("h_min", "h_min µm"),
            ("dT_max", "ΔT_max K"), ("mu", "μ"), ("energy_balance_error", "energy balance error"))
 
 
@@ -82,13 +100,14 @@ def print_table(rows: list[dict], before: list[dict] | None) -> None:
         for key, _ in COLUMNS:
             now = row[key] if key == "outcome" else _cell(key, row[key])
             if row["point"] in old:
-                then = old[row["point"]][key]
+                then = old[row["point"]].get(key, math.nan)
                 now = f"{then if key == 'outcome' else _cell(key, then)} → {now}"
             cells.append(now)
         print(f"| {row['point']} | " + " | ".join(cells) + " |")
-    for key in ("cpu", "thermal_iterations", "iterations"):
+    for key in ("cpu", "thermal_iterations", "iterations", "work_units", "energy_sweeps"):
         total = sum(r[key] for r in rows if math.isfinite(r[key]))
-        then = sum(old[r["point"]][key] for r in rows if r["point"] in old and math.isfinite(old[r["point"]][key]))
+        then = sum(old[r["point"]].get(key, math.nan) for r in rows if r["point"] in old
+                   and math.isfinite(old[r["point"]].get(key, math.nan)))
         print(f"\nsum of {key}: {f'{then:.1f} -> ' if old else ''}{total:.1f}", end="")
     print()
     if not old:
