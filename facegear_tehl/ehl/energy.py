@@ -441,9 +441,10 @@ def _column(temperature, j, i, flux_x, flux_y, flux_z, blended, implicit, explic
 
 @njit(cache=True, error_model="numpy")
 def sweep_columns(temperature, flux_x, flux_y, flux_z, source, sensitivity, reference, expansivity_grad, conductivity,
-                  film, dx, dy, t_inlet, sweeps, tolerance):
-    """Gauss-Seidel sweeps (forward, then backward in x) over all columns with the fluxes of `transport_fluxes`;
-    returns (sweeps done, last change, K). conductivity: k of the film per column, (ny, nx), W/(m K).
+                  film, dx, dy, t_inlet, sweeps, tolerance, min_sweeps=0):
+    """Gauss-Seidel sweeps (forward, then backward in x) over all columns with the fluxes of `transport_fluxes`:
+    at most `sweeps`, stopping once one changes the temperatures by less than `tolerance` (K) after the first
+    `min_sweeps`; returns (sweeps done, last change, K). conductivity: k of the film per column, (ny, nx), W/(m K).
 
     The heat source is linearised about `reference`: source - sensitivity (T - reference), with
     sensitivity = -d(source)/dT >= 0 (viscous heating falls as the oil thins), treated implicitly."""
@@ -471,7 +472,7 @@ def sweep_columns(temperature, flux_x, flux_y, flux_z, source, sensitivity, refe
                             band, rhs)
                 change = max(change, c)
         done = s + 1
-        if change < tolerance:
+        if done >= min_sweeps and change < tolerance:
             break
     return done, change
 
