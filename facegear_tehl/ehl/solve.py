@@ -78,11 +78,12 @@ ENERGY_FORCING = 0.3
 # envelope's thermal a/b = 30, 1.5 GPa, SRR 2 point ran away in its first outer iteration.)
 FINE_START_CYCLES = CYCLES_PER_THERMAL_UPDATE
 MIN_COARSE_THERMAL_GRID = 65  # the coupled problem is solved one grid coarser first only from this grid up
-# The coarse thermal stage only seeds the finest grid, where the film state moves by its grid error (the first update
-# on 513 x 65 changes the temperatures by 2.9 % of the rise at S1 of the default case, by 60 % of it at S3 in the
-# outlet's expansion cooling): it stops at this multiple of the thermal tolerance (1 % of the rise by default). S1-S5
-# took 92 instead of 108 outer iterations in all (the coarse stage of S1 9 instead of 13) with h_c, h_min, dT_max
-# and mu within a quarter of their error estimates.
+# The coarse stage of `full` only seeds the finest grid's outer loop, where the film state moves by its grid error
+# (the first update on 513 x 65 changes the temperatures by 2.9 % of the rise at S1 of the default case, by 60 % of
+# it at S3 in the outlet's expansion cooling): it stops at this multiple of the thermal tolerance (1 % of the rise by
+# default). S1-S5 took 92 instead of 108 outer iterations in all (the coarse stage of S1 9 instead of 13) with h_c,
+# h_min, dT_max and mu within a quarter of their error estimates. (`reduced` keeps its coarse stage's tolerance: its
+# coarse temperatures are its result.)
 COARSE_STAGE_TOLERANCE = 10.0
 
 # Algebraic floor of the pressure iteration (a period-2 flicker at the spike and the free boundary):
@@ -285,7 +286,8 @@ def _next_film_state(accelerator: Anderson, temperature: np.ndarray, factor: np.
                      scale: float, rise: float | None) -> tuple[np.ndarray, np.ndarray, float, float]:
     """The next layer temperatures (K) and eta*/eta of the outer loop from the current ones and the film state
     `update` evaluated at them, and the largest changes of the plain step (K; of ln(eta*/eta)). The plain step
-    is under-relaxed (THERMAL_RELAXATION and VISCOSITY_RELAXATION times `scale`; eta*/eta in log space) and
+    is under-relaxed (THERMAL_RELAXATION and VISCOSITY_RELAXATION times `scale`, EYRING_RELAXATION without the
+    energy equation; eta*/eta in log space) and
     Anderson-accelerated (anderson.py), the temperatures weighted by 1/rise (K) against ln(eta*/eta): the outer
     loop's tolerances, a share of the rise and a change of ln(eta*/eta), weigh alike. rise None: no energy
     equation (the temperatures stay)."""
@@ -572,7 +574,9 @@ class PointSolve:
         state = initial
         last_finite = (solver.snapshot(index), initial)
         first = len(history.thermal_h_c)  # this grid's outer iterations start here
-        seeding = index < len(solver.levels) - 1  # the coarse stage of a thermal full multigrid: a looser tolerance
+        # the coarse stage of a `full` thermal multigrid only seeds the finest grid's loop (COARSE_STAGE_TOLERANCE);
+        # `reduced` keeps its coarse temperatures, evaluated once on the finest grid
+        seeding = self.mode == "full" and index < len(solver.levels) - 1
         window = first  # the stall of the current relaxation is judged from here
         relaxation = 1.0  # scale of THERMAL_RELAXATION and VISCOSITY_RELAXATION
         status = CONVERGED
