@@ -313,13 +313,36 @@ def _node_form(temperature, k, j, i, flux_z, blended, implicit, explicit, heatin
 
 
 @njit(cache=True, error_model="numpy", inline="always")
+def _node_diagonal(k, j, i, flux_x, flux_y, flux_z, implicit, inverse_width, rdxh, rdyh, inverse_h):
+    """`a` of `_node_form` alone, by the same operations in the same order (bit-identical): the inflows along x and
+    y (`_face_term`), the upwind flux across the layers, the implicit part. No face value is needed for it."""
+    nz = flux_z.shape[0] - 1
+    a = 0.0
+    for g in (flux_x[k, j, i + 1] * rdxh, -flux_x[k, j, i] * rdxh, flux_y[k, j + 1, i] * rdyh,
+              -flux_y[k, j, i] * rdyh):
+        if not g >= 0.0:  # an inflow (g == 0 and outflows leave a as it is)
+            a = a - g
+    rw = inverse_width[k] * inverse_h
+    if k < nz - 1:
+        z = flux_z[k + 1, j, i]
+        if not z >= 0.0:
+            a -= z * rw
+    if k > 0:
+        z = flux_z[k, j, i]
+        if not z <= 0.0:
+            a += z * rw
+    return a + implicit[k, j, i]
+
+
+@njit(cache=True, error_model="numpy", inline="always")
 def _forms(temperature, j, i, flux_x, flux_y, flux_z, blended, implicit, explicit, heating, conductivity, film, dx, dy,
-           t_inlet, face_position, inverse_width, walls, a, lo, up, b):
+           t_inlet, face_position, inverse_width, walls, a, lo, up, b, wall_rows=False):
     """The linear forms of every node of column (j, i) (in place), the walls' convection along x and y from
     `wall_convection`, the fixed parts from `_fixed_parts`; returns (k/dz^2, theta): Numerov's weight
     theta = min(1, 12 k/(dz^2 max a)) over the interior nodes keeps the off-diagonals of the column's matrix
     negative (no overshoot) where convection outweighs conduction across the film (thick inlet films); there the
-    scheme tends to the second-order one."""
+    scheme tends to the second-order one. `wall_rows`: the whole forms of the three nodes next to each wall only
+    (what `wall_fluxes` reads), `a` alone of the others (theta)."""
     nz = temperature.shape[0]
     h = max(film[j, i], 1e-12)
     dz = h / (nz - 1)
@@ -329,6 +352,10 @@ def _forms(temperature, j, i, flux_x, flux_y, flux_z, blended, implicit, explici
     rdxh = inverse_h / dx
     rdyh = inverse_h / dy
     for k in range(nz):
+        if wall_rows and 2 < k < nz - 3:
+            a[k] = _node_diagonal(k, j, i, flux_x, flux_y, flux_z, implicit, inverse_width, rdxh, rdyh, inverse_h)
+            largest = max(largest, a[k])
+            continue
         if k == 0 or k == nz - 1:
             side = 0 if k == 0 else 1
             ax, bx = walls[side, 0, j, i], walls[side, 1, j, i]
@@ -414,9 +441,10 @@ def _column(temperature, j, i, flux_x, flux_y, flux_z, blended, implicit, explic
 
 @njit(cache=True, error_model="numpy")
 def sweep_columns(temperature, flux_x, flux_y, flux_z, source, sensitivity, reference, expansivity_grad, conductivity,
-                  film, dx, dy, t_inlet, sweeps, tolerance):
-    """Gauss-Seidel sweeps (forward, then backward in x) over all columns with the fluxes of `transport_fluxes`;
-    returns (sweeps done, last change, K). conductivity: k of the film per column, (ny, nx), W/(m K).
+                  film, dx, dy, t_inlet, sweeps, tolerance, min_sweeps=0):
+    """Gauss-Seidel sweeps (forward, then backward in x) over all columns with the fluxes of `transport_fluxes`:
+    at most `sweeps`, stopping once one changes the temperatures by less than `tolerance` (K) after the first
+    `min_sweeps`; returns (sweeps done, last change, K). conductivity: k of the film per column, (ny, nx), W/(m K).
 
     The heat source is linearised about `reference`: source - sensitivity (T - reference), with
     sensitivity = -d(source)/dT >= 0 (viscous heating falls as the oil thins), treated implicitly."""
@@ -444,7 +472,7 @@ def sweep_columns(temperature, flux_x, flux_y, flux_z, source, sensitivity, refe
                             band, rhs)
                 change = max(change, c)
         done = s + 1
-        if change < tolerance:
+        if done >= min_sweeps and change < tolerance:
             break
     return done, change
 
@@ -476,8 +504,9 @@ def wall_fluxes(temperature, flux_x, flux_y, flux_z, source, sensitivity, refere
     for j in range(ny):
         for i in range(nx):
             kz, theta = _forms(temperature, j, i, flux_x, flux_y, flux_z, blended, implicit, explicit, heating,
-                               conductivity, film, dx, dy, t_inlet, face_position, inverse_width, walls, a, lo, up, b)
-            for k in range(nz):
+                               conductivity, film, dx, dy, t_inlet, face_position, inverse_width, walls, a, lo, up, b,
+                               True)
+            for k in (0, 1, 2, nz - 3, nz - 2, nz - 1):
                 value = a[k] * temperature[k, j, i] - b[k]
                 if k > 0:
                     value += lo[k] * temperature[k - 1, j, i]

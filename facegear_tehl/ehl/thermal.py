@@ -168,11 +168,8 @@ class FilmThermalModel:
                 energy.wall_fluxes(temperature, *fluxes, *kernel_args, q1, q2)
                 temperature[0] += w * (self._surface(q1, 0, float(self.velocity_1[0])) - temperature[0])
                 temperature[-1] += w * (self._surface(q2, 1, float(self.velocity_2[0])) - temperature[-1])
-                _, last = energy.sweep_columns(temperature, *fluxes, *kernel_args, ENERGY_MIN_SWEEPS, 0.0)
-                tolerance = max(sweep_tolerance, ENERGY_SWEEP_TOLERANCE)
-                if last > tolerance:
-                    energy.sweep_columns(temperature, *fluxes, *kernel_args, ENERGY_SWEEPS - ENERGY_MIN_SWEEPS,
-                                         tolerance)
+                energy.sweep_columns(temperature, *fluxes, *kernel_args, ENERGY_SWEEPS,
+                                     max(sweep_tolerance, ENERGY_SWEEP_TOLERANCE), ENERGY_MIN_SWEEPS)
                 np.clip(temperature, start - MAX_TEMPERATURE_STEP, start + MAX_TEMPERATURE_STEP, out=temperature)
                 change = float(np.abs(temperature - before).max())
             energy.wall_fluxes(temperature, *fluxes, *kernel_args, q1, q2)
