@@ -67,3 +67,20 @@ def test_rolling_film_reduction_on_the_check_grid(line_rows):
     for r, c in zip(fine, line_rows, strict=True):
         assert r.ratio == pytest.approx(r.wilson_sheu, rel=r.tolerance)
         assert r.ratio == pytest.approx(c.ratio, rel=0.01)
+
+
+def test_an_attempt_that_runs_away_warns_no_one():
+    """The long ellipse at 15 m/s on 129 x 33, isothermal: its first start overflows (inf - inf in a coarse
+    right-hand side) before the finiteness checks stop the attempt and the solver retries it to convergence. The
+    outcome says what happened; numpy's RuntimeWarning would only have printed noise on the user's terminal."""
+    import warnings
+
+    from facegear_tehl.case import parse_case
+    from facegear_tehl.ehl.solve import solve_point
+    from facegear_tehl.points import contact_analysis
+
+    case = parse_case(tv.ellipse_case_text(15.0, 129, 33, "off"), "long_ellipse_rolling")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        solution = solve_point(contact_analysis(case).points[0], case.lubricant, case.solver)
+    assert solution.converged and solution.scalar("attempts") > 1
