@@ -186,16 +186,18 @@ def _coarse_reason(solution: PointSolution) -> str:
     """The error estimates of a converged solve, against COARSE_ESTIMATE ("" for a solve that did not converge)."""
     if not solution.converged:
         return ""
-    h_c, h_min = (100 * solution.scalars.get(f"error_estimate_{key}", (0.0, "1"))[0] for key in ("h_c", "h_min"))
+    h_c, h_min = (100 * e for e in _estimates(solution))
     return f"converged with h_c estimated {h_c:.2g} % and h_min {h_min:.2g} % off, bound {100 * COARSE_ESTIMATE:.0f} %"
 
 
 def _coarse(solution: PointSolution) -> bool:
     """The solve converged, but estimates its own h_min or h_c error above COARSE_ESTIMATE (NaN: no estimate)."""
-    if not solution.converged:
-        return False
-    return any(abs(solution.scalars.get(f"error_estimate_{key}", (0.0, "1"))[0]) > COARSE_ESTIMATE
-               for key in ("h_c", "h_min"))
+    return solution.converged and any(abs(e) > COARSE_ESTIMATE for e in _estimates(solution))
+
+
+def _estimates(solution: PointSolution) -> tuple[float, float]:
+    """The solve's own relative error estimates of h_c and h_min (0 where it has none)."""
+    return tuple(solution.scalars.get(f"error_estimate_{key}", (0.0, "1"))[0] for key in ("h_c", "h_min"))
 
 
 def _unresolved(solution: PointSolution) -> bool:
