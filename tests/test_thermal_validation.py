@@ -104,7 +104,7 @@ def test_inlet_isothermal_film_is_ertel_grubin():
 def test_inlet_analysis_reproduces_the_published_fits_at_large_loading():
     """At L = 10 and 20 the inlet analysis's C is Wilson & Sheu's eq. 8 and Murch & Wilson's within 3 % (measured
     +0.3 / +0.6 % and -1.9 / -2.3 %): the same analysis and the same L = eta_0 beta u_e^2/k_f as theirs (a factor
-    2 in L would move C by 15-20 %). 3 %: a two-constant power law reproduces its data to a few per cent."""
+    2 in L moves C by 24-26 %). 3 %: a two-constant power law reproduces its data to a few per cent."""
     inlet = tv.rolling_inlet(tv.SENSITIVITY_SPEED)
     for loading in (10.0, 20.0):
         c = inlet.correction(loading)
