@@ -41,8 +41,12 @@ from scipy import integrate, optimize
 INLET_START = -20.0  # X where the inlet integral starts: its tail beyond adds ~1/(3 kappa^2 |X|^3) ~ 1e-5 of S
 TABLE_END = 30.0  # largest mid-film theta tabulated (e^30: far past any physical rise; the power law continues)
 TABLE_POINTS = 400  # tabulated cross-film solutions, log-spaced in the wall position s_w
-SMALL_LOADING = 1e-3  # lambda_0 below which phi = 1 + lambda_0/336 (the first-order cross-film solution)
+# first wall position tabulated: lambda_0 = 0.13, where the first-order phi = 1 + lambda_0/336 is within 4e-5 of
+# phi - 1 (it is used below)
+TABLE_START = 0.3
 ODE_TOLERANCE = 1e-9  # relative tolerance of both integrations: far below the 1e-4 reported on C
+# absolute tolerances: Psi and S are O(1) (Psi down to -TABLE_END), so these floors never bind before the relative one
+PSI_ATOL, S_ATOL = 1e-14, 1e-12
 EDGE_GAP = 1e-12  # X distance kept from the Hertz edge (sqrt(X^2 - 1) stays real); G there is ~1e-18
 
 
@@ -63,9 +67,10 @@ def _cross_film_table() -> tuple[np.ndarray, np.ndarray, float]:
     def deep(s, y):  # stop once the mid-film rise theta_m = -Psi exceeds the table
         return y[0] + TABLE_END
     deep.terminal = True
-    solution = integrate.solve_ivp(rhs, (0.0, 1e3), [0.0, 0.0], rtol=ODE_TOLERANCE, atol=1e-14, dense_output=True,
+    # s_w grows like theta_m/I(inf) once the wall region is cold: 1e3 is far beyond TABLE_END, which ends the run
+    solution = integrate.solve_ivp(rhs, (0.0, 1e3), [0.0, 0.0], rtol=ODE_TOLERANCE, atol=PSI_ATOL, dense_output=True,
                                    events=deep)
-    s = np.geomspace(0.3, solution.t[-1], TABLE_POINTS)
+    s = np.geomspace(TABLE_START, solution.t[-1], TABLE_POINTS)
     psi, slope = solution.sol(s)
     theta_m = -psi
     phi = 3.0 * np.exp(theta_m) * (-slope) / s**3
@@ -75,16 +80,15 @@ def _cross_film_table() -> tuple[np.ndarray, np.ndarray, float]:
 
 
 def poiseuille_factor(lam0: float) -> float:
-    """phi(lambda_0) = 12 int t^2 e^theta dt of the cross-film solution (1 when isothermal)."""
-    if lam0 <= SMALL_LOADING:
-        return 1.0 + lam0 / 336.0
+    """phi(lambda_0) = 12 int t^2 e^theta dt of the cross-film solution (1 when isothermal): the first-order
+    1 + lambda_0/336 below the table, the table's power law above it."""
     log_lam, log_excess, exponent = _cross_film_table()
+    if lam0 <= math.exp(log_lam[0]):
+        return 1.0 + lam0 / 336.0
     x = math.log(lam0)
     if x >= log_lam[-1]:
         top = 1.0 + math.exp(log_excess[-1])
         return top * math.exp(exponent * (x - log_lam[-1]))
-    if x <= log_lam[0]:
-        return 1.0 + lam0 / 336.0
     return 1.0 + math.exp(float(np.interp(x, log_lam, log_excess)))
 
 
@@ -118,6 +122,7 @@ class RollingInlet:
             ratio = 1.0 + kappa * float(hertz_gap(min(x, -1.0 - EDGE_GAP)))
             phi = 1.0
             if loading > 0.0:
+                # S < 1 until the event ends the run; the floor keeps a trial step past it finite
                 lam0 = 144.0 * loading * (1.0 - 1.0 / ratio) ** 2 / max(1.0 - y[0], 1e-300)
                 phi = poiseuille_factor(lam0)
             return [scale * (ratio - 1.0) / (ratio**3 * phi)]
@@ -125,7 +130,8 @@ class RollingInlet:
         def full(x, y):
             return y[0] - 1.0
         full.terminal = True
-        solution = integrate.solve_ivp(rhs, (INLET_START, -1.0), [0.0], rtol=ODE_TOLERANCE, atol=1e-12,
+        # max_step: the gap's curvature is resolved near the edge (steps of 0.1 b at most)
+        solution = integrate.solve_ivp(rhs, (INLET_START, -1.0), [0.0], rtol=ODE_TOLERANCE, atol=S_ATOL,
                                        events=full if loading > 0.0 else None, max_step=0.1)
         if loading > 0.0 and solution.t[-1] < -1.0 - EDGE_GAP:
             return 1.0 + (-1.0 - solution.t[-1])
