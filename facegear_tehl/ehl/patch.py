@@ -1,0 +1,185 @@
+r"""A locally X-refined patch of the finest uniform grid (the outlet and its pressure spike): a composite grid
+solved by FAS (Brandt 1977, "Multi-level adaptive solutions to boundary-value problems", Math. Comp. 31, §7;
+McCormick 1989, the fast adaptive composite grid method; Venner & Lubrecht 2000 on local refinement in EHL).
+
+The patch spans the columns [first, last] of the finest uniform grid (all its rows) at half its X spacing; its end
+columns coincide with nodes of that grid. The composite problem:
+- at the patch's interior nodes the Reynolds equation on the patch spacing (reynolds.py); the end columns are held
+  at the values of the grid below (Dirichlet), P = 0 on the Y boundaries as everywhere;
+- the film on the patch H = H_0 + C_d W + F_h, W the deflection of the composite pressure (the patch inside, the
+  fourth-order interpolation along X of the grid below outside) convolved on the uniform grid of the patch spacing
+  over the whole domain (elastic.py);
+- at the nodes of the grid below outside the patch its own equations;
+- the load \iint P dX dY of the composite pressure (trapezoid rule along X on each part) = 2 pi/3.
+
+The patch is one more level above the uniform hierarchy, and multigrid.MultigridSolver.cycle runs over it unchanged;
+only its transfers differ (FAS, as between the uniform levels): P_c = I P_f at the patch's interior coarse columns,
+f_c = I (f_f - L_f P_f) + L_c P_c and F_c = I H_f - H_0 - C_d K_c*P_c there, the force balance's right-hand side
+g_c = g_f + \iint_composite P - \iint P_c; back, P_f += I (P_c - I P_f) where P_f > 0 and the end columns take P_c.
+Work units count sweeps of the uniform grid of the patch spacing, the grid the composite one stands for.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from facegear_tehl.ehl import grid
+from facegear_tehl.ehl.multigrid import Level, MultigridSolver, Problem, Relaxation
+
+
+@dataclass(frozen=True)
+class CompositeSummary:
+    """The figures of a composite solution (dimensionless): the film at the centre, the smallest film, the largest
+    pressure and where it is."""
+
+    h_c: float
+    h_min: float
+    p_max: float
+    x_p_max: float
+    y_p_max: float
+
+
+def patch_columns(x: np.ndarray, span: tuple[float, float]) -> tuple[int, int]:
+    """The columns (first, last) of the uniform axis `x` that enclose `span` = (X_a, X_b): the nodes at or
+    outside its ends (the domain's end nodes at most)."""
+    first = int(np.searchsorted(x, span[0], side="right")) - 1
+    last = int(np.searchsorted(x, span[1], side="left"))
+    first, last = max(first, 0), min(last, x.size - 1)
+    if last - first < 2:
+        raise ValueError(f"patch span {span} covers fewer than two cells of the grid below (spacing {x[1] - x[0]:g})")
+    return first, last
+
+
+def trapezoid(pressure: np.ndarray, hx: float, hy: float) -> float:
+    """\\iint P dX dY over an array's extent, trapezoid rule (P = 0 on the Y boundaries, so only X's end columns
+    weigh half)."""
+    return (float(pressure.sum()) - 0.5 * float(pressure[:, 0].sum() + pressure[:, -1].sum())) * hx * hy
+
+
+class PatchedSolver(MultigridSolver):
+    """FAS multigrid on a uniform hierarchy plus a patch twice as fine along X over `span` (X_a, X_b) of its finest
+    grid: the patch is the last level (`levels[-1]`)."""
+
+    def __init__(self, problem: Problem, shapes: list[tuple[int, int]], span: tuple[float, float],
+                 relaxation: Relaxation = Relaxation()):
+        """`shapes`: (nx, ny) of the uniform levels, coarsest first (grid.hierarchy_shapes)."""
+        super().__init__(problem, shapes, relaxation)
+        below = self.levels[-1]
+        self.first, self.last = patch_columns(below.x, span)
+        self.columns = slice(2 * self.first, 2 * self.last + 1)  # the patch's columns on the grid of its spacing
+        nx = 2 * below.nx - 1
+        # The level of the patch spacing over the whole domain: its deflection operator (the composite W), relaxation
+        # patterns and switch are the patch's; its arrays are cut to the patch.
+        patch = self._make_level(nx, below.ny)
+        patch.x = patch.x[self.columns].copy()
+        patch.pressure = patch.pressure[:, self.columns].copy()
+        patch.film_rhs = patch.film_rhs[:, self.columns].copy()
+        patch.reynolds_rhs = patch.reynolds_rhs[:, self.columns].copy()
+        self.levels.append(patch)
+        self.transfers.append(grid.SEMI_X)
+        self.finest_nodes = nx * below.ny
+
+    @property
+    def patch(self) -> Level:
+        return self.levels[-1]
+
+    @property
+    def below(self) -> Level:
+        """The finest uniform grid, under the patch."""
+        return self.levels[-2]
+
+    def _is_patch(self, index: int) -> bool:
+        return index == len(self.levels) - 1
+
+    # ------------------------------------------------------------ composite
+    def composite_pressure(self) -> np.ndarray:
+        """The composite pressure on the uniform grid of the patch spacing: the patch over its columns, the
+        fourth-order interpolation along X of the grid below elsewhere (clipped at 0)."""
+        full = np.maximum(grid.SEMI_X.prolong_cubic(self.below.pressure), 0.0)
+        full[:, self.columns] = self.patch.pressure
+        return full
+
+    def composite_integral(self) -> float:
+        """\\iint P dX dY of the composite pressure: the grid below outside the patch, the patch inside."""
+        below, patch = self.below, self.patch
+        inside = below.pressure[:, self.first:self.last + 1]
+        return below.load_integral() - trapezoid(inside, below.hx, below.hy) + trapezoid(patch.pressure, patch.hx,
+                                                                                           patch.hy)
+
+    def summary(self) -> CompositeSummary:
+        """h_c (bilinear at X = Y = 0 on the part that holds it), h_min and p_max over both parts."""
+        below, patch = self.below, self.patch
+        holder = patch if patch.x[0] <= 0.0 <= patch.x[-1] else below
+        outside = np.ones(below.nx, dtype=bool)
+        outside[self.first:self.last + 1] = False
+        parts = [(patch.x, patch.pressure, patch.film), (below.x[outside], below.pressure[:, outside],
+                                                         below.film[:, outside])]
+        x, pressure, film = max(parts, key=lambda part: part[1].max() if part[1].size else -np.inf)
+        j, i = np.unravel_index(int(np.argmax(pressure)), pressure.shape)
+        return CompositeSummary(
+            h_c=grid.bilinear_at(holder.film, holder.x, holder.y, 0.0, 0.0),
+            h_min=min(float(film.min()) for _, _, film in parts if film.size),
+            p_max=float(pressure[j, i]),
+            x_p_max=float(x[i]),
+            y_p_max=float(patch.y[j]),
+        )
+
+    # ---------------------------------------------------- the patch's level
+    def deflection(self, level: Level) -> np.ndarray:
+        """The patch: the deflection of the composite pressure at its nodes; other levels: their own."""
+        if level is not self.patch:
+            return super().deflection(level)
+        return level.deflection.apply(self.composite_pressure())[:, self.columns]
+
+    def force_error(self, level: Level) -> float:
+        """The patch: the load error of the composite pressure."""
+        if level is not self.patch:
+            return super().force_error(level)
+        return self.composite_integral() + level.force_rhs
+
+    def coarsen(self, index: int) -> None:
+        """From the patch to the grid below: FAS right-hand sides at the patch's interior coarse columns, the
+        grid's own ones outside, the composite load in its force balance."""
+        if not self._is_patch(index):
+            return super().coarsen(index)
+        patch, below = self.patch, self.below
+        inner = slice(self.first + 1, self.last)
+        below.pressure[:, inner] = grid.restrict_pressure_x(patch.pressure)[:, 1:-1]
+        below.pressure_restricted = below.pressure.copy()
+        self.reset_rhs(below)
+        w = below.deflection.apply(below.pressure)
+        film = grid.inject_x(patch.film)[:, 1:-1]
+        below.film_rhs[:, inner] = film - self.h0 - self.problem.deflection_coefficient * w[:, inner]
+        self.update_film(below)
+        tau = grid.restrict_full_weighting_x(self.residual(patch)) + self.operator(below)[:, self.first:self.last + 1]
+        below.reynolds_rhs[:, inner] = tau[:, 1:-1]
+        below.force_rhs = patch.force_rhs + self.composite_integral() - below.load_integral()
+        return None
+
+    def refine(self, index: int) -> None:
+        """The grid below's correction, interpolated linearly, where the patch's pressure is positive; its end
+        columns take the grid below's values."""
+        if not self._is_patch(index):
+            return super().refine(index)
+        patch, below = self.patch, self.below
+        columns = slice(self.first, self.last + 1)
+        correction = grid.prolong_linear_x((below.pressure - below.pressure_restricted)[:, columns])
+        active = patch.pressure > 0.0
+        patch.pressure[active] += correction[active]
+        np.maximum(patch.pressure, 0.0, out=patch.pressure)
+        patch.pressure[:, 0] = below.pressure[:, self.first]
+        patch.pressure[:, -1] = below.pressure[:, self.last]
+        self.update_film(patch)
+        return None
+
+    def interpolate_up(self, index: int) -> None:
+        """Start the patch from the fourth-order interpolation along X of the grid below."""
+        if not self._is_patch(index):
+            return super().interpolate_up(index)
+        patch = self.patch
+        self.reset_rhs(patch)
+        patch.pressure = np.maximum(grid.SEMI_X.prolong_cubic(self.below.pressure)[:, self.columns], 0.0)
+        self.update_film(patch)
+        return None
