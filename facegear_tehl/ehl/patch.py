@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from facegear_tehl.ehl import grid
+from facegear_tehl.ehl.elastic import DeflectionOperator
 from facegear_tehl.ehl.multigrid import Level, MultigridSolver, Problem, Relaxation
 
 
@@ -80,6 +81,8 @@ class PatchedSolver(MultigridSolver):
         self.levels.append(patch)
         self.transfers.append(grid.SEMI_X)
         self.finest_nodes = nx * below.ny
+        self.local = DeflectionOperator(patch.nx, patch.ny, patch.hx, patch.hy, problem.ellipticity)
+        self._outside: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None  # see _interpolated_below
 
     @property
     def patch(self) -> Level:
@@ -94,13 +97,6 @@ class PatchedSolver(MultigridSolver):
         return index == len(self.levels) - 1
 
     # ------------------------------------------------------------ composite
-    def composite_pressure(self) -> np.ndarray:
-        """The composite pressure on the uniform grid of the patch spacing: the patch over its columns, the
-        fourth-order interpolation along X of the grid below elsewhere (clipped at 0)."""
-        full = np.maximum(grid.SEMI_X.prolong_cubic(self.below.pressure), 0.0)
-        full[:, self.columns] = self.patch.pressure
-        return full
-
     def composite_integral(self) -> float:
         """\\iint P dX dY of the composite pressure: the grid below outside the patch, the patch inside."""
         below, patch = self.below, self.patch
@@ -127,11 +123,25 @@ class PatchedSolver(MultigridSolver):
         )
 
     # ---------------------------------------------------- the patch's level
+    def _interpolated_below(self) -> tuple[np.ndarray, np.ndarray]:
+        """The grid below's pressure interpolated to the patch spacing over the patch (P_I) and its deflection at the
+        patch's nodes (K*P_I over the whole domain, without C_d), kept while that pressure does not change."""
+        below = self.below.pressure
+        if self._outside is None or not np.array_equal(self._outside[0], below):
+            interpolated = np.maximum(grid.SEMI_X.prolong_cubic(below), 0.0)
+            w = self.patch.deflection.apply(interpolated)[:, self.columns]
+            self._outside = (below.copy(), interpolated[:, self.columns].copy(), w)
+        return self._outside[1], self._outside[2]
+
     def deflection(self, level: Level) -> np.ndarray:
-        """The patch: the deflection of the composite pressure at its nodes; other levels: their own."""
+        """The patch: the deflection of the composite pressure at its nodes; other levels: their own.
+
+        By linearity K*P = K*P_I + K*(P_f - P_I) over the patch, P_I the grid below interpolated (_interpolated_below):
+        the domain-sized convolution changes only with the grid below, a patch sweep pays a patch-sized one."""
         if level is not self.patch:
             return super().deflection(level)
-        return level.deflection.apply(self.composite_pressure())[:, self.columns]
+        interpolated, w = self._interpolated_below()
+        return w + self.local.apply(level.pressure - interpolated)
 
     def force_error(self, level: Level) -> float:
         """The patch: the load error of the composite pressure."""
