@@ -9,15 +9,19 @@ against a yardstick the patch did not produce: the difference between the two un
 
 from __future__ import annotations
 
+from dataclasses import replace
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+from facegear_tehl.case import load_case
 from facegear_tehl.ehl import grid
 from facegear_tehl.ehl.patch import PatchedSolver, patch_columns, trapezoid
 from facegear_tehl.ehl.scaling import contact_from_moes
 from facegear_tehl.ehl.solve import PointSolve
+from facegear_tehl.points import contact_analysis
 from facegear_tehl.settings import SolverSettings
 
 COARSE, FINE, NY = 129, 257, 33
@@ -25,6 +29,7 @@ OUTLET = 1.5  # the domain's outlet edge (X)
 # Solver tolerances ten times tighter than the defaults: the differences asserted below (down to 1e-5 of p_h) must
 # not be the iteration's
 TOLERANCE = 1e-5
+FACE_GEAR_CASE = Path(__file__).resolve().parents[1] / "cases" / "facegear_110.yaml"
 
 
 def _settings(nx: int) -> SolverSettings:
@@ -148,3 +153,45 @@ def test_trapezoid_integrates_a_quadratic_along_x_to_the_rule_error():
     p[1] = x**2
     h = 0.1
     assert trapezoid(p, h, 1.0) == pytest.approx(1.0 / 3.0 + h**2 / 6.0, rel=1e-12)
+
+
+@pytest.fixture(scope="module")
+def face_gear_s2():
+    """S2 of the default face gear case, isothermal Newtonian, on the case's lengthened domain: the settings of its
+    own grid (513 x 65) and the point's PointSolve arguments."""
+    case = load_case(FACE_GEAR_CASE)
+    point = next(p for p in contact_analysis(case).points if p.name == "S2")
+    lubricant = replace(case.lubricant, rheology="newtonian")
+    settings = PointSolve(point, lubricant, replace(case.solver, thermal="off")).settings
+    return point, lubricant, replace(settings, max_cycles=60)
+
+
+def test_the_face_gear_spike_on_an_outlet_patch_is_the_fine_grid_spike(face_gear_s2):
+    """S2 (a/b = 45, p_h = 565 MPa): 513 x 65 with a patch over [-0.5 b, outlet] against the uniform 1025 x 65 grid
+    of the patch spacing. Measured: p_max 1.5082 against 1.5080 (513 x 65: 1.3506), the spike at X = 0.6094 on
+    both (513 x 65: one node upstream), the pressure on the patch within 0.016 p_h of 1025 x 65 (513 x 65: 0.38)."""
+    point, lubricant, settings = face_gear_s2
+    fine = replace(settings, grid=2 * settings.grid - 1)
+    levels = {}
+    for name, grid_settings in (("coarse", settings), ("fine", fine)):
+        solve = PointSolve(point, lubricant, grid_settings)
+        index, status = solve.start(below_top=0)
+        assert status.converged and solve.cycle(index, grid_settings.max_cycles).converged
+        levels[name] = solve.solver.levels[index]
+    solve = PointSolve(point, lubricant, settings)
+    shapes = grid.hierarchy_shapes(settings.grid, settings.nodes_y, settings.coarsest_grid)
+    solve.solver = PatchedSolver(solve.solver.problem, shapes, (-0.5, settings.domain_x[1]))
+    index, status = solve.start(below_top=1)
+    assert status.converged
+    solve.solver.interpolate_up(index + 1)
+    assert solve.cycle(index + 1, settings.max_cycles).converged
+    solver, coarse, fine_level = solve.solver, levels["coarse"], levels["fine"]
+    summary = solver.summary()
+    p_coarse, x_coarse = _spike(coarse)
+    p_fine, x_fine = _spike(fine_level)
+    assert x_coarse != x_fine
+    assert summary.x_p_max == pytest.approx(x_fine, abs=1e-9)
+    assert abs(summary.p_max - p_fine) < 0.05 * abs(p_coarse - p_fine)
+    inside = np.abs(solver.patch.pressure - fine_level.pressure[:, solver.columns]).max()
+    coarse_inside = np.abs(grid.SEMI_X.prolong_cubic(coarse.pressure) - fine_level.pressure)[:, solver.columns].max()
+    assert inside < 0.1 * coarse_inside
