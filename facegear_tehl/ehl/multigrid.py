@@ -386,10 +386,15 @@ class MultigridSolver:
         for _ in range(rx.pre_sweeps):
             self.relax(level)
         self.coarsen(index)
-        self.cycle(index - 1)
+        for _ in range(self.coarse_cycles(index)):
+            self.cycle(index - 1)
         self.refine(index)
         for _ in range(rx.post_sweeps):
             self.relax(level)
+
+    def coarse_cycles(self, index: int) -> int:
+        """V-cycles on level `index - 1` per coarse-grid correction of level `index` (a V-cycle: one)."""
+        return 1
 
     def interpolate_up(self, index: int) -> None:
         """Full-multigrid step: start level `index` from the bicubic interpolation of level `index - 1`."""

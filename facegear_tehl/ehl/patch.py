@@ -1,5 +1,5 @@
 r"""A locally X-refined patch of the finest uniform grid (the outlet and its pressure spike): a composite grid
-solved by FAS (Brandt 1977, "Multi-level adaptive solutions to boundary-value problems", Math. Comp. 31, §7;
+solved by FAS (Brandt 1977, "Multi-level adaptive solutions to boundary-value problems", Math. Comp. 31;
 McCormick 1989, the fast adaptive composite grid method; Venner & Lubrecht 2000 on local refinement in EHL).
 
 The patch spans the columns [first, last] of the finest uniform grid (all its rows) at half its X spacing; its end
@@ -28,6 +28,15 @@ import numpy as np
 from facegear_tehl.ehl import grid
 from facegear_tehl.ehl.elastic import DeflectionOperator
 from facegear_tehl.ehl.multigrid import Level, MultigridSolver, Problem, Relaxation
+
+# V-cycles of the uniform hierarchy per coarse-grid correction of the patch. One (a plain V-cycle) leaves the grid
+# below's composite problem (its own equations outside the patch, the FAS ones inside) too far from solved near the
+# patch's upstream end: the correction alternates in sign there and the iteration ran away for 18 of 55 starts X_a in
+# [-1.5, 0] b at S1-S5 of the default face gear case (513 x 65 + patch, isothermal Newtonian; an end in [-1.1, -0.6]
+# b, where it crosses the inlet side of the Hertzian zone); two left 4 runaways, three none (the one start not
+# converged, S5 at X_a = 0, lies 0.12 b upstream of its spike: a limit cycle). More patch sweeps instead (4 + 3) did
+# not help; damping every level's relaxation (0.15/0.1) kept it bounded but flickering at 5e-4 per cycle.
+COARSE_CYCLES = 3
 
 
 @dataclass(frozen=True)
@@ -148,6 +157,10 @@ class PatchedSolver(MultigridSolver):
         if level is not self.patch:
             return super().force_error(level)
         return self.composite_integral() + level.force_rhs
+
+    def coarse_cycles(self, index: int) -> int:
+        """COARSE_CYCLES under the patch, one elsewhere."""
+        return COARSE_CYCLES if self._is_patch(index) else 1
 
     def coarsen(self, index: int) -> None:
         """From the patch to the grid below: FAS right-hand sides at the patch's interior coarse columns, the
