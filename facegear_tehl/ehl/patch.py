@@ -1,6 +1,6 @@
 r"""A locally X-refined patch of the finest uniform grid (the outlet and its pressure spike): a composite grid
 solved by FAS (Brandt 1977, "Multi-level adaptive solutions to boundary-value problems", Math. Comp. 31;
-McCormick 1989, the fast adaptive composite grid method; Venner & Lubrecht 2000 on local refinement in EHL).
+McCormick 1989, the fast adaptive composite grid method).
 
 The patch spans the columns [first, last] of the finest uniform grid (all its rows) at half its X spacing; its end
 columns coincide with nodes of that grid. The composite problem:
@@ -42,13 +42,12 @@ COARSE_CYCLES = 3
 @dataclass(frozen=True)
 class CompositeSummary:
     """The figures of a composite solution (dimensionless): the film at the centre, the smallest film, the largest
-    pressure and where it is."""
+    pressure and its X."""
 
     h_c: float
     h_min: float
     p_max: float
     x_p_max: float
-    y_p_max: float
 
 
 def patch_columns(x: np.ndarray, span: tuple[float, float]) -> tuple[int, int]:
@@ -128,7 +127,6 @@ class PatchedSolver(MultigridSolver):
             h_min=min(float(film.min()) for _, _, film in parts if film.size),
             p_max=float(pressure[j, i]),
             x_p_max=float(x[i]),
-            y_p_max=float(patch.y[j]),
         )
 
     # ---------------------------------------------------- the patch's level
