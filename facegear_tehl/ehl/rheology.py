@@ -58,8 +58,10 @@ def _shear_rate(tx, ty, eta, tau0):
 
 
 @njit(cache=True, error_model="numpy")
-def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, warm, speed):
-    """Stress (tau_x, tau_y) at surface 1 such that \\int gamma_dot dz = (dux, duy); eta per layer (Pa s).
+def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, warm, speed, rate_x, rate_y):
+    """Stress (tau_x, tau_y) at surface 1 such that \\int gamma_dot dz = (dux, duy); eta per layer (Pa s); returns
+    (tau_x, tau_y, rated): `rated` True when rate_x, rate_y (per layer, in place) hold the shear rate at the stress
+    returned (the residual evaluation that ended Newton's method), else they are to be evaluated.
 
     Ree-Eyring: Newton's method from (guess_x, guess_y) if `warm`, else from the Couette estimate, to a velocity
     residual of 1e-10 `speed` (m/s, the scale of the surface speeds)."""
@@ -76,7 +78,7 @@ def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, 
     tx = (dux - gpx * g1) / g0
     ty = (duy - gpy * g1) / g0
     if not math.isfinite(tau0):
-        return tx, ty
+        return tx, ty, False
     if warm:
         tx, ty = guess_x, guess_y
     else:
@@ -98,6 +100,8 @@ def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, 
         for k in range(nz):
             z = h * k / (nz - 1)
             gx, gy, a, b, c = _shear_rate(tx + z * gpx, ty + z * gpy, eta[k], tau0)
+            rate_x[k] = gx
+            rate_y[k] = gy
             w = weights[k] * h
             fx += w * gx
             fy += w * gy
@@ -106,7 +110,7 @@ def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, 
             jc += w * c
         norm = math.hypot(fx, fy)
         if norm <= 1e-10 * speed:
-            break
+            return tx, ty, True
         if norm > residual_norm:
             # backtrack: the last Newton step overshot; go back half of what is left of it
             step_x *= 0.5
@@ -120,7 +124,7 @@ def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, 
         step_y = -(-jb * fx + ja * fy) / det
         tx += step_x
         ty += step_y
-    return tx, ty
+    return tx, ty, False
 
 
 @njit(cache=True, error_model="numpy")
@@ -153,15 +157,18 @@ def shear_state(pressure, film, grad_x, grad_y, eta_newtonian, u1, u2, tau0, war
                 eta[k] = eta_newtonian[k, j, i]
             gpx = grad_x[j, i]
             gpy = grad_y[j, i]
-            tx, ty = surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, stress_1[0, j, i], stress_1[1, j, i],
-                                    warm, speed)
+            tx, ty, rated = surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, stress_1[0, j, i],
+                                           stress_1[1, j, i], warm, speed, rate_x, rate_y)
             for k in range(nz):
                 z = h * k / (nz - 1)
                 sx = tx + z * gpx
                 sy = ty + z * gpy
-                gx, gy, _, _, _ = _shear_rate(sx, sy, eta[k], tau0)
-                rate_x[k] = gx
-                rate_y[k] = gy
+                if rated:  # Newton's last residual evaluated these (the same stress, the same operations)
+                    gx, gy = rate_x[k], rate_y[k]
+                else:
+                    gx, gy, _, _, _ = _shear_rate(sx, sy, eta[k], tau0)
+                    rate_x[k] = gx
+                    rate_y[k] = gy
                 te = math.hypot(sx, sy)
                 ge = math.hypot(gx, gy)
                 viscosity_factor[k, j, i] = max(te / (ge * eta[k]), MIN_VISCOSITY_FACTOR) if ge > 0.0 else 1.0
