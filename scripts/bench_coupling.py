@@ -53,7 +53,7 @@ def timed(owner, name, key):
             times[stage[0], key] += time.process_time() - start
     setattr(owner, name, wrapper)
 
-for name in ("sweep_columns", "wall_fluxes"):
+for name in ("fixed_parts", "sweep_columns", "wall_fluxes"):
     timed(energy, name, "energy")
 timed(jaeger, "surface_temperature_rise", "energy")
 for name in ("layered_coefficients", "temperature_factors"):

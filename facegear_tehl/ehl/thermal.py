@@ -198,22 +198,23 @@ class FilmThermalModel:
             rho_c = lub.density * density_ratio(p_layers, temperature, self.law).reshape(shape) * lub.specific_heat
             sensitivity = dissipation * beta * thinning  # -d(dissipation)/dT at fixed shear rate
             fluxes = energy.transport_fluxes(velocity_x, velocity_y, rho_c, film, self.dx, self.dy)[:3]
-            kernel_args = (dissipation, sensitivity, temperature.copy(), compression_coefficient, conductivity, film,
-                           self.dx, self.dy, self.t_inlet)
+            fixed = energy.fixed_parts(fluxes[2], dissipation, sensitivity, temperature.copy(),
+                                       compression_coefficient, conductivity, film)
+            kernel_args = (*fluxes, *fixed, conductivity, film, self.dx, self.dy, self.t_inlet)
             q1, q2 = np.empty(p.shape), np.empty(p.shape)
             w = SURFACE_RELAXATION
             for _ in range(INNER_ITERATIONS):
                 # the surfaces from the heat fluxes of the film as it stands, then the film's interior for them: the
                 # state returned solves the film's discrete energy equation for its own surfaces
                 before = temperature.copy()
-                energy.wall_fluxes(temperature, *fluxes, *kernel_args, q1, q2)
+                energy.wall_fluxes(temperature, *kernel_args, q1, q2)
                 temperature[0] += w * (self._surface(q1, 0, float(self.velocity_1[0])) - temperature[0])
                 temperature[-1] += w * (self._surface(q2, 1, float(self.velocity_2[0])) - temperature[-1])
-                energy.sweep_columns(temperature, *fluxes, *kernel_args, ENERGY_SWEEPS,
+                energy.sweep_columns(temperature, *kernel_args, ENERGY_SWEEPS,
                                      max(sweep_tolerance, ENERGY_SWEEP_TOLERANCE), ENERGY_MIN_SWEEPS)
                 np.clip(temperature, start - MAX_TEMPERATURE_STEP, start + MAX_TEMPERATURE_STEP, out=temperature)
                 change = float(np.abs(temperature - before).max())
-            energy.wall_fluxes(temperature, *fluxes, *kernel_args, q1, q2)
+            energy.wall_fluxes(temperature, *kernel_args, q1, q2)
         self._stress = stress_1
         if q1 is None:  # no energy equation: the flux of the temperatures as they are
             q1, q2 = energy.wall_heat_flux(temperature, film, conductivity)
