@@ -93,11 +93,15 @@ def fluidity_integrals(fluidity, rho):
 @njit(cache=True)
 def temperature_factors(temperature, law):
     """The Roelands temperature factor of every layer node (lubricant.roelands_temperature_factor_at): it
-    stays fixed while the pressure cycles run on a frozen film state, so it is computed once per state."""
+    stays fixed while the pressure cycles run on a frozen film state, so it is computed once per state. A node at
+    the temperature of the one before it (an isothermal film) takes its factor."""
     out = np.empty_like(temperature)
     flat_t, flat_out = temperature.ravel(), out.ravel()
     for n in range(flat_t.size):
-        flat_out[n] = roelands_temperature_factor_at(flat_t[n], law)
+        if n > 0 and flat_t[n] == flat_t[n - 1]:
+            flat_out[n] = flat_out[n - 1]
+        else:
+            flat_out[n] = roelands_temperature_factor_at(flat_t[n], law)
     return out
 
 
