@@ -29,11 +29,12 @@ import numpy as np
 
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import energy, jaeger, rheology
-from facegear_tehl.lubricant import ROELANDS, ROELANDS_T_INF, Lubricant
+from facegear_tehl.lubricant import ROELANDS, Lubricant
 from facegear_tehl.lubricant_laws import (
     density_ratio,
     roelands_pressure_factor_at,
     roelands_ratio,
+    roelands_temperature_coefficient,
     roelands_temperature_factor_at,
     viscosity_ratio_at,
     viscosity_temperature_coefficient_at,
@@ -89,8 +90,8 @@ def layer_viscosity(pressure, temperature, law, coefficient):
                 elif roelands:
                     temperature_factor = roelands_temperature_factor_at(t, law)
                     ratio[k, j, i] = roelands_ratio(pressure_factor, temperature_factor, law)
-                    if coefficient:  # as viscosity_temperature_coefficient_at
-                        beta[k, j, i] = law[3] * law[4] * pressure_factor * temperature_factor / (t - ROELANDS_T_INF)
+                    if coefficient:
+                        beta[k, j, i] = roelands_temperature_coefficient(pressure_factor, temperature_factor, t, law)
                 else:
                     ratio[k, j, i] = viscosity_ratio_at(p, t, law)
                     if coefficient:
