@@ -48,11 +48,18 @@ def viscosity_ratio_at(p, t, law):
 
 
 @njit(cache=True)
+def roelands_temperature_coefficient(pressure_factor, temperature_factor, t, law):
+    """beta = -d ln(eta)/dT (1/K) of the Roelands law at temperature t (K) from its two factors:
+    ln-term S_0 (1 + p/p_r)^z ((T - T_inf)/(T_0 - T_inf))^(-S_0)/(T - T_inf)."""
+    return law[3] * law[4] * pressure_factor * temperature_factor / (t - ROELANDS_T_INF)
+
+
+@njit(cache=True)
 def viscosity_temperature_coefficient_at(p, t, law):
     """beta = -d ln(eta)/dT (1/K) at pressure p (Pa) and temperature t (K) of the viscosity law."""
     if law[0] == ROELANDS:
-        return (law[3] * law[4] * roelands_pressure_factor_at(p, law) * roelands_temperature_factor_at(t, law)
-                / (t - ROELANDS_T_INF))
+        return roelands_temperature_coefficient(roelands_pressure_factor_at(p, law),
+                                                roelands_temperature_factor_at(t, law), t, law)
     return law[5]
 
 

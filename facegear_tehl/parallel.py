@@ -272,6 +272,7 @@ def _stop_workers(executor: ProcessPoolExecutor) -> None:
         return
     # Before 3.14 there is no public call for this: end the processes of the executor's table.
     processes = list((getattr(executor, "_processes", None) or {}).values())
+    manager = getattr(executor, "_executor_manager_thread", None)  # shutdown() drops the executor's reference
     executor.shutdown(wait=False, cancel_futures=True)
     for process in processes:
         process.terminate()
@@ -279,7 +280,6 @@ def _stop_workers(executor: ProcessPoolExecutor) -> None:
         process.join()
     # Let the executor's manager thread see the broken pool and close its wake-up pipe now: left running, it
     # can close the pipe while the interpreter's exit hook writes to it ("Bad file descriptor" at exit).
-    manager = getattr(executor, "_executor_manager_thread", None)
     if manager is not None:
         manager.join(timeout=5.0)
         if manager.is_alive():  # a loaded machine: take its pipe off the exit hook's list (it ends on its own)

@@ -9,9 +9,10 @@
    (acceleration, freezing the state); with the outer iterations and V-cycles of each stage.
 2. With --before DIR (a source tree of another version, e.g. `git worktree add DIR 546879e`): the same profile of
    DIR, then timings interleaved (before, after, before, ...; medians of --repeat): the point's thermal full and
-   isothermal Newtonian solves (wall time of the solve in a warm process, and their ratio), `tehl run CASE
-   --jobs 2` and `tehl validate CASE` (wall time from the command line), and with --cycle the 41-point thermal
-   cycle (`gear.points: 41`, --jobs 2; one run each).
+   isothermal Newtonian solves (CPU time of the solve in a warm process, and their ratio), `tehl run CASE
+   --jobs 2` and `tehl validate CASE` (wall time from the command line, and the CPU time of the process and its
+   workers), and with --cycle the 41-point thermal cycle (`gear.points: 41`, --jobs 2; one run each). On a machine
+   shared with other work the wall times inflate with the load, the CPU times much less.
 
     python scripts/bench_coupling.py [CASE] [--point S1] [--before DIR] [--repeat 3] [--cycle]
 """
@@ -23,6 +24,7 @@ import collections
 import json
 import os
 from pathlib import Path
+import resource
 import statistics
 import subprocess
 import sys
@@ -53,8 +55,9 @@ def timed(owner, name, key):
             times[stage[0], key] += time.process_time() - start
     setattr(owner, name, wrapper)
 
-for name in ("sweep_columns", "wall_fluxes"):
-    timed(energy, name, "energy")
+for name in ("fixed_parts", "sweep_columns", "wall_fluxes"):
+    if hasattr(energy, name):  # fixed_parts: a kernel of its own since addacab
+        timed(energy, name, "energy")
 timed(jaeger, "surface_temperature_rise", "energy")
 for name in ("layered_coefficients", "temperature_factors"):
     timed(flow, name, "flow")
@@ -109,9 +112,9 @@ out = {}
 with threadpool_limits(limits=1):
     for name, (settings, lubricant) in models.items():
         solve_point(point, lubricant, dataclasses.replace(settings, grid=33, grid_y=None))  # load the kernels
-        start = time.perf_counter()
+        start = time.process_time()
         solution = solve_point(point, lubricant, settings)
-        out[name] = (time.perf_counter() - start, solution.converged)
+        out[name] = (time.process_time() - start, solution.converged)
 print(json.dumps(out))
 '''
 
@@ -156,10 +159,16 @@ def print_profile(label: str, data: dict) -> None:
               f"{times[stage, 'flow']:.2f} | {cycles_rest:.2f} | {rest:.2f} | {total:.2f} | {per} |")
 
 
-def _wall(tree: Path, args: list[str]) -> float:
-    start = time.perf_counter()
+def _cpu_of_children() -> float:
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def _wall(tree: Path, args: list[str]) -> tuple[float, float]:
+    """Wall time and CPU time (the process and the workers it waited for) of one run, s."""
+    start, cpu = time.perf_counter(), _cpu_of_children()
     _run(tree, args)
-    return time.perf_counter() - start
+    return time.perf_counter() - start, _cpu_of_children() - cpu
 
 
 def _cycle_case(case: Path, folder: Path) -> Path:
@@ -173,6 +182,12 @@ def _cycle_case(case: Path, folder: Path) -> Path:
     return path
 
 
+def _add(samples: dict, label: str, quantity: str, wall_cpu: tuple[float, float]) -> None:
+    """A run's wall and CPU time as two quantities."""
+    samples[label, f"{quantity}, wall"].append(wall_cpu[0])
+    samples[label, f"{quantity}, CPU"].append(wall_cpu[1])
+
+
 def timings(trees: dict[str, Path], case: Path, point: str, repeat: int, cycle: bool) -> None:
     """Interleaved timings of every tree, medians and the ratio before/after."""
     samples: dict[tuple[str, str], list[float]] = collections.defaultdict(list)
@@ -181,22 +196,22 @@ def timings(trees: dict[str, Path], case: Path, point: str, repeat: int, cycle: 
         for _ in range(repeat):
             for label, tree in trees.items():
                 solves = json.loads(_run(tree, ["-c", SOLVE, str(case), point]).stdout.splitlines()[-1])
-                for name, (wall, _) in solves.items():
-                    samples[label, f"{point} {name} solve"].append(wall)
+                for name, (cpu, _) in solves.items():
+                    samples[label, f"{point} {name} solve, CPU"].append(cpu)
                 samples[label, f"{point} thermal full / isothermal Newtonian"].append(
                     solves["thermal full"][0] / solves["isothermal Newtonian"][0])
-                samples[label, f"tehl run {case.name} --jobs 2"].append(
-                    _wall(tree, ["-m", "facegear_tehl", "run", str(case), "--jobs", "2", "-o", str(output)]))
-                samples[label, f"tehl validate {case.name}"].append(
-                    _wall(tree, ["-m", "facegear_tehl", "validate", str(case)]))
+                _add(samples, label, f"tehl run {case.name} --jobs 2",
+                     _wall(tree, ["-m", "facegear_tehl", "run", str(case), "--jobs", "2", "-o", str(output)]))
+                _add(samples, label, f"tehl validate {case.name}", _wall(tree, ["-m", "facegear_tehl", "validate",
+                                                                                 str(case)]))
                 print(label, {q: round(v[-1], 2) for (t, q), v in samples.items() if t == label}, flush=True)
         if cycle:
             cycle_case = _cycle_case(case, Path(folder))
             for label, tree in trees.items():
-                samples[label, f"{CYCLE_POINTS}-point cycle, thermal full, --jobs 2"].append(
-                    _wall(tree, ["-m", "facegear_tehl", "run", str(cycle_case), "--jobs", "2", "-o", str(output)]))
+                _add(samples, label, f"{CYCLE_POINTS}-point cycle, thermal full, --jobs 2",
+                     _wall(tree, ["-m", "facegear_tehl", "run", str(cycle_case), "--jobs", "2", "-o", str(output)]))
     before, after = trees
-    print(f"\nWall times, medians of {repeat} interleaved runs (the cycle: one run each):\n")
+    print(f"\nMedians of {repeat} interleaved runs (the cycle: one run each); solves: CPU time of one process:\n")
     print(f"| quantity | {before} | {after} | ratio |")
     print("|---|---|---|---|")
     for quantity in dict.fromkeys(q for _, q in samples):

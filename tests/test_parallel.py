@@ -4,6 +4,8 @@ workers at once."""
 
 from __future__ import annotations
 
+from concurrent.futures import ProcessPoolExecutor
+import concurrent.futures.process
 from dataclasses import replace
 import os
 from pathlib import Path
@@ -18,6 +20,7 @@ import h5py
 import numpy as np
 import pytest
 
+from facegear_tehl import parallel
 from facegear_tehl.case import load_case
 from facegear_tehl.cli import tehl
 from facegear_tehl.parallel import SolveTask, StagedSolver, available_cores, solve_each, worker_count
@@ -242,6 +245,22 @@ _STALLING_RUN = textwrap.dedent(
     cli.main(sys.argv[1:])
     """
 )
+
+
+def test_stopped_workers_leave_no_open_wakeup_pipe_to_the_exit_hook():
+    """The exit hook of `concurrent.futures` writes to the wake-up pipe of every manager thread it lists; one
+    still closing its pipe then fails with "Bad file descriptor" (a traceback after an interrupted run)."""
+    executor = ProcessPoolExecutor(max_workers=2, mp_context=parallel._context())
+    running = [executor.submit(time.sleep, 60) for _ in range(2)]
+    deadline = time.monotonic() + 30
+    while not all(future.running() for future in running):
+        assert time.monotonic() < deadline
+        time.sleep(0.01)
+    started = time.monotonic()
+    parallel._stop_workers(executor)
+    assert time.monotonic() - started < 10
+    for thread, wakeup in list(concurrent.futures.process._threads_wakeups.items()):
+        assert not thread.is_alive() or wakeup._closed
 
 
 @pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])

@@ -288,6 +288,32 @@ def test_a_period_2_limit_cycle_is_replaced_by_the_mean_of_its_phases():
     assert abs(meaned.scalar("load_error")) < settings.load_tolerance
 
 
+def _face_gear_point(solver: dict, **gear):
+    """One point of the shipped face gear case with `gear` keys replaced (`points` naming it) and `solver` keys
+    replaced, solved by ehl.solve.solve_point: (case, point, solution)."""
+    from facegear_tehl.ehl.solve import solve_point
+
+    raw = yaml.safe_load((Path(__file__).resolve().parents[1] / "cases" / "facegear_110.yaml").read_text())
+    raw["gear"].update(gear)
+    raw["solver"].update(solver)
+    case = parse_case(yaml.safe_dump(raw))
+    point = contact_analysis(case).points[0]
+    return case, point, solve_point(point, case.lubricant, case.solver)
+
+
+def _assert_sound_thermal_film(case, point, solution):
+    """Converged, carrying its load, its energy closed within 1 %, h_c between 0.7 and 1.05 of Hamrock & Dowson's
+    (1977) isothermal central film."""
+    from facegear_tehl.ehl.domain import predicted_central_film
+    from facegear_tehl.ehl.scaling import scaling_for
+
+    assert solution.converged, solution.message
+    assert abs(solution.scalar("load_error")) < case.solver.load_tolerance
+    assert abs(solution.scalar("energy_balance_error")) < 0.01
+    ratio = solution.scalar("h_c") / predicted_central_film(scaling_for(point, case.lubricant))
+    assert 0.7 < ratio < 1.05, ratio
+
+
 def test_a_pressure_limit_cycle_under_a_converged_film_state_is_cycled_out():
     """A face gear of module 10 mm, 40/43/160 teeth, 100 deg, 1500 rpm on the quick 65 x 17 grid: at S2 (a/b ~ 40,
     p_h ~ 0.2 GPa) the V-cycle alternates the load error between -1.9e-4 and +2.2e-4 (1.43e-3 per cycle) while the
@@ -295,24 +321,12 @@ def test_a_pressure_limit_cycle_under_a_converged_film_state_is_cycled_out():
     pressure is cycled to its tolerance on the converged state: the film carries its load (force balance), the
     film's energy closes, and h_c lies between 0.7 and 1.05 of Hamrock & Dowson's (1977) isothermal central film
     (the heated Ree-Eyring film is thinner)."""
-    from facegear_tehl.ehl.domain import predicted_central_film
-    from facegear_tehl.ehl.scaling import scaling_for
-    from facegear_tehl.ehl.solve import solve_point
-
-    raw = yaml.safe_load((Path(__file__).resolve().parents[1] / "cases" / "facegear_110.yaml").read_text())
-    raw["gear"].update(pinion_teeth=40, shaper_teeth=43, face_gear_teeth=160, module=0.01, pinion_addendum=0.01,
-                       face_gear_addendum=0.01, pressure_angle=22.5, shaft_angle=100.0, pinion_speed=1500.0,
-                       pinion_torque=248.0, inner_radius=0.76465, outer_radius=0.87049, points=["S2"])
-    raw["solver"].update(grid=65, grid_y=17)
-    case = parse_case(yaml.safe_dump(raw))
-    point = contact_analysis(case).points[0]
-    solution = solve_point(point, case.lubricant, case.solver)
-    assert solution.converged, solution.message
+    case, point, solution = _face_gear_point(
+        dict(grid=65, grid_y=17), pinion_teeth=40, shaper_teeth=43, face_gear_teeth=160, module=0.01,
+        pinion_addendum=0.01, face_gear_addendum=0.01, pressure_angle=22.5, shaft_angle=100.0, pinion_speed=1500.0,
+        pinion_torque=248.0, inner_radius=0.76465, outer_radius=0.87049, points=["S2"])
+    _assert_sound_thermal_film(case, point, solution)
     assert solution.scalar("thermal_iterations") < case.solver.max_thermal_iterations
-    assert abs(solution.scalar("load_error")) < case.solver.load_tolerance
-    assert abs(solution.scalar("energy_balance_error")) < 0.01
-    ratio = solution.scalar("h_c") / predicted_central_film(scaling_for(point, case.lubricant))
-    assert 0.7 < ratio < 1.05, ratio
 
 
 @pytest.mark.slow
@@ -325,21 +339,9 @@ def test_a_pressure_flicker_above_the_floor_band_does_not_stall_the_thermal_loop
     both stages), the film carries its load and its energy closes, and h_c lies between 0.7 and 1.05 of Hamrock &
     Dowson's (1977) isothermal central film (0.76: their formula over-predicts heavily loaded films, and the inlet
     heats at L = 7.4)."""
-    from facegear_tehl.ehl.domain import predicted_central_film
-    from facegear_tehl.ehl.scaling import scaling_for
-    from facegear_tehl.ehl.solve import solve_point
-
-    raw = yaml.safe_load((Path(__file__).resolve().parents[1] / "cases" / "facegear_110.yaml").read_text())
-    raw["gear"].update(pinion_teeth=38, shaper_teeth=41, face_gear_teeth=71, module=0.00561, pinion_addendum=0.00561,
-                       face_gear_addendum=0.00561, pressure_angle=25.4, shaft_angle=91.6, pinion_speed=171.744,
-                       pinion_torque=1746.2899, inner_radius=0.18957067164352387, outer_radius=0.21974090875540184,
-                       points=["S3"])
-    raw["solver"].update(grid=257, grid_y=129)
-    case = parse_case(yaml.safe_dump(raw))
-    point = contact_analysis(case).points[0]
-    solution = solve_point(point, case.lubricant, case.solver)
-    assert solution.converged, solution.message
-    assert abs(solution.scalar("load_error")) < case.solver.load_tolerance
-    assert abs(solution.scalar("energy_balance_error")) < 0.01
-    ratio = solution.scalar("h_c") / predicted_central_film(scaling_for(point, case.lubricant))
-    assert 0.7 < ratio < 1.05, ratio
+    case, point, solution = _face_gear_point(
+        dict(grid=257, grid_y=129), pinion_teeth=38, shaper_teeth=41, face_gear_teeth=71, module=0.00561,
+        pinion_addendum=0.00561, face_gear_addendum=0.00561, pressure_angle=25.4, shaft_angle=91.6,
+        pinion_speed=171.744, pinion_torque=1746.2899, inner_radius=0.18957067164352387,
+        outer_radius=0.21974090875540184, points=["S3"])
+    _assert_sound_thermal_film(case, point, solution)

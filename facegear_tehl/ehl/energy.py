@@ -241,9 +241,10 @@ def wall_convection(temperature, flux_x, flux_y, film, dx, dy, t_inlet):
 
 
 @njit(cache=True, error_model="numpy")
-def _fixed_parts(flux_z, source, sensitivity, reference, expansivity_grad, conductivity, film):
-    """The parts of the node balances that stay fixed while the columns are swept: (implicit, explicit, heating,
-    blended), layer fields (nz, ny, nx) but blended (nz + 1, ny, nx):
+def fixed_parts(flux_z, source, sensitivity, reference, expansivity_grad, conductivity, film):
+    """The parts of the node balances that stay fixed while the columns are swept (and between the sweeps and wall
+    fluxes of one film-state update: computed once for all of them): (implicit, explicit, heating, blended), layer
+    fields (nz, ny, nx) but blended (nz + 1, ny, nx):
 
     implicit = sensitivity + max(-beta_T u . grad p, 0): heating linearised about `reference`, expansion cooling;
     explicit = source + sensitivity reference (W/m^3); heating = max(beta_T u . grad p, 0), times T from the
@@ -278,7 +279,7 @@ def _node_form(temperature, k, j, i, flux_z, blended, implicit, explicit, heatin
     F = a T_k + lo T_k-1 + up T_k+1 - b: (a, lo, up, b). a, lo, up: the implicit part (upwind convection, heating
     linearised about `reference`, compression cooling); b: sources and the explicit rest (upwind neighbours along
     x and y, the limited and central corrections of the face values from the current iterate). a, b: those of the
-    convection along x and y (`_xy_form`); implicit, explicit, heating, blended: `_fixed_parts`; inverse_width:
+    convection along x and y (`_xy_form`); implicit, explicit, heating, blended: `fixed_parts`; inverse_width:
     1/w_k; inverse_h: 1/h of the column (1/m)."""
     nz = temperature.shape[0]
     t = temperature[k, j, i]
@@ -338,7 +339,7 @@ def _node_diagonal(k, j, i, flux_x, flux_y, flux_z, implicit, inverse_width, rdx
 def _forms(temperature, j, i, flux_x, flux_y, flux_z, blended, implicit, explicit, heating, conductivity, film, dx, dy,
            t_inlet, face_position, inverse_width, walls, a, lo, up, b, wall_rows=False):
     """The linear forms of every node of column (j, i) (in place), the walls' convection along x and y from
-    `wall_convection`, the fixed parts from `_fixed_parts`; returns (k/dz^2, theta): Numerov's weight
+    `wall_convection`, the fixed parts from `fixed_parts`; returns (k/dz^2, theta): Numerov's weight
     theta = min(1, 12 k/(dz^2 max a)) over the interior nodes keeps the off-diagonals of the column's matrix
     negative (no overshoot) where convection outweighs conduction across the film (thick inlet films); there the
     scheme tends to the second-order one. `wall_rows`: the whole forms of the three nodes next to each wall only
@@ -440,14 +441,12 @@ def _column(temperature, j, i, flux_x, flux_y, flux_z, blended, implicit, explic
 
 
 @njit(cache=True, error_model="numpy")
-def sweep_columns(temperature, flux_x, flux_y, flux_z, source, sensitivity, reference, expansivity_grad, conductivity,
-                  film, dx, dy, t_inlet, sweeps, tolerance, min_sweeps=0):
-    """Gauss-Seidel sweeps (forward, then backward in x) over all columns with the fluxes of `transport_fluxes`:
-    at most `sweeps`, stopping once one changes the temperatures by less than `tolerance` (K) after the first
-    `min_sweeps`; returns (sweeps done, last change, K). conductivity: k of the film per column, (ny, nx), W/(m K).
-
-    The heat source is linearised about `reference`: source - sensitivity (T - reference), with
-    sensitivity = -d(source)/dT >= 0 (viscous heating falls as the oil thins), treated implicitly."""
+def sweep_columns(temperature, flux_x, flux_y, flux_z, implicit, explicit, heating, blended, conductivity, film, dx, dy,
+                  t_inlet, sweeps, tolerance, min_sweeps=0):
+    """Gauss-Seidel sweeps (forward, then backward in x) over all columns with the fluxes of `transport_fluxes` and
+    the fixed parts of `fixed_parts`: at most `sweeps`, stopping once one changes the temperatures by less than
+    `tolerance` (K) after the first `min_sweeps`; returns (sweeps done, last change, K). conductivity: k of the film
+    per column, (ny, nx), W/(m K)."""
     nz, ny, nx = temperature.shape
     face_position = _face_positions(nz)
     a = np.empty(nz)
@@ -457,8 +456,6 @@ def sweep_columns(temperature, flux_x, flux_y, flux_z, source, sensitivity, refe
     band = np.zeros((5, nz - 2))
     rhs = np.empty(nz - 2)
     walls = wall_convection(temperature, flux_x, flux_y, film, dx, dy, t_inlet)
-    implicit, explicit, heating, blended = _fixed_parts(flux_z, source, sensitivity, reference, expansivity_grad,
-                                                        conductivity, film)
     inverse_width = 1.0 / layer_weights_array(nz)
     change = 0.0
     done = 0
@@ -478,10 +475,10 @@ def sweep_columns(temperature, flux_x, flux_y, flux_z, source, sensitivity, refe
 
 
 @njit(cache=True, error_model="numpy")
-def wall_fluxes(temperature, flux_x, flux_y, flux_z, source, sensitivity, reference, expansivity_grad, conductivity,
-                film, dx, dy, t_inlet, flux_1, flux_2):
+def wall_fluxes(temperature, flux_x, flux_y, flux_z, implicit, explicit, heating, blended, conductivity, film, dx, dy,
+                t_inlet, flux_1, flux_2):
     """Heat flux from the film into solid 1 (z = 0) and solid 2 (z = h), W/m^2, (ny, nx) in place, consistent with
-    the compact scheme of `_column`:
+    the compact scheme of `_column` (the fixed parts from `fixed_parts`):
 
         q_1 = k (T_1 - T_0)/dz - dz (alpha_0 F_0 + alpha_1 F_1 + alpha_2 F_2),
         alpha = ((9 - 2 theta)/24, (4 + 2 theta)/24, -1/24),
@@ -498,8 +495,6 @@ def wall_fluxes(temperature, flux_x, flux_y, flux_z, source, sensitivity, refere
     b = np.empty(nz)
     f = np.empty(nz)
     walls = wall_convection(temperature, flux_x, flux_y, film, dx, dy, t_inlet)
-    implicit, explicit, heating, blended = _fixed_parts(flux_z, source, sensitivity, reference, expansivity_grad,
-                                                        conductivity, film)
     inverse_width = 1.0 / layer_weights_array(nz)
     for j in range(ny):
         for i in range(nx):
@@ -531,13 +526,12 @@ def solve_film_temperature(temperature: np.ndarray, velocity_x: np.ndarray, velo
     """The interior layer temperatures for fixed surface temperatures (in place): `sweeps` column sweeps at most,
     stopping below `tolerance` (K), heating linearised about the entry temperatures; returns (sweeps done, last
     change, q_1, q_2) with the heat fluxes into the solids of the result (`wall_fluxes`)."""
-    reference = temperature.copy()
     fx, fy, fz, _ = transport_fluxes(velocity_x, velocity_y, rho_c, film, dx, dy)
-    done, change = sweep_columns(temperature, fx, fy, fz, source, sensitivity, reference, expansivity_grad,
-                                 conductivity, film, dx, dy, t_inlet, sweeps, tolerance)
+    fixed = fixed_parts(fz, source, sensitivity, temperature.copy(), expansivity_grad, conductivity, film)
+    done, change = sweep_columns(temperature, fx, fy, fz, *fixed, conductivity, film, dx, dy, t_inlet, sweeps,
+                                 tolerance)
     q1, q2 = np.empty(film.shape), np.empty(film.shape)
-    wall_fluxes(temperature, fx, fy, fz, source, sensitivity, reference, expansivity_grad, conductivity, film, dx, dy,
-                t_inlet, q1, q2)
+    wall_fluxes(temperature, fx, fy, fz, *fixed, conductivity, film, dx, dy, t_inlet, q1, q2)
     return done, change, q1, q2
 
 

@@ -93,11 +93,15 @@ def fluidity_integrals(fluidity, rho):
 @njit(cache=True)
 def temperature_factors(temperature, law):
     """The Roelands temperature factor of every layer node (lubricant.roelands_temperature_factor_at): it
-    stays fixed while the pressure cycles run on a frozen film state, so it is computed once per state."""
+    stays fixed while the pressure cycles run on a frozen film state, so it is computed once per state. A node at
+    the temperature of the one before it (an isothermal film) takes its factor."""
     out = np.empty_like(temperature)
     flat_t, flat_out = temperature.ravel(), out.ravel()
     for n in range(flat_t.size):
-        flat_out[n] = roelands_temperature_factor_at(flat_t[n], law)
+        if n > 0 and flat_t[n] == flat_t[n - 1]:
+            flat_out[n] = flat_out[n - 1]
+        else:
+            flat_out[n] = roelands_temperature_factor_at(flat_t[n], law)
     return out
 
 
@@ -109,25 +113,47 @@ def layered_coefficients(pressure_pa, film, temperature, temperature_factor, vis
     and temperature parts of the Roelands law evaluated once per column and once per state).
 
     u1, u2: surface velocities divided by |u_e|, in the (x, y) frame (in place).
+
+    Row by row: the layer fluidities and densities of a row along x first, layer by layer (contiguous in memory),
+    then its columns' integrals; a layer whose temperature factor equals the first layer's (an isothermal film)
+    reuses its viscosity ratio instead of evaluating the exponential again (bit-identical: the same arguments).
+    On 513 x 65 x 9 (S1 of the face gear case) 5.0 -> 3.9 ms per call against the column-by-column loop.
     """
     nz, ny, nx = temperature.shape
-    fluidity = np.empty(nz)
-    rho = np.empty(nz)
+    fluidity = np.empty((nz, nx))
+    rho = np.empty((nz, nx))
+    column_fluidity = np.empty(nz)
+    column_rho = np.empty(nz)
+    pressure_factor = np.empty(nx)
+    compression = np.empty(nx)
+    first_factor = np.empty(nx)
+    first_ratio = np.empty(nx)
     roelands = law[0] == ROELANDS
     for j in range(ny):
         for i in range(nx):
             p = pressure_pa[j, i]
-            pressure_factor = roelands_pressure_factor_at(p, law)
-            compression = density_pressure_factor_at(p, law)
-            for k in range(nz):
+            pressure_factor[i] = roelands_pressure_factor_at(p, law)
+            compression[i] = density_pressure_factor_at(p, law)
+        for k in range(nz):
+            for i in range(nx):
                 t = temperature[k, j, i]
                 if roelands:
-                    ratio = roelands_ratio(pressure_factor, temperature_factor[k, j, i], law)
+                    factor = temperature_factor[k, j, i]
+                    if k > 0 and factor == first_factor[i]:
+                        ratio = first_ratio[i]
+                    else:
+                        ratio = roelands_ratio(pressure_factor[i], factor, law)
+                    if k == 0:
+                        first_factor[i], first_ratio[i] = factor, ratio
                 else:
-                    ratio = viscosity_ratio_at(p, t, law)
-                fluidity[k] = 1.0 / max(ratio * viscosity_factor[k, j, i], 1e-300)
-                rho[k] = compression * density_thermal_factor_at(t, law)
-            f0, f1, r0, r1, r2 = fluidity_integrals(fluidity, rho)
+                    ratio = viscosity_ratio_at(pressure_pa[j, i], t, law)
+                fluidity[k, i] = 1.0 / max(ratio * viscosity_factor[k, j, i], 1e-300)
+                rho[k, i] = compression[i] * density_thermal_factor_at(t, law)
+        for i in range(nx):
+            for k in range(nz):
+                column_fluidity[k] = fluidity[k, i]
+                column_rho[k] = rho[k, i]
+            f0, f1, r0, r1, r2 = fluidity_integrals(column_fluidity, column_rho)
             h = max(film[j, i], 0.0)
             if f0 > 0.0:
                 eps[j, i] = 12.0 * (f1 * r2 / f0 - r1) * h * h * h / lam

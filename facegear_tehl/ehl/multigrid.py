@@ -219,8 +219,10 @@ class MultigridSolver:
                        viscosity_factor: np.ndarray | None) -> None:
         """Freeze the across-film state (nz, ny, nx) of level `index` on it and, injected, on every coarser
         grid, and recompute the film and flow coefficients of level `index`; None: the isothermal Newtonian
-        film at the inlet temperature."""
+        film at the inlet temperature. The temperature factor is evaluated node by node on level `index` once and
+        injected like the state (the same numbers as evaluating it on each grid)."""
         top = self.levels[index]
+        factor = None if temperature is None else flow.temperature_factors(temperature, self.problem.law)
         for level in self.levels[:index + 1]:
             if temperature is None:
                 level.temperature = level.viscosity_factor = level.temperature_factor = None
@@ -228,7 +230,7 @@ class MultigridSolver:
             sx, sy = (top.nx - 1) // (level.nx - 1), (top.ny - 1) // (level.ny - 1)
             level.temperature = np.ascontiguousarray(temperature[:, ::sy, ::sx])
             level.viscosity_factor = np.ascontiguousarray(viscosity_factor[:, ::sy, ::sx])
-            level.temperature_factor = flow.temperature_factors(level.temperature, self.problem.law)
+            level.temperature_factor = np.ascontiguousarray(factor[:, ::sy, ::sx])
         self.update_film(top)
 
     def prolong_layers(self, index: int, layers: np.ndarray) -> np.ndarray:

@@ -40,26 +40,30 @@ def _sinh_cosh(r):
 
 
 @njit(cache=True, error_model="numpy")
-def _shear_rate(tx, ty, eta, tau0):
+def _shear_rate(tx, ty, eta, inverse_eta, tau0, inverse_tau0):
     """(gamma_dot_x, gamma_dot_y, d gamma/d tau as (a, b, c) of the symmetric 2x2 Jacobian)."""
     te = math.sqrt(tx * tx + ty * ty)
     if not math.isfinite(tau0) or te == 0.0:
         return tx / eta, ty / eta, 1.0 / eta, 0.0, 1.0 / eta
-    r = min(te / tau0, MAX_STRESS_RATIO)
+    inverse_te = 1.0 / te
+    r = min(te * inverse_tau0, MAX_STRESS_RATIO)
     sinh, cosh = _sinh_cosh(r)
-    amp = tau0 / eta * sinh  # |gamma_dot|
-    gx, gy = amp * tx / te, amp * ty / te
-    d_amp = cosh / eta  # d|gamma_dot|/d|tau|
-    ratio = amp / te  # |gamma_dot|/|tau|
-    nx, ny = tx / te, ty / te
+    amp = tau0 * inverse_eta * sinh  # |gamma_dot|
+    ratio = amp * inverse_te  # |gamma_dot|/|tau|
+    gx, gy = ratio * tx, ratio * ty
+    d_amp = cosh * inverse_eta  # d|gamma_dot|/d|tau|
+    nx, ny = tx * inverse_te, ty * inverse_te
     a = d_amp * nx * nx + ratio * (1.0 - nx * nx)
     c = d_amp * ny * ny + ratio * (1.0 - ny * ny)
     return gx, gy, a, (d_amp - ratio) * nx * ny, c
 
 
 @njit(cache=True, error_model="numpy")
-def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, warm, speed):
-    """Stress (tau_x, tau_y) at surface 1 such that \\int gamma_dot dz = (dux, duy); eta per layer (Pa s).
+def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, warm, speed, rate_x, rate_y,
+                   inverse_eta, inverse_tau0):
+    """Stress (tau_x, tau_y) at surface 1 such that \\int gamma_dot dz = (dux, duy); eta per layer (Pa s); returns
+    (tau_x, tau_y, rated): `rated` True when rate_x, rate_y (per layer, in place) hold the shear rate at the stress
+    returned (the residual evaluation that ended Newton's method), else they are to be evaluated.
 
     Ree-Eyring: Newton's method from (guess_x, guess_y) if `warm`, else from the Couette estimate, to a velocity
     residual of 1e-10 `speed` (m/s, the scale of the surface speeds)."""
@@ -76,7 +80,7 @@ def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, 
     tx = (dux - gpx * g1) / g0
     ty = (duy - gpy * g1) / g0
     if not math.isfinite(tau0):
-        return tx, ty
+        return tx, ty, False
     if warm:
         tx, ty = guess_x, guess_y
     else:
@@ -97,7 +101,9 @@ def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, 
         jc = 0.0
         for k in range(nz):
             z = h * k / (nz - 1)
-            gx, gy, a, b, c = _shear_rate(tx + z * gpx, ty + z * gpy, eta[k], tau0)
+            gx, gy, a, b, c = _shear_rate(tx + z * gpx, ty + z * gpy, eta[k], inverse_eta[k], tau0, inverse_tau0)
+            rate_x[k] = gx
+            rate_y[k] = gy
             w = weights[k] * h
             fx += w * gx
             fy += w * gy
@@ -106,7 +112,7 @@ def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, 
             jc += w * c
         norm = math.hypot(fx, fy)
         if norm <= 1e-10 * speed:
-            break
+            return tx, ty, True
         if norm > residual_norm:
             # backtrack: the last Newton step overshot; go back half of what is left of it
             step_x *= 0.5
@@ -120,7 +126,7 @@ def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, 
         step_y = -(-jb * fx + ja * fy) / det
         tx += step_x
         ty += step_y
-    return tx, ty
+    return tx, ty, False
 
 
 @njit(cache=True, error_model="numpy")
@@ -146,26 +152,32 @@ def shear_state(pressure, film, grad_x, grad_y, eta_newtonian, u1, u2, tau0, war
     eta = np.empty(nz)
     rate_x = np.empty(nz)
     rate_y = np.empty(nz)
+    inverse_eta = np.empty(nz)
+    inverse_tau0 = 1.0 / tau0
     for j in range(ny):
         for i in range(nx):
             h = max(film[j, i], 1e-12)
             for k in range(nz):
                 eta[k] = eta_newtonian[k, j, i]
+                inverse_eta[k] = 1.0 / eta[k]
             gpx = grad_x[j, i]
             gpy = grad_y[j, i]
-            tx, ty = surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, stress_1[0, j, i], stress_1[1, j, i],
-                                    warm, speed)
+            tx, ty, rated = surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, stress_1[0, j, i],
+                                           stress_1[1, j, i], warm, speed, rate_x, rate_y, inverse_eta, inverse_tau0)
             for k in range(nz):
                 z = h * k / (nz - 1)
                 sx = tx + z * gpx
                 sy = ty + z * gpy
-                gx, gy, _, _, _ = _shear_rate(sx, sy, eta[k], tau0)
-                rate_x[k] = gx
-                rate_y[k] = gy
-                te = math.hypot(sx, sy)
-                ge = math.hypot(gx, gy)
+                if rated:  # Newton's last residual evaluated these (the same stress, the same operations)
+                    gx, gy = rate_x[k], rate_y[k]
+                else:
+                    gx, gy, _, _, _ = _shear_rate(sx, sy, eta[k], inverse_eta[k], tau0, inverse_tau0)
+                    rate_x[k] = gx
+                    rate_y[k] = gy
+                te = math.sqrt(sx * sx + sy * sy)
+                ge = math.sqrt(gx * gx + gy * gy)
                 viscosity_factor[k, j, i] = max(te / (ge * eta[k]), MIN_VISCOSITY_FACTOR) if ge > 0.0 else 1.0
-                r = te / tau0 if math.isfinite(tau0) else 0.0
+                r = te * inverse_tau0 if math.isfinite(tau0) else 0.0
                 thinning[k, j, i] = math.tanh(r) / r if r > 1e-8 else 1.0
                 dissipation[k, j, i] = sx * gx + sy * gy
             ux = u1[0]

@@ -24,12 +24,21 @@ from __future__ import annotations
 from dataclasses import dataclass
 import math
 
+from numba import njit
 import numpy as np
 
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import energy, jaeger, rheology
-from facegear_tehl.lubricant import Lubricant
-from facegear_tehl.lubricant_laws import density_ratio, temperature_coefficient, viscosity_ratio
+from facegear_tehl.lubricant import ROELANDS, Lubricant
+from facegear_tehl.lubricant_laws import (
+    density_ratio,
+    roelands_pressure_factor_at,
+    roelands_ratio,
+    roelands_temperature_coefficient,
+    roelands_temperature_factor_at,
+    viscosity_ratio_at,
+    viscosity_temperature_coefficient_at,
+)
 from facegear_tehl.materials import Solid
 
 # Continuation in temperature: a Newtonian film under heavy sliding would otherwise overshoot by thousands of
@@ -55,6 +64,39 @@ SURFACE_RELAXATION = 0.6
 ENERGY_MIN_SWEEPS = 2
 ENERGY_SWEEPS = 8
 ENERGY_SWEEP_TOLERANCE = 1e-3  # K, largest change between sweeps at which a pass stops sweeping
+
+
+@njit(cache=True)
+def layer_viscosity(pressure, temperature, law, coefficient):
+    """(eta/eta_0, beta = -d ln(eta)/dT in 1/K) at every layer node (nz, ny, nx) of the temperatures (K) over the
+    pressures (ny, nx), Pa: the numbers of lubricant_laws.viscosity_ratio_at and viscosity_temperature_coefficient_at
+    (bit-identical), with the Roelands pressure factor once per column and the temperature factor once per node for
+    both; a node at the temperature of the one below it (an isothermal film) takes its ratio. `coefficient` False:
+    beta is not evaluated (an empty array). 21 -> 10 ms for both on 513 x 65 x 9 against the node-by-node laws."""
+    nz, ny, nx = temperature.shape
+    ratio = np.empty((nz, ny, nx))
+    beta = np.empty((nz, ny, nx) if coefficient else (0, 0, 0))
+    roelands = law[0] == ROELANDS
+    for j in range(ny):
+        for i in range(nx):
+            p = pressure[j, i]
+            pressure_factor = roelands_pressure_factor_at(p, law)
+            for k in range(nz):
+                t = temperature[k, j, i]
+                if k > 0 and t == temperature[k - 1, j, i]:
+                    ratio[k, j, i] = ratio[k - 1, j, i]
+                    if coefficient:
+                        beta[k, j, i] = beta[k - 1, j, i]
+                elif roelands:
+                    temperature_factor = roelands_temperature_factor_at(t, law)
+                    ratio[k, j, i] = roelands_ratio(pressure_factor, temperature_factor, law)
+                    if coefficient:
+                        beta[k, j, i] = roelands_temperature_coefficient(pressure_factor, temperature_factor, t, law)
+                else:
+                    ratio[k, j, i] = viscosity_ratio_at(p, t, law)
+                    if coefficient:
+                        beta[k, j, i] = viscosity_temperature_coefficient_at(p, t, law)
+    return ratio, beta
 
 
 @dataclass(frozen=True)
@@ -146,7 +188,8 @@ class FilmThermalModel:
         # (re-evaluating it here between the passes below couples the temperature of the inlet's stagnation layers
         # to the velocity across the layers without the outer loop's relaxation: a period-2 flicker of 1-1.5 K on
         # the 257 x 65 face gear points S2-S4)
-        eta = lub.viscosity * viscosity_ratio(p_layers, temperature, self.law).reshape(shape)
+        ratio, beta = layer_viscosity(p, temperature, self.law, self.solve_energy)
+        eta = lub.viscosity * ratio
         rheology.shear_state(p, film, np.ascontiguousarray(grad_x), np.ascontiguousarray(grad_y), eta,
                              self.velocity_1, self.velocity_2, self.tau0, warm, viscosity_factor, dissipation,
                              velocity_x, velocity_y, stress_1, stress_2, thinning)
@@ -154,25 +197,25 @@ class FilmThermalModel:
         compression_coefficient = expansivity * (velocity_x * grad_x + velocity_y * grad_y)
         if self.solve_energy:
             rho_c = lub.density * density_ratio(p_layers, temperature, self.law).reshape(shape) * lub.specific_heat
-            beta = temperature_coefficient(p_layers, temperature, self.law).reshape(shape)
             sensitivity = dissipation * beta * thinning  # -d(dissipation)/dT at fixed shear rate
             fluxes = energy.transport_fluxes(velocity_x, velocity_y, rho_c, film, self.dx, self.dy)[:3]
-            kernel_args = (dissipation, sensitivity, temperature.copy(), compression_coefficient, conductivity, film,
-                           self.dx, self.dy, self.t_inlet)
+            fixed = energy.fixed_parts(fluxes[2], dissipation, sensitivity, temperature.copy(),
+                                       compression_coefficient, conductivity, film)
+            kernel_args = (*fluxes, *fixed, conductivity, film, self.dx, self.dy, self.t_inlet)
             q1, q2 = np.empty(p.shape), np.empty(p.shape)
             w = SURFACE_RELAXATION
             for _ in range(INNER_ITERATIONS):
                 # the surfaces from the heat fluxes of the film as it stands, then the film's interior for them: the
                 # state returned solves the film's discrete energy equation for its own surfaces
                 before = temperature.copy()
-                energy.wall_fluxes(temperature, *fluxes, *kernel_args, q1, q2)
+                energy.wall_fluxes(temperature, *kernel_args, q1, q2)
                 temperature[0] += w * (self._surface(q1, 0, float(self.velocity_1[0])) - temperature[0])
                 temperature[-1] += w * (self._surface(q2, 1, float(self.velocity_2[0])) - temperature[-1])
-                energy.sweep_columns(temperature, *fluxes, *kernel_args, ENERGY_SWEEPS,
+                energy.sweep_columns(temperature, *kernel_args, ENERGY_SWEEPS,
                                      max(sweep_tolerance, ENERGY_SWEEP_TOLERANCE), ENERGY_MIN_SWEEPS)
                 np.clip(temperature, start - MAX_TEMPERATURE_STEP, start + MAX_TEMPERATURE_STEP, out=temperature)
                 change = float(np.abs(temperature - before).max())
-            energy.wall_fluxes(temperature, *fluxes, *kernel_args, q1, q2)
+            energy.wall_fluxes(temperature, *kernel_args, q1, q2)
         self._stress = stress_1
         if q1 is None:  # no energy equation: the flux of the temperatures as they are
             q1, q2 = energy.wall_heat_flux(temperature, film, conductivity)
