@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from facegear_tehl.ehl import grid
+from facegear_tehl.ehl import flow, grid
 from facegear_tehl.ehl.elastic import DeflectionOperator
 from facegear_tehl.ehl.multigrid import Level, MultigridSolver, Problem, Relaxation
 
@@ -75,7 +75,21 @@ class PatchedSolver(MultigridSolver):
                  relaxation: Relaxation = Relaxation()):
         """`shapes`: (nx, ny) of the uniform levels, coarsest first (grid.hierarchy_shapes)."""
         super().__init__(problem, shapes, relaxation)
-        below = self.levels[-1]
+        self._add_patch(span)
+
+    @classmethod
+    def over(cls, solver: MultigridSolver, span: tuple[float, float]) -> PatchedSolver:
+        """A patch over `span` on top of a solved uniform hierarchy: its levels (the same objects, which the
+        composite cycles go on changing), H_0 and work count are taken over."""
+        patched = cls.__new__(cls)
+        patched.__dict__.update(solver.__dict__)
+        patched.levels, patched.transfers = list(solver.levels), list(solver.transfers)
+        patched._add_patch(span)
+        patched.finest_nodes = solver.finest_nodes  # work units stay in sweeps of the uniform grid solved before
+        return patched
+
+    def _add_patch(self, span: tuple[float, float]) -> None:
+        below, problem = self.levels[-1], self.problem
         self.first, self.last = patch_columns(below.x, span)
         self.columns = slice(2 * self.first, 2 * self.last + 1)  # the patch's columns on the grid of its spacing
         nx = 2 * below.nx - 1
@@ -100,6 +114,15 @@ class PatchedSolver(MultigridSolver):
     def below(self) -> Level:
         """The finest uniform grid, under the patch."""
         return self.levels[-2]
+
+    def set_patch_state(self, temperature: np.ndarray, viscosity_factor: np.ndarray) -> None:
+        """Freeze an across-film state (nz, ny, patch columns) on the patch alone (the grids below keep theirs) and
+        recompute its film and flow coefficients."""
+        patch = self.patch
+        patch.temperature = np.ascontiguousarray(temperature)
+        patch.viscosity_factor = np.ascontiguousarray(viscosity_factor)
+        patch.temperature_factor = flow.temperature_factors(patch.temperature, self.problem.law)
+        self.update_film(patch)
 
     def _is_patch(self, index: int) -> bool:
         return index == len(self.levels) - 1
