@@ -21,7 +21,12 @@ from facegear_tehl.gears.spec import GearSpec, parse_gear_block
 from facegear_tehl.lubricant import DENSITY_MODELS, KELVIN, OIL_TYPES, RHEOLOGY_MODELS, VISCOSITY_MODELS, Lubricant
 from facegear_tehl.materials import Solid
 from facegear_tehl.schema import Block, CaseError, attempt, check, collecting, defaults, warn
-from facegear_tehl.settings import THERMAL_MODELS, OutputSettings, SolverSettings  # also imported from here
+from facegear_tehl.settings import (  # also imported from here
+    OUTLET_REFINEMENTS,
+    THERMAL_MODELS,
+    OutputSettings,
+    SolverSettings,
+)
 
 MAX_GRID = 4097  # nodes per side: 16.8 million nodes, beyond what one machine solves
 # Ranges of real lubricated contacts: a value outside is accepted with a warning (a unit mistaken, most likely).
@@ -269,6 +274,7 @@ def _solver(block: Block) -> SolverSettings:
         max_thermal_iterations=block.integer("max_thermal_iterations", d["max_thermal_iterations"], low=1, high=500),
         thermal_tolerance=block.number("thermal_tolerance", d["thermal_tolerance"], positive=True, high=0.1),
         grid_y=grid_y,
+        outlet_refinement=block.choice("outlet_refinement", OUTLET_REFINEMENTS, d["outlet_refinement"]),
     )
     check(settings.thermal_layers % 2 == 1, block.key_path("thermal_layers"), settings.thermal_layers,
           "an odd number of layer nodes (Simpson's rule across the film), e.g. 7, 9 or 11")

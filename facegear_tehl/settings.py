@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 THERMAL_MODELS = ("off", "reduced", "full", "auto")
+OUTLET_REFINEMENTS = ("auto", "always", "never")
 
 
 @dataclass(frozen=True)
@@ -30,6 +31,9 @@ class SolverSettings:
     max_thermal_iterations: int = 40  # outer iterations of film state and pressure
     thermal_tolerance: float = 1e-3  # largest temperature change per outer iteration, relative to the rise
     grid_y: int | None = None  # nodes along y (the major axis) on the finest grid, 2^n + 1; None: as `grid`
+    # thermal full: the outlet solved again on a patch twice as fine along x (ehl/outlet.py), one of
+    # OUTLET_REFINEMENTS; auto: where the hottest film node lies on the outlet spike's rising flank
+    outlet_refinement: str = "auto"
 
     @property
     def nodes_y(self) -> int:

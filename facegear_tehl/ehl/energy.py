@@ -442,11 +442,12 @@ def _column(temperature, j, i, flux_x, flux_y, flux_z, blended, implicit, explic
 
 @njit(cache=True, error_model="numpy")
 def sweep_columns(temperature, flux_x, flux_y, flux_z, implicit, explicit, heating, blended, conductivity, film, dx, dy,
-                  t_inlet, sweeps, tolerance, min_sweeps=0):
-    """Gauss-Seidel sweeps (forward, then backward in x) over all columns with the fluxes of `transport_fluxes` and
-    the fixed parts of `fixed_parts`: at most `sweeps`, stopping once one changes the temperatures by less than
-    `tolerance` (K) after the first `min_sweeps`; returns (sweeps done, last change, K). conductivity: k of the film
-    per column, (ny, nx), W/(m K)."""
+                  t_inlet, sweeps, tolerance, min_sweeps=0, first_column=0):
+    """Gauss-Seidel sweeps (forward, then backward in x) over the columns from `first_column` on with the fluxes of
+    `transport_fluxes` and the fixed parts of `fixed_parts`: at most `sweeps`, stopping once one changes the
+    temperatures by less than `tolerance` (K) after the first `min_sweeps`; returns (sweeps done, last change, K).
+    conductivity: k of the film per column, (ny, nx), W/(m K). The columns before `first_column` are held as they
+    are (the upstream neighbours of a patch: its inflow, outlet.py)."""
     nz, ny, nx = temperature.shape
     face_position = _face_positions(nz)
     a = np.empty(nz)
@@ -462,8 +463,8 @@ def sweep_columns(temperature, flux_x, flux_y, flux_z, implicit, explicit, heati
     for s in range(sweeps):
         change = 0.0
         for j in range(ny):
-            for step in range(nx):
-                i = step if s % 2 == 0 else nx - 1 - step
+            for step in range(nx - first_column):
+                i = first_column + step if s % 2 == 0 else nx - 1 - step
                 c = _column(temperature, j, i, flux_x, flux_y, flux_z, blended, implicit, explicit, heating,
                             conductivity, film, dx, dy, t_inlet, face_position, inverse_width, walls, a, lo, up, b,
                             band, rhs)

@@ -252,7 +252,7 @@ class MultigridSolver:
     def update_film(self, level: Level) -> None:
         """H = H_0 + C_d K*P + F; then the flow coefficients eps, f_x, f_y (flow.py)."""
         pb = self.problem
-        w = level.deflection.apply(level.pressure)
+        w = self.deflection(level)
         level.film = self.h0 + pb.deflection_coefficient * w + level.film_rhs
         if level.eps is None:
             level.eps = np.empty_like(level.film)
@@ -267,6 +267,10 @@ class MultigridSolver:
                                       level.viscosity_factor, pb.law, pb.lam,
                                       1.0 / pb.ellipticity, float(np.sign(pb.wedge_x)), float(np.sign(pb.wedge_y)),
                                       pb.velocity_1, pb.velocity_2, level.eps, level.flux_x, level.flux_y)
+
+    def deflection(self, level: Level) -> np.ndarray:
+        """W = K*P at the nodes of `level` (without C_d): its own pressure on its own grid."""
+        return level.deflection.apply(level.pressure)
 
     def _args(self, level: Level):
         pb = self.problem
@@ -384,10 +388,15 @@ class MultigridSolver:
         for _ in range(rx.pre_sweeps):
             self.relax(level)
         self.coarsen(index)
-        self.cycle(index - 1)
+        for _ in range(self.coarse_cycles(index)):
+            self.cycle(index - 1)
         self.refine(index)
         for _ in range(rx.post_sweeps):
             self.relax(level)
+
+    def coarse_cycles(self, index: int) -> int:
+        """V-cycles on level `index - 1` per coarse-grid correction of level `index` (a V-cycle: one)."""
+        return 1
 
     def interpolate_up(self, index: int) -> None:
         """Full-multigrid step: start level `index` from the bicubic interpolation of level `index - 1`."""

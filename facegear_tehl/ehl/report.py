@@ -116,6 +116,12 @@ def point_solution(solve: PointSolve, level: Level, status: Status, state: FilmS
                     "no film is reported")
     if state is not None:
         state_scalars, state_fields = _film_state_outputs(solve, level, state)
+        if solve.outlet is not None and fields:
+            state_scalars.update(_outlet_scalars(solve, state_scalars))
+            scalars.update({k: v for k, v in solve.outlet.scalars.items() if k in scalars})
+            state_fields = _film_state_outputs(solve, level, solve.outlet.state)[1]
+            fields["pressure"] = Field(solve.outlet.pressure, "Pa", "film pressure")
+            fields["film_thickness"] = Field(solve.outlet.film, "m", "film thickness")
         scalars.update(state_scalars)
         fields.update(state_fields)
     return PointSolution(
@@ -231,6 +237,18 @@ def _film_state_outputs(solve: PointSolve, level: Level, state: FilmState
     return scalars, fields
 
 
+def _outlet_scalars(solve: PointSolve, uniform: dict[str, tuple[float, str]]) -> dict[str, tuple[float, str]]:
+    """The outlet stage's figures of the film state (outlet.composite), with the error estimates of dT_max and mu
+    from the uniform grid's values: the patch halves the x spacing where they are set. The energy budget stays the
+    uniform grid's (its discrete balance is exact there; the composite's is not conservative across the patch's
+    ends)."""
+    figures = {k: v for k, v in solve.outlet.scalars.items() if k in uniform or k == "outlet_patch_start"}
+    for name, order in (("dT_max", ORDER_DT_MAX), ("mu", ORDER_MU)):
+        if figures[name][0] != 0.0:
+            figures[f"error_estimate_{name}"] = (richardson_error(figures[name][0], uniform[name][0], order), "1")
+    return figures
+
+
 def _histories(solve: PointSolve) -> dict[str, Field]:
     """Per-cycle, per-level and per-outer-iteration records of the solve."""
     history, summaries, film_scale = solve.history, solve.summaries, solve.scaling.film_scale
@@ -279,6 +297,12 @@ def _models(solve: PointSolve) -> dict[str, str]:
                              f"solver: the start ran away from {'; from '.join(solve.start_notes)})")
     if solve.coarse_stage_note:
         models["solver"] += "; " + solve.coarse_stage_note
+    if solve.outlet is not None:
+        start = solve.outlet.scalars["outlet_patch_start"][0] / solve.scaling.b
+        models["solver"] += (f"; outlet refined: a patch at half the x spacing over X >= {start:.2f} b (FAS composite "
+                             "grid, the film state solved on it)")
+    elif solve.outlet_note:
+        models["solver"] += f"; outlet refinement dropped ({solve.outlet_note}): the uniform grid's solution"
     if solve.start_load_fraction < 1.0:
         models["solver"] += (f"; full-multigrid start at {solve.start_load_fraction:.3g} of the load (Moes M "
                              f"{solve.scaling.moes_m:.3g}), raised to the full load one grid below the finest")

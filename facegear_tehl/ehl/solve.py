@@ -37,6 +37,7 @@ from facegear_tehl.ehl.domain import (
     venner_lubrecht_domain,
 )
 from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem, Relaxation, at_load_fraction
+from facegear_tehl.ehl.outlet import Composite, composite, needs_outlet_patch, refine_outlet
 from facegear_tehl.ehl.report import ORDER, LevelSummary, point_solution, richardson_error, summarise, with_film_state
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
 from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel, thermal_choice
@@ -348,6 +349,8 @@ class PointSolve:
         self.start_load_fraction = min(1.0, CONTINUATION_MOES_M / self.scaling.moes_m) if load_continuation else 1.0
         self.attempt = attempt
         self.coarse_stage_note = ""  # why the coupled problem was solved on the finest grid alone (_couple_on_finest)
+        self.outlet: Composite | None = None  # the outlet stage's composite solution (outlet.py), when it ran
+        self.outlet_note = ""  # why the outlet stage was not reported (it ran away or did not converge)
         self.before_cycle: tuple[Iterate, np.ndarray] | None = None  # the iterate and film before the last V-cycle
         self.elapsed = elapsed  # s spent up to the last pause (a solve paused between stages has no clock)
         self._clock = time.perf_counter() - elapsed
@@ -391,6 +394,12 @@ class PointSolve:
         else:
             state, status = self.couple(top, frozen, self.summaries[-1].h_c)
         self.summaries.append(summarise(solver.levels[top]))
+        if self.mode == "full" and status.converged and needs_outlet_patch(self, top, state):
+            stage, patch_status = refine_outlet(self, top, state)
+            if stage is None:
+                self.outlet_note = patch_status.message
+            else:
+                self.outlet = composite(self, stage, state)
         return self.report(top, status, state)
 
     def _coarse_thermal_stage(self) -> PointSolution | PointSolve:

@@ -121,6 +121,8 @@ class FilmState:
 class FilmThermalModel:
     """Across-film state on a uniform (ny, nx) grid with node coordinates x, y (m)."""
 
+    first_column = 0  # the energy equation is solved from this column on (outlet.py: a patch's inflow columns)
+
     def __init__(self, x: np.ndarray, y: np.ndarray, layers: int, lubricant: Lubricant, point: ContactPoint,
                  solve_energy: bool):
         """`layers`: odd number of layer nodes across the film; `point` gives the solids, their surface velocities
@@ -212,7 +214,8 @@ class FilmThermalModel:
                 temperature[0] += w * (self._surface(q1, 0, float(self.velocity_1[0])) - temperature[0])
                 temperature[-1] += w * (self._surface(q2, 1, float(self.velocity_2[0])) - temperature[-1])
                 energy.sweep_columns(temperature, *kernel_args, ENERGY_SWEEPS,
-                                     max(sweep_tolerance, ENERGY_SWEEP_TOLERANCE), ENERGY_MIN_SWEEPS)
+                                     max(sweep_tolerance, ENERGY_SWEEP_TOLERANCE), ENERGY_MIN_SWEEPS,
+                                     self.first_column)
                 np.clip(temperature, start - MAX_TEMPERATURE_STEP, start + MAX_TEMPERATURE_STEP, out=temperature)
                 change = float(np.abs(temperature - before).max())
             energy.wall_fluxes(temperature, *kernel_args, q1, q2)

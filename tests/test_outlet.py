@@ -1,0 +1,156 @@
+"""The outlet stage (ehl/outlet.py): the thermal film on a patch twice as fine along x over the outlet.
+
+The yardstick is the uniform grid of the patch's spacing, solved by the uniform solver alone: where the patch is,
+the composite must land on it (the spike, the hot spot on its flank, the traction), while 513 x 65 alone is several
+per cent off. The composite surface temperature is checked against Jaeger's closed form for a uniform flux.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+import math
+from pathlib import Path
+from types import SimpleNamespace
+
+from click.testing import CliRunner
+import numpy as np
+import pytest
+
+from facegear_tehl.case import load_case
+from facegear_tehl.cli import tehl
+from facegear_tehl.ehl import solve
+from facegear_tehl.ehl.outlet import GHOST, PatchFilmModel, needs_outlet_patch
+from facegear_tehl.ehl.solve import solve_point
+from facegear_tehl.points import contact_analysis
+from facegear_tehl.solution import Outcome, Status
+
+FACE_GEAR_CASE = Path(__file__).resolve().parents[1] / "cases" / "facegear_110.yaml"
+
+
+def _face_gear(name: str):
+    case = load_case(FACE_GEAR_CASE)
+    return case, next(p for p in contact_analysis(case).points if p.name == name)
+
+
+def _auto(x_hot: int, spike: int, x0: float = -1.0) -> bool:
+    """needs_outlet_patch (auto) for a film whose hottest node is column x_hot and whose pressure peaks at column
+    `spike` on the same row (X from x0 in steps of 0.1)."""
+    nx, ny, nz = 21, 5, 3
+    pressure = np.zeros((ny, nx))
+    pressure[2, spike] = 1.0
+    temperature = np.zeros((nz, ny, nx))
+    temperature[1, 2, x_hot] = 10.0
+    level = SimpleNamespace(x=x0 + 0.1 * np.arange(nx), pressure=pressure)
+    fake = SimpleNamespace(settings=SimpleNamespace(outlet_refinement="auto"),
+                           solver=SimpleNamespace(levels=[level]))
+    return needs_outlet_patch(fake, 0, SimpleNamespace(temperature=temperature))
+
+
+def test_auto_refines_where_the_hot_spot_is_on_the_spike_flank():
+    assert _auto(15, 16) and _auto(14, 16)  # one or two nodes upstream of the spike, downstream of the centre
+    assert not _auto(16, 16)  # the hottest node is the pressure maximum (S1, S5 of the default case)
+    assert not _auto(13, 16)  # three nodes: not on the flank
+    assert not _auto(5, 6)  # upstream of the centre (S3's hot spot)
+    assert not _auto(17, 16)  # downstream of the spike
+
+
+def test_the_composite_surface_is_jaeger_over_the_whole_axis():
+    """A uniform flux q from the domain inlet on: the surface rise is 2 q sqrt(x - x_in)/(sqrt(pi) B) (Jaeger 1942,
+    the integral of q (x - s)^(-1/2)), whether the flux comes from the grid below or from the patch."""
+    case, point = _face_gear("S2")
+    nx_fine, ny, offset, size = 201, 3, 120, 60
+    dx = 2e-6
+    x = (offset + np.arange(size)) * dx
+    model = PatchFilmModel(x, np.linspace(-1e-4, 1e-4, ny), 9, case.lubricant, point, offset,
+                           (np.full((ny, nx_fine), 2e7), np.full((ny, nx_fine), 3e7)))
+    for index, q in ((0, 2e7), (1, 3e7)):
+        speed = float(point.velocity_1[0] if index == 0 else point.velocity_2[0])
+        surface = model._surface(np.full((ny, size), q), index, speed)
+        distance = x - 0.0 if speed > 0 else (nx_fine - 1) * dx - x
+        expected = model.t_inlet + 2.0 * q * np.sqrt(distance) / (math.sqrt(math.pi) * model.effusivity[index])
+        assert np.allclose(surface, expected, rtol=1e-9)
+
+
+def test_the_energy_sweeps_hold_the_inflow_columns():
+    """The columns before `first_column` are the patch's inflow: they keep their temperatures."""
+    case, point = _face_gear("S2")
+    model = PatchFilmModel(np.linspace(0.0, 1e-4, 12), np.linspace(-1e-4, 1e-4, 5), 5, case.lubricant, point, 0,
+                           (np.zeros((5, 30)), np.zeros((5, 30))))
+    pressure = np.full((5, 12), 4e8)
+    pressure[[0, -1]] = 0.0
+    temperature = model.initial_temperature()
+    temperature[:, :, :GHOST] += 7.0
+    state = model.update(pressure, np.full((5, 12), 1e-6), temperature.copy())
+    assert np.array_equal(state.temperature[1:-1, :, :GHOST], temperature[1:-1, :, :GHOST])
+    assert np.abs(state.temperature[1:-1, :, GHOST:] - model.t_inlet).max() > 0.1  # the rest was solved
+
+
+def test_a_bad_outlet_refinement_is_named(tmp_path):
+    text = FACE_GEAR_CASE.read_text().replace("  grid_y: 65\n", "  grid_y: 65\n  outlet_refinement: sometimes\n")
+    path = tmp_path / "case.yaml"
+    path.write_text(text)
+    result = CliRunner().invoke(tehl, ["validate", str(path)])
+    assert result.exit_code == 2
+    assert "solver.outlet_refinement" in result.output and "auto, always, never" in result.output
+
+
+def test_a_stage_that_fails_reports_the_uniform_solution(monkeypatch):
+    """S2 on its quick grid (257 x 17 over the lengthened inlet): an outlet stage whose energy equation returns NaN
+    runs away; the point reports the uniform solution, the same as without the stage, and says why."""
+    case, point = _face_gear("S2")
+    settings = replace(case.solver, grid=129, grid_y=17)
+    plain = solve_point(point, case.lubricant, replace(settings, outlet_refinement="never"))
+    real_update = PatchFilmModel.update
+
+    def poisoned(self, *args, **kwargs):
+        state = real_update(self, *args, **kwargs)
+        return replace(state, temperature=np.full_like(state.temperature, np.nan))
+
+    monkeypatch.setattr(PatchFilmModel, "update", poisoned)
+    failed = solve_point(point, case.lubricant, replace(settings, outlet_refinement="always"))
+    assert failed.outcome == plain.outcome == Outcome.CONVERGED
+    for name in ("h_c", "h_min", "p_max", "dT_max", "mu"):
+        assert failed.scalars[name] == plain.scalars[name], name
+    assert "outlet_patch_start" not in failed.scalars
+    assert "outlet refinement dropped" in failed.models["solver"]
+
+
+def test_a_stage_that_converges_is_reported_with_its_patch(monkeypatch):
+    """The same point with the stage: its composite figures and the note on the patch."""
+    case, point = _face_gear("S2")
+    settings = replace(case.solver, grid=129, grid_y=17, outlet_refinement="always")
+    refined = solve_point(point, case.lubricant, settings)
+    assert refined.outcome == Outcome.CONVERGED
+    assert refined.scalars["outlet_patch_start"][0] == pytest.approx(-0.5 * refined.scalars["b"][0], rel=0.05)
+    assert "outlet refined" in refined.models["solver"]
+    monkeypatch.setattr(solve, "refine_outlet", lambda *args: (None, Status(Outcome.NOT_CONVERGED, "stub")))
+    assert "outlet_patch_start" not in solve_point(point, case.lubricant, settings).scalars
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["S2", "S4"])
+def test_the_outlet_patch_lands_on_the_uniform_grid_of_its_spacing(name):
+    """S2 and S4 of the default case (thermal full, Ree-Eyring; hot spot on the spike's flank), 513 x 65 with the
+    outlet patch against the uniform 1025 x 65 grid. Measured: dT_max 58.81 / 34.53 K against 58.85 / 34.58 K (513 x
+    65 alone: 56.27 / 31.72), mu +0.11 / +0.14 % (513 x 65: +0.62 / +1.0 %), p_max within 0.03 %."""
+    case, point = _face_gear(name)
+    default = solve_point(point, case.lubricant, case.solver)
+    uniform = solve_point(point, case.lubricant, replace(case.solver, outlet_refinement="never"))
+    fine = solve_point(point, case.lubricant, replace(case.solver, grid=2 * case.solver.grid - 1,
+                                                      outlet_refinement="never"))
+    assert "outlet_patch_start" in default.scalars and "outlet_patch_start" not in uniform.scalars
+    assert default.scalars["grid"][0] == uniform.scalars["grid"][0] == (fine.scalars["grid"][0] + 1) / 2
+
+    def gap(solution, name):
+        return solution.scalars[name][0] / fine.scalars[name][0] - 1.0
+
+    assert abs(gap(default, "dT_max")) < 0.003 < 0.03 < abs(gap(uniform, "dT_max"))
+    assert abs(gap(default, "mu")) < 0.003 < 0.005 < abs(gap(uniform, "mu"))
+    assert abs(gap(default, "p_max")) < 0.001 < 0.01 < abs(gap(uniform, "p_max"))
+    # h_c is set in the inlet, which the patch does not refine: it stays the uniform grid's within its estimate
+    assert abs(default.scalars["h_c"][0] / uniform.scalars["h_c"][0] - 1.0) < abs(
+        uniform.scalars["error_estimate_h_c"][0])
+    # the error estimates of dT_max and mu are the patch's change, first order: they bracket the gap to 1025 x 65
+    for quantity in ("dT_max", "mu"):
+        assert abs(default.scalars[f"error_estimate_{quantity}"][0]) > abs(gap(uniform, quantity)) * 0.9
+    assert np.all(default.fields["film_thickness"].values > 0.0)
