@@ -72,17 +72,21 @@ class PatchedSolver(MultigridSolver):
     grid: the patch is the last level (`levels[-1]`)."""
 
     def __init__(self, problem: Problem, shapes: list[tuple[int, int]], span: tuple[float, float],
-                 relaxation: Relaxation = Relaxation()):
-        """`shapes`: (nx, ny) of the uniform levels, coarsest first (grid.hierarchy_shapes)."""
+                 relaxation: Relaxation = Relaxation(), coarse_cycles: int = COARSE_CYCLES):
+        """`shapes`: (nx, ny) of the uniform levels, coarsest first (grid.hierarchy_shapes); `coarse_cycles`: V-cycles
+        of the uniform hierarchy per coarse-grid correction of the patch."""
         super().__init__(problem, shapes, relaxation)
+        self.patch_coarse_cycles = coarse_cycles
         self._add_patch(span)
 
     @classmethod
-    def over(cls, solver: MultigridSolver, span: tuple[float, float]) -> PatchedSolver:
+    def over(cls, solver: MultigridSolver, span: tuple[float, float],
+             coarse_cycles: int = COARSE_CYCLES) -> PatchedSolver:
         """A patch over `span` on top of a solved uniform hierarchy: its levels (the same objects, which the
         composite cycles go on changing), H_0 and work count are taken over."""
         patched = cls.__new__(cls)
         patched.__dict__.update(solver.__dict__)
+        patched.patch_coarse_cycles = coarse_cycles
         patched.levels, patched.transfers = list(solver.levels), list(solver.transfers)
         patched._add_patch(span)
         patched.finest_nodes = solver.finest_nodes  # work units stay in sweeps of the uniform grid solved before
@@ -180,8 +184,8 @@ class PatchedSolver(MultigridSolver):
         return self.composite_integral() + level.force_rhs
 
     def coarse_cycles(self, index: int) -> int:
-        """COARSE_CYCLES under the patch, one elsewhere."""
-        return COARSE_CYCLES if self._is_patch(index) else 1
+        """`patch_coarse_cycles` (default COARSE_CYCLES) under the patch, one elsewhere."""
+        return self.patch_coarse_cycles if self._is_patch(index) else 1
 
     def coarsen(self, index: int) -> None:
         """From the patch to the grid below: FAS right-hand sides at the patch's interior coarse columns, the
