@@ -178,7 +178,7 @@ class FilmThermalModel:
         warm = self._stress is not None
         stress_1 = self._stress.copy() if warm else np.zeros((2,) + p.shape)
         stress_2 = np.empty((2,) + p.shape)
-        thinning = np.empty(shape)
+        thinning = np.empty(shape if self.solve_energy else (0, 0, 0))  # only the energy equation uses it
         p_layers = np.ascontiguousarray(np.broadcast_to(p, shape))
         conductivity = lub.conductivity_at(p)  # (ny, nx): one k per column (p is constant across the film)
         change = 0.0
