@@ -6,7 +6,8 @@
    film state (viscosity, Ree-Eyring shear state, rheology and the glue of an update), the energy equation
    (column sweeps, wall heat fluxes, Jaeger's surfaces), the flow coefficients of the generalised Reynolds
    equation (every relaxation sweep recomputes them), the rest of the V-cycles and the rest of the outer loop
-   (acceleration, freezing the state); with the outer iterations and V-cycles of each stage.
+   (acceleration, freezing the state); with the outer iterations and V-cycles of each stage. --thermal off profiles
+   the isothermal solve (with the case's Ree-Eyring lubricant: its outer loop of eta*/eta on the finest grid).
 2. With --before DIR (a source tree of another version, e.g. `git worktree add DIR 546879e`): the same profile of
    DIR, then timings interleaved (before, after, before, ...; medians of --repeat): the point's thermal full and
    isothermal Newtonian solves (CPU time of the solve in a warm process, and their ratio), `tehl run CASE
@@ -14,7 +15,7 @@
    workers), and with --cycle the 41-point thermal cycle (`gear.points: 41`, --jobs 2; one run each). On a machine
    shared with other work the wall times inflate with the load, the CPU times much less.
 
-    python scripts/bench_coupling.py [CASE] [--point S1] [--before DIR] [--repeat 3] [--cycle]
+    python scripts/bench_coupling.py [CASE] [--point S1] [--thermal full] [--before DIR] [--repeat 3] [--cycle]
 """
 
 from __future__ import annotations
@@ -59,8 +60,9 @@ for name in ("fixed_parts", "sweep_columns", "wall_fluxes"):
     if hasattr(energy, name):  # fixed_parts: a kernel of its own since addacab
         timed(energy, name, "energy")
 timed(jaeger, "surface_temperature_rise", "energy")
-for name in ("layered_coefficients", "temperature_factors"):
-    timed(flow, name, "flow")
+for name in ("layered_coefficients", "temperature_factors", "isothermal_layered_coefficients", "column_integrals"):
+    if hasattr(flow, name):  # the isothermal film's column form: a kernel of its own since this script's --thermal
+        timed(flow, name, "flow")
 timed(thermal.FilmThermalModel, "update", "update")
 cycle = solve.PointSolve.cycle
 def counted_cycle(self, *args, **kwargs):
@@ -84,7 +86,7 @@ def staged_couple(self, index, *args, **kwargs):
         counts[stage[0], "outer"] += self.history.outer - before
         stage[0] = "start"
 solve.PointSolve.couple = staged_couple
-settings = dataclasses.replace(case.solver, thermal="full")
+settings = dataclasses.replace(case.solver, thermal=sys.argv[3])
 with threadpool_limits(limits=1):
     solve.solve_point(point, case.lubricant, dataclasses.replace(settings, grid=33, grid_y=None))  # load kernels
     times.clear(), counts.clear()
@@ -129,16 +131,17 @@ def _run(tree: Path, args: list[str]) -> subprocess.CompletedProcess:
     return done
 
 
-def profile(tree: Path, case: Path, point: str) -> dict:
-    """The profile of `tree` (PROFILE's JSON)."""
-    return json.loads(_run(tree, ["-c", PROFILE, str(case), point]).stdout.splitlines()[-1])
+def profile(tree: Path, case: Path, point: str, thermal: str) -> dict:
+    """The profile of `tree` (PROFILE's JSON) under the thermal model `thermal`."""
+    return json.loads(_run(tree, ["-c", PROFILE, str(case), point, thermal]).stdout.splitlines()[-1])
 
 
 def print_profile(label: str, data: dict) -> None:
     """The profile as a markdown table, one row per stage, CPU seconds."""
     times = collections.defaultdict(float, {(s, k): v for s, k, v in data["times"]})
     counts = collections.defaultdict(int, {(s, k): v for s, k, v in data["counts"]})
-    stages = sorted({s for s, _, _ in data["times"]}, key=lambda s: ("start", "coarse", "finest").index(s.split()[0]))
+    stages = sorted({"start"} | {s for s, _, _ in data["times"]},
+                    key=lambda s: ("start", "coarse", "finest").index(s.split()[0]))
     print(f"\n{label}: {data['total']:.2f} s CPU{'' if data['converged'] else ' (not converged)'}\n")
     print("| stage | outer iterations | V-cycles | film state s | energy equation s | flow coefficients s "
           "| rest of V-cycles s | rest of outer loop s | total s | per outer iteration s |")
@@ -224,6 +227,8 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("case", nargs="?", default="cases/facegear_110.yaml")
     parser.add_argument("--point", default="S1", help="the meshing point profiled and timed")
+    parser.add_argument("--thermal", default="full", choices=("full", "reduced", "off"),
+                        help="thermal model of the profile (the timings: thermal full)")
     parser.add_argument("--before", type=Path, help="source tree of the version to compare with")
     parser.add_argument("--repeat", type=int, default=3, help="interleaved runs per timing (medians)")
     parser.add_argument("--cycle", action="store_true", help="also time the 41-point thermal cycle (minutes)")
@@ -231,7 +236,8 @@ def main() -> None:
     case = Path(args.case).resolve()
     trees = {"before": args.before.resolve(), "after": HERE} if args.before else {"this tree": HERE}
     for label, tree in trees.items():
-        print_profile(f"{label} ({tree}), {args.point} thermal full", profile(tree, case, args.point))
+        print_profile(f"{label} ({tree}), {args.point} thermal {args.thermal}",
+                      profile(tree, case, args.point, args.thermal))
     if args.before:
         timings(trees, case, args.point, args.repeat, args.cycle)
 

@@ -55,3 +55,32 @@ def test_anderson_restarts_when_the_step_grows_and_takes_the_plain_step_on_non_f
     anderson.step(np.full(2, 3.0), np.array([1.0, 0.5]))
     # a non-finite step: no least squares on it, the plain (non-finite) step shows the runaway
     assert not np.isfinite(anderson.step(np.full(2, 4.0), np.array([np.inf, 0.0]))).all()
+
+
+def test_anderson_keeps_the_normal_equations_of_its_history_as_formed_anew():
+    # The weighted columns and their inner products are kept between steps while the weight stays; each step must
+    # equal the normal equations formed from the whole history at once (Walker & Ni 2011, eq. 1.3), also when the
+    # weight changes (the thermal loop's 1/rise).
+    def reference(xs, fs, x, f, weight, depth):
+        dx = [b - a for a, b in zip(xs, xs[1:] + [x])][-depth:]
+        df = [b - a for a, b in zip(fs, fs[1:] + [f])][-depth:]
+        weighted = [column * weight for column in df]
+        gram = np.array([[float(np.vdot(a, b)) for b in weighted] for a in weighted])
+        rhs = np.array([float(np.vdot(column, f * weight)) for column in weighted])
+        gamma = np.linalg.lstsq(gram, rhs, rcond=1e-10)[0]
+        result = x + f
+        for g, a, b in zip(gamma, dx, df):
+            result -= g * (a + b)
+        return result
+
+    a, b = _linear_map(40, 0.9, seed=7)
+    rng = np.random.default_rng(8)
+    weights = [np.ones(40), np.ones(40), rng.uniform(0.5, 2.0, 40)]
+    x, anderson, xs, fs = np.zeros(40), Anderson(3), [], []
+    for k in range(10):
+        weight = weights[min(k // 4, 2)]
+        f = 0.5 * (a @ x + b - x)
+        expected = x + f if not xs else reference(xs, fs, x, f, weight, 3)
+        got = anderson.step(x, f, weight)
+        assert np.allclose(got, expected, rtol=1e-12, atol=1e-14)
+        xs, fs, x = xs + [x], fs + [f], got

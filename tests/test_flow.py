@@ -3,7 +3,14 @@
 import numpy as np
 import pytest
 
-from facegear_tehl.ehl.flow import isothermal_coefficients, layer_integrals, layered_coefficients, temperature_factors
+from facegear_tehl.ehl.flow import (
+    column_integrals,
+    isothermal_coefficients,
+    isothermal_layered_coefficients,
+    layer_integrals,
+    layered_coefficients,
+    temperature_factors,
+)
 from facegear_tehl.lubricant import Lubricant
 
 
@@ -48,5 +55,66 @@ def test_layered_isothermal_newtonian_equals_isothermal():
     u2 = np.array([2 * cx - u1[0], 2 * sin_psi - u1[1]])
     layered_coefficients(p, film, temperature, temperature_factors(temperature, law), np.ones_like(temperature), law,
                          0.7, kappa, 1.0, 1.0, u1, u2, *b)
+    for x, y in zip(a, b):
+        assert np.allclose(x, y, rtol=1e-12, atol=0)
+
+
+def _lubricant_law():
+    lub = Lubricant(viscosity=0.03, inlet_temperature=313.15, pressure_viscosity=1.5e-8, density=880.0,
+                    temperature_viscosity=0.04, thermal_expansion=7e-4)
+    return lub.law_parameters()
+
+
+def test_column_shapes_closed_form():
+    # Fluidity eta/eta* = 1 + 3 zeta across the film (quadratic integrands: the fourth-order rules are exact):
+    # a0 = 5/2, a1 = 3/2, b1 = \int (zeta^2/2 + zeta^3) = 5/12, b2 = \int (zeta + 3 zeta^2/2) = 1, so the shapes are
+    # a1 b2/a0 - b1 = 11/60 and b2/a0 = 2/5; a Newtonian column (eta* = eta) gives 1/12 and 1/2.
+    zeta = np.linspace(0.0, 1.0, 9)
+    factor = np.empty((9, 2, 3))
+    factor[:, 0, :] = (1.0 / (1.0 + 3.0 * zeta))[:, None]
+    factor[:, 1, :] = 1.0
+    shapes = column_integrals(factor)
+    assert np.allclose(shapes[:, 0, :], np.array([11.0 / 60.0, 0.4])[:, None], rtol=1e-14, atol=0)
+    assert np.allclose(shapes[:, 1, :], np.array([1.0 / 12.0, 0.5])[:, None], rtol=1e-14, atol=0)
+
+
+def test_isothermal_layered_equals_layered():
+    # One temperature per column (varying over the grid) and an Eyring profile eta*/eta varying across the film: the
+    # column form equals the layer-by-layer integrals of the same film to rounding.
+    law = _lubricant_law()
+    rng = np.random.default_rng(2)
+    shape = (9, 6, 7)
+    p = rng.uniform(0, 1.5e9, shape[1:])
+    film = rng.uniform(0.1, 2.0, shape[1:])
+    column_t = rng.uniform(313.15, 360.0, shape[1:])
+    temperature = np.ascontiguousarray(np.broadcast_to(column_t, shape))
+    factor = np.exp(-rng.uniform(0.0, 6.0, shape))
+    u1, u2, kappa = np.array([1.3, 0.01]), np.array([0.7, 0.03]), 0.05
+    a = [np.empty(shape[1:]) for _ in range(3)]
+    b = [np.empty(shape[1:]) for _ in range(3)]
+    factors = temperature_factors(temperature, law)
+    layered_coefficients(p, film, temperature, factors, factor, law, 0.7, kappa, 1.0, -1.0, u1, u2, *a)
+    isothermal_layered_coefficients(p, film, column_t, factors[0], column_integrals(factor), law, 0.7, kappa, 1.0, -1.0,
+                                    u1, u2, *b)
+    for x, y in zip(a, b):
+        assert np.allclose(x, y, rtol=1e-12, atol=0)
+
+
+def test_isothermal_newtonian_column_is_closed_form():
+    # eta* = eta: eps = rho H^3/(eta lambda) and f = s rho c, the closed-form Newtonian film (isothermal_coefficients).
+    law = _lubricant_law()
+    rng = np.random.default_rng(3)
+    p = rng.uniform(0, 1.5e9, (6, 7))
+    film = rng.uniform(0.1, 2.0, (6, 7))
+    cx, cy, kappa = 0.9, 0.02, 0.05
+    sin_psi = cy / kappa
+    u1 = np.array([1.3 * cx, 0.6 * sin_psi])
+    u2 = np.array([2 * cx - u1[0], 2 * sin_psi - u1[1]])
+    a = [np.empty((6, 7)) for _ in range(3)]
+    b = [np.empty((6, 7)) for _ in range(3)]
+    isothermal_coefficients(p, film, law, 313.15, 0.7, cx, cy, *a)
+    temperature = np.full((6, 7), 313.15)
+    isothermal_layered_coefficients(p, film, temperature, temperature_factors(temperature, law),
+                                    column_integrals(np.ones((5, 6, 7))), law, 0.7, kappa, 1.0, 1.0, u1, u2, *b)
     for x, y in zip(a, b):
         assert np.allclose(x, y, rtol=1e-12, atol=0)

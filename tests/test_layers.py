@@ -70,3 +70,29 @@ def test_layer_integrals_of_an_exponential_viscosity_converge_at_fourth_order(a)
                           abs(r2 / r2_exact - 1)))
     assert errors[0] < 5e-4
     assert math.log2(errors[1] / errors[2]) > 3.5
+
+
+def test_eyring_couette_column_and_the_outputs_only_the_energy_equation_uses():
+    # Plane Couette flow of a Ree-Eyring oil (no pressure gradient): tau = tau_0 asinh(eta u_s/(h tau_0)) in every
+    # layer (Johnson & Tevaarwerk 1977), eta*/eta = r/sinh r, the thinning tanh(r)/r at r = tau/tau_0 and the velocity
+    # linear across the film. Without thinning and velocity arrays (a film without the energy equation) every other
+    # output is the same.
+    nz, h, eta0, tau0, speed = 9, 1e-6, 0.5, 1e7, 2.0
+    shape = (nz, 1, 1)
+    zero, film, eta = np.zeros((1, 1)), np.full((1, 1), h), np.full(shape, eta0)
+    outputs = []
+    for layers in (shape, (0, 0, 0)):
+        factor, dissipation, u, v, thinning = (np.empty(s) for s in (shape, shape, layers, layers, layers))
+        stress_1, stress_2 = np.zeros((2, 1, 1)), np.zeros((2, 1, 1))
+        rheology.shear_state(zero, film, zero, zero, eta, np.zeros(2), np.array([speed, 0.0]), tau0, False, factor,
+                             dissipation, u, v, stress_1, stress_2, thinning)
+        outputs.append((factor, dissipation, stress_1, stress_2, u, thinning))
+    r = math.asinh(eta0 * speed / (h * tau0))
+    factor, dissipation, stress_1, _, u, thinning = outputs[0]
+    assert stress_1[0, 0, 0] == pytest.approx(tau0 * r, rel=1e-9)
+    assert np.allclose(factor, r / math.sinh(r), rtol=1e-9, atol=0)
+    assert np.allclose(thinning, math.tanh(r) / r, rtol=1e-9, atol=0)
+    assert np.allclose(u[:, 0, 0], speed * np.linspace(0.0, 1.0, nz), rtol=1e-9, atol=1e-12)
+    assert np.allclose(dissipation, tau0 * r * speed / h, rtol=1e-9, atol=0)
+    for with_all, without in zip(outputs[0][:4], outputs[1][:4]):
+        assert np.array_equal(with_all, without)

@@ -125,3 +125,25 @@ def test_the_same_sweeps_without_coarse_grid_correction_are_much_slower(n, v_cyc
     assert math.prod(alone) > 5.0 * math.prod(measured)
     # the load balance is relaxed on the coarsest grid only: alone, its error stays (measured 0.85-1.1 of the start)
     assert load_error(solver) > 0.5 * start_load
+
+
+def test_a_film_state_with_one_temperature_per_column_takes_the_column_form():
+    # The frozen isothermal Ree-Eyring state (every layer at one temperature) gives each grid the flow coefficients of
+    # the layer-by-layer integrals of the same state (to rounding); a state whose layers differ keeps the layered form.
+    solver = full_multigrid_start(33)
+    top = len(solver.levels) - 1
+    level = solver.levels[top]
+    nz = 9
+    rng = np.random.default_rng(4)
+    factor = np.exp(-rng.uniform(0.0, 4.0, (nz, level.ny, level.nx)))
+    temperature = np.full(factor.shape, solver.problem.inlet_temperature)
+    solver.set_film_state(top, temperature, factor)
+    assert all(lv.column_shapes is not None for lv in solver.levels)
+    column = [a.copy() for a in (level.eps, level.flux_x, level.flux_y)]
+    level.column_shapes = None
+    solver.update_film(level)
+    for a, b in zip(column, (level.eps, level.flux_x, level.flux_y)):
+        assert np.allclose(a, b, rtol=1e-12, atol=1e-300)
+    temperature[nz // 2] += 5.0
+    solver.set_film_state(top, temperature, factor)
+    assert all(lv.column_shapes is None for lv in solver.levels)

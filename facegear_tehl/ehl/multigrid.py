@@ -109,6 +109,9 @@ class Level:
     temperature: np.ndarray | None = None
     viscosity_factor: np.ndarray | None = None
     temperature_factor: np.ndarray | None = None  # flow.temperature_factors of `temperature`, set with it
+    # A state whose layers share one temperature per column (an isothermal Ree-Eyring film): flow.column_integrals of
+    # its viscosity_factor, (2, ny, nx); None: the layered coefficients
+    column_shapes: np.ndarray | None = None
 
     @property
     def nx(self) -> int:
@@ -220,10 +223,14 @@ class MultigridSolver:
         """Freeze the across-film state (nz, ny, nx) of level `index` on it and, injected, on every coarser
         grid, and recompute the film and flow coefficients of level `index`; None: the isothermal Newtonian
         film at the inlet temperature. The temperature factor is evaluated node by node on level `index` once and
-        injected like the state (the same numbers as evaluating it on each grid)."""
+        injected like the state (the same numbers as evaluating it on each grid). A state with one temperature per
+        column (every layer at the first layer's: an isothermal Ree-Eyring film) carries its columns' Eyring shapes
+        (flow.column_integrals) on each grid instead, for flow.isothermal_layered_coefficients."""
         top = self.levels[index]
         factor = None if temperature is None else flow.temperature_factors(temperature, self.problem.law)
+        isothermal = temperature is not None and bool((temperature == temperature[0]).all())
         for level in self.levels[:index + 1]:
+            level.column_shapes = None
             if temperature is None:
                 level.temperature = level.viscosity_factor = level.temperature_factor = None
                 continue
@@ -231,6 +238,8 @@ class MultigridSolver:
             level.temperature = np.ascontiguousarray(temperature[:, ::sy, ::sx])
             level.viscosity_factor = np.ascontiguousarray(viscosity_factor[:, ::sy, ::sx])
             level.temperature_factor = np.ascontiguousarray(factor[:, ::sy, ::sx])
+            if isothermal:
+                level.column_shapes = flow.column_integrals(level.viscosity_factor)
         self.update_film(top)
 
     def prolong_layers(self, index: int, layers: np.ndarray) -> np.ndarray:
@@ -262,6 +271,11 @@ class MultigridSolver:
         if level.temperature is None:
             flow.isothermal_coefficients(p_pa, level.film, pb.law, pb.inlet_temperature, pb.lam, pb.wedge_x,
                                          pb.wedge_y, level.eps, level.flux_x, level.flux_y)
+        elif level.column_shapes is not None:
+            flow.isothermal_layered_coefficients(p_pa, level.film, level.temperature[0], level.temperature_factor[0],
+                                                 level.column_shapes, pb.law, pb.lam, 1.0 / pb.ellipticity,
+                                                 float(np.sign(pb.wedge_x)), float(np.sign(pb.wedge_y)),
+                                                 pb.velocity_1, pb.velocity_2, level.eps, level.flux_x, level.flux_y)
         else:
             flow.layered_coefficients(p_pa, level.film, level.temperature, level.temperature_factor,
                                       level.viscosity_factor, pb.law, pb.lam,

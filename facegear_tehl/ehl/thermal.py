@@ -106,13 +106,13 @@ class FilmState:
     temperature: np.ndarray  # K
     viscosity_factor: np.ndarray  # eta*/eta
     dissipation: np.ndarray  # W/m^3
-    velocity_x: np.ndarray  # m/s
-    velocity_y: np.ndarray  # m/s
+    velocity_x: np.ndarray | None  # m/s (None without the energy equation, the only user of the velocities)
+    velocity_y: np.ndarray | None  # m/s
     stress_1: np.ndarray  # (2, ny, nx) shear stress at surface 1, Pa
     stress_2: np.ndarray  # (2, ny, nx) at surface 2, Pa
     heat_flux_1: np.ndarray  # (ny, nx) into solid 1, W/m^2
     heat_flux_2: np.ndarray  # (ny, nx) into solid 2, W/m^2
-    compression: np.ndarray  # beta_T T (u . grad p), W/m^3
+    compression: np.ndarray | None  # beta_T T (u . grad p), W/m^3 (None without the energy equation)
     change: float  # largest temperature change of this update, K
     heat_capacity: np.ndarray | None = None  # rho c per layer node as the energy equation used it, J/(m^3 K)
     # (None without the energy equation)
@@ -175,13 +175,14 @@ class FilmThermalModel:
         shape = temperature.shape
         viscosity_factor = np.empty(shape)
         dissipation = np.empty(shape)
-        velocity_x = np.empty(shape)
-        velocity_y = np.empty(shape)
+        # velocities and thinning factor only for the energy equation (rheology.shear_state: empty, not evaluated)
+        layers = shape if self.solve_energy else (0, 0, 0)
+        velocity_x = np.empty(layers)
+        velocity_y = np.empty(layers)
         warm = self._stress is not None
         stress_1 = self._stress.copy() if warm else np.zeros((2,) + p.shape)
         stress_2 = np.empty((2,) + p.shape)
-        thinning = np.empty(shape)
-        p_layers = np.ascontiguousarray(np.broadcast_to(p, shape))
+        thinning = np.empty(layers)
         conductivity = lub.conductivity_at(p)  # (ny, nx): one k per column (p is constant across the film)
         change = 0.0
         q1 = q2 = None
@@ -195,9 +196,11 @@ class FilmThermalModel:
         rheology.shear_state(p, film, np.ascontiguousarray(grad_x), np.ascontiguousarray(grad_y), eta,
                              self.velocity_1, self.velocity_2, self.tau0, warm, viscosity_factor, dissipation,
                              velocity_x, velocity_y, stress_1, stress_2, thinning)
-        expansivity = lub.thermal_expansion / (1.0 - lub.thermal_expansion * (temperature - self.t_inlet))
-        compression_coefficient = expansivity * (velocity_x * grad_x + velocity_y * grad_y)
+        compression = None
         if self.solve_energy:
+            expansivity = lub.thermal_expansion / (1.0 - lub.thermal_expansion * (temperature - self.t_inlet))
+            compression_coefficient = expansivity * (velocity_x * grad_x + velocity_y * grad_y)
+            p_layers = np.ascontiguousarray(np.broadcast_to(p, shape))
             rho_c = lub.density * density_ratio(p_layers, temperature, self.law).reshape(shape) * lub.specific_heat
             sensitivity = dissipation * beta * thinning  # -d(dissipation)/dT at fixed shear rate
             fluxes = energy.transport_fluxes(velocity_x, velocity_y, rho_c, film, self.dx, self.dy)[:3]
@@ -219,6 +222,7 @@ class FilmThermalModel:
                 np.clip(temperature, start - MAX_TEMPERATURE_STEP, start + MAX_TEMPERATURE_STEP, out=temperature)
                 change = float(np.abs(temperature - before).max())
             energy.wall_fluxes(temperature, *kernel_args, q1, q2)
+            compression = compression_coefficient * temperature
         self._stress = stress_1
         if q1 is None:  # no energy equation: the flux of the temperatures as they are
             q1, q2 = energy.wall_heat_flux(temperature, film, conductivity)
@@ -226,13 +230,13 @@ class FilmThermalModel:
             temperature=temperature,
             viscosity_factor=viscosity_factor,
             dissipation=dissipation,
-            velocity_x=velocity_x,
-            velocity_y=velocity_y,
+            velocity_x=velocity_x if self.solve_energy else None,
+            velocity_y=velocity_y if self.solve_energy else None,
             stress_1=stress_1,
             stress_2=stress_2,
             heat_flux_1=q1,
             heat_flux_2=q2,
-            compression=compression_coefficient * temperature,
+            compression=compression,
             change=change,
             heat_capacity=rho_c,
         )
