@@ -31,6 +31,8 @@ from facegear_tehl.solution import CONVERGED, Outcome, Status
 if TYPE_CHECKING:
     from facegear_tehl.ehl.solve import PointSolve
 
+STATE_FIELDS = ("temperature", "viscosity_factor", "dissipation", "velocity_x", "velocity_y", "stress_1", "stress_2",
+                "heat_flux_1", "heat_flux_2", "compression", "heat_capacity")  # FilmState's arrays over (.., ny, nx)
 GHOST = 2  # upstream columns of the patch's energy equation held at the grid below's temperatures (MUSCL: two)
 # X_a / b: the patch starts on the outlet side of the centre. From -0.5 b the isothermal composite put the spike on the
 # node of the uniform grid of its spacing at S1-S5 of the default face gear case and left h_c at the value of the grid
@@ -88,12 +90,8 @@ class OutletStage:
 
 
 def patch_state_columns(state: FilmState, columns: slice) -> FilmState:
-    """A film state cut to `columns` along x (every field's last axis)."""
-    cut = {name: getattr(state, name)[..., columns] for name in (
-        "temperature", "viscosity_factor", "dissipation", "velocity_x", "velocity_y", "stress_1", "stress_2",
-        "heat_flux_1", "heat_flux_2", "compression")}
-    if state.heat_capacity is not None:
-        cut["heat_capacity"] = state.heat_capacity[..., columns]
+    """A film state cut to `columns` along x (every field's last axis; fields that are None stay None)."""
+    cut = {name: getattr(state, name)[..., columns] for name in STATE_FIELDS if getattr(state, name) is not None}
     return replace(state, **cut)
 
 
@@ -221,8 +219,7 @@ def composite(solve: PointSolve, stage: OutletStage, below_state: FilmState) -> 
     pressure, film = below.pressure.copy(), below.film.copy()
     pressure[:, inside], film[:, inside] = patch.pressure[:, ::2], patch.film[:, ::2]
     injected = {}
-    for name in ("temperature", "viscosity_factor", "dissipation", "velocity_x", "velocity_y", "stress_1",
-                 "stress_2", "heat_flux_1", "heat_flux_2", "compression", "heat_capacity"):
+    for name in STATE_FIELDS:
         value = getattr(below_state, name)
         if value is not None:
             value = value.copy()
