@@ -32,7 +32,8 @@ class SolverSettings:
     thermal_tolerance: float = 1e-3  # largest temperature change per outer iteration, relative to the rise
     grid_y: int | None = None  # nodes along y (the major axis) on the finest grid, 2^n + 1; None: as `grid`
     # thermal full: the outlet solved again on a patch twice as fine along x (ehl/outlet.py), one of
-    # OUTLET_REFINEMENTS; auto: where the hottest film node lies on the outlet spike's rising flank
+    # OUTLET_REFINEMENTS; auto: where the hottest film node lies on the outlet spike's rising flank and the grid's
+    # estimate of dT_max or mu misses 2 % or 1 %
     outlet_refinement: str = "auto"
 
     @property

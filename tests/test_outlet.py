@@ -32,18 +32,22 @@ def _face_gear(name: str):
     return case, next(p for p in contact_analysis(case).points if p.name == name)
 
 
-def _auto(x_hot: int, spike: int, x0: float = -1.0) -> bool:
-    """needs_outlet_patch (auto) for a film whose hottest node is column x_hot and whose pressure peaks at column
-    `spike` on the same row (X from x0 in steps of 0.1)."""
+def _auto(x_hot: int, spike: int, x0: float = -1.0, coarse_rise: float | None = None) -> bool:
+    """needs_outlet_patch (auto) for a film whose hottest node (10 K above the inlet) is column x_hot and whose
+    pressure peaks at column `spike` on the same row (X from x0 in steps of 0.1); `coarse_rise`: ΔT_max of the coarse
+    thermal stage (None: no coarse stage), its μ the fine film's (zero traction: μ = 0)."""
     nx, ny, nz = 21, 5, 3
     pressure = np.zeros((ny, nx))
     pressure[2, spike] = 1.0
-    temperature = np.zeros((nz, ny, nx))
-    temperature[1, 2, x_hot] = 10.0
-    level = SimpleNamespace(x=x0 + 0.1 * np.arange(nx), pressure=pressure)
-    fake = SimpleNamespace(settings=SimpleNamespace(outlet_refinement="auto"),
-                           solver=SimpleNamespace(levels=[level]))
-    return needs_outlet_patch(fake, 0, SimpleNamespace(temperature=temperature))
+    temperature = np.full((nz, ny, nx), 300.0)
+    temperature[1, 2, x_hot] = 310.0
+    stress = np.zeros((2, ny, nx))
+    level = SimpleNamespace(x=x0 + 0.1 * np.arange(nx), pressure=pressure, hx=0.1, hy=0.1)
+    summaries = [] if coarse_rise is None else [SimpleNamespace(dT_max=coarse_rise, mu=0.0), None]
+    fake = SimpleNamespace(settings=SimpleNamespace(outlet_refinement="auto"), solver=SimpleNamespace(levels=[level]),
+                           summaries=summaries, lubricant=SimpleNamespace(inlet_temperature=300.0),
+                           scaling=SimpleNamespace(a=1e-3, b=1e-4), point=SimpleNamespace(load=1e3))
+    return needs_outlet_patch(fake, 0, SimpleNamespace(temperature=temperature, stress_1=stress, stress_2=stress))
 
 
 def test_auto_refines_where_the_hot_spot_is_on_the_spike_flank():
@@ -52,6 +56,12 @@ def test_auto_refines_where_the_hot_spot_is_on_the_spike_flank():
     assert not _auto(13, 16)  # three nodes: not on the flank
     assert not _auto(5, 6)  # upstream of the centre (S3's hot spot)
     assert not _auto(17, 16)  # downstream of the spike
+
+
+def test_auto_refines_only_where_the_estimates_miss_their_targets():
+    """ΔT_max 10 K against the coarse stage's 9.7 K: a first-order estimate of 3 % (> 2 %); against 9.9 K, 1 %."""
+    assert _auto(15, 16, coarse_rise=9.7)
+    assert not _auto(15, 16, coarse_rise=9.9)
 
 
 def test_the_composite_surface_is_jaeger_over_the_whole_axis():
