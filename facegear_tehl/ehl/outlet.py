@@ -55,11 +55,7 @@ AUTO_MU_ERROR = 0.01
 # limit cycle aside) with dT_max within 0.15 % and p_max within 0.12 % of three, at half the cost (S2 4.7 against
 # 9.2 s, S4 6.2 against 11.6 s CPU); one ran away for a third of the isothermal patch starts from an interpolated
 # coarse solution (patch.COARSE_CYCLES), so a stage that runs away or stalls with one is solved again with three.
-# The attempt with one cycle gets at most FIRST_ATTEMPT_ITERATIONS outer iterations: S1-S5 converged in 8-13, while on
-# the 41-point cycle its composite pressure flickered more than with three and some points' loops dragged on (P25: not
-# converged after 40, 20 with three; P18: 39).
 STAGE_COARSE_CYCLES = (1, COARSE_CYCLES)
-FIRST_ATTEMPT_ITERATIONS = 15
 
 
 def along_x(values: np.ndarray) -> np.ndarray:
@@ -129,11 +125,10 @@ def needs_outlet_patch(solve: PointSolve, index: int, state: FilmState) -> bool:
             or (mu != 0.0 and abs(richardson_error(mu, coarse.mu, ORDER_MU)) > AUTO_MU_ERROR))
 
 
-def refine_outlet(solve: PointSolve, index: int, state: FilmState, coarse_cycles: int = COARSE_CYCLES,
-                  max_iterations: int | None = None) -> tuple[OutletStage | None, Status]:
+def refine_outlet(solve: PointSolve, index: int, state: FilmState,
+                  coarse_cycles: int = COARSE_CYCLES) -> tuple[OutletStage | None, Status]:
     """The outlet stage on top of level `index` (the finest uniform grid, its coupled loop converged with `state`),
-    `coarse_cycles` V-cycles of the uniform hierarchy per coarse-grid correction of the patch, at most
-    `max_iterations` outer iterations (default: the settings' max_thermal_iterations).
+    `coarse_cycles` V-cycles of the uniform hierarchy per coarse-grid correction of the patch.
     On success `solve.solver` is the patched solver; if the stage runs away or does not converge, the uniform
     solution is restored and None returned with the status."""
     from facegear_tehl.ehl.solve import (
@@ -172,7 +167,7 @@ def refine_outlet(solve: PointSolve, index: int, state: FilmState, coarse_cycles
     t_in = solve.lubricant.inlet_temperature
     changes: list[float] = []
     films: list[float] = []
-    for _ in range(max_iterations or settings.max_thermal_iterations):
+    for _ in range(settings.max_thermal_iterations):
         if status.diverged:
             break
         forcing = ENERGY_FORCING * last_change if last_change is not None else np.inf

@@ -38,14 +38,7 @@ from facegear_tehl.ehl.domain import (
     venner_lubrecht_domain,
 )
 from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem, Relaxation, at_load_fraction
-from facegear_tehl.ehl.outlet import (
-    FIRST_ATTEMPT_ITERATIONS,
-    STAGE_COARSE_CYCLES,
-    Composite,
-    composite,
-    needs_outlet_patch,
-    refine_outlet,
-)
+from facegear_tehl.ehl.outlet import STAGE_COARSE_CYCLES, Composite, composite, needs_outlet_patch, refine_outlet
 from facegear_tehl.ehl.report import ORDER, LevelSummary, point_solution, richardson_error, summarise, with_film_state
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
 from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel, thermal_choice
@@ -404,9 +397,7 @@ class PointSolve:
         self.summaries.append(summarise(solver.levels[top]))
         if self.mode == "full" and status.converged and needs_outlet_patch(self, top, state):
             for cycles in STAGE_COARSE_CYCLES:
-                first = cycles == STAGE_COARSE_CYCLES[0]
-                stage, patch_status = refine_outlet(self, top, state, cycles,
-                                                    FIRST_ATTEMPT_ITERATIONS if first else None)
+                stage, patch_status = refine_outlet(self, top, state, cycles)
                 if stage is not None:
                     break
             if stage is None:
