@@ -32,7 +32,8 @@ def _face_gear(name: str):
     return case, next(p for p in contact_analysis(case).points if p.name == name)
 
 
-def _auto(x_hot: int, spike: int, x0: float = -1.0, coarse_rise: float | None = None) -> bool:
+def _auto(x_hot: int, spike: int, x0: float = -1.0, coarse_rise: float | None = None, choice: str = "auto",
+          angle: float = 0.0) -> bool:
     """needs_outlet_patch (auto) for a film whose hottest node (10 K above the inlet) is column x_hot and whose
     pressure peaks at column `spike` on the same row (X from x0 in steps of 0.1); `coarse_rise`: ΔT_max of the coarse
     thermal stage (None: no coarse stage), its μ the fine film's (zero traction: μ = 0)."""
@@ -44,9 +45,10 @@ def _auto(x_hot: int, spike: int, x0: float = -1.0, coarse_rise: float | None = 
     stress = np.zeros((2, ny, nx))
     level = SimpleNamespace(x=x0 + 0.1 * np.arange(nx), pressure=pressure, hx=0.1, hy=0.1)
     summaries = [] if coarse_rise is None else [SimpleNamespace(dT_max=coarse_rise, mu=0.0), None]
-    fake = SimpleNamespace(settings=SimpleNamespace(outlet_refinement="auto"), solver=SimpleNamespace(levels=[level]),
+    fake = SimpleNamespace(settings=SimpleNamespace(outlet_refinement=choice), solver=SimpleNamespace(levels=[level]),
                            summaries=summaries, lubricant=SimpleNamespace(inlet_temperature=300.0),
-                           scaling=SimpleNamespace(a=1e-3, b=1e-4), point=SimpleNamespace(load=1e3))
+                           scaling=SimpleNamespace(a=1e-3, b=1e-4),
+                           point=SimpleNamespace(load=1e3, entrainment_angle=angle))
     return needs_outlet_patch(fake, 0, SimpleNamespace(temperature=temperature, stress_1=stress, stress_2=stress))
 
 
@@ -62,6 +64,14 @@ def test_auto_refines_only_where_the_estimates_miss_their_targets():
     """ΔT_max 10 K against the coarse stage's 9.7 K: a first-order estimate of 3 % (> 2 %); against 9.9 K, 1 %."""
     assert _auto(15, 16, coarse_rise=9.7)
     assert not _auto(15, 16, coarse_rise=9.9)
+
+
+def test_no_stage_where_the_entrainment_is_far_from_x():
+    """The patch refines along x: an entrainment at 60 deg to x (its spike across the patch's rows) gets no stage,
+    even with `always`; at 30 deg `always` still runs it."""
+    assert not _auto(15, 16, choice="always", angle=60.0) and not _auto(15, 16, angle=-60.0)
+    assert _auto(15, 16, choice="always", angle=30.0) and _auto(15, 16, angle=30.0)
+    assert not _auto(15, 16, choice="never")
 
 
 def test_the_composite_surface_is_jaeger_over_the_whole_axis():

@@ -49,6 +49,10 @@ SPIKE_FLANK_NODES = 2
 # μ: issue 19, docs/accuracy.md). On the 41-point cycle of the default case every flank point misses them (estimates
 # 2.3-19 % against the coarse stage, about twice the patch's change): 20 of 41 points are refined, +72 % CPU.
 AUTO_DT_MAX_ERROR = 0.02
+# The patch refines along x, toward the domain's +x end: the outlet of an entrainment within this angle (deg) of the
+# x axis (the case reader allows -90 to 90; the face gear points lie at 2-12 deg). Beyond it the outlet spike lies
+# across the patch's rows, not along them, and no stage runs, even with `always`.
+MAX_ENTRAINMENT_ANGLE = 45.0
 AUTO_MU_ERROR = 0.01
 # V-cycles of the uniform hierarchy per coarse-grid correction of the patch, by attempt: the stage starts from the
 # converged uniform solution, where one (a plain V-cycle) converged S1-S5 of the default case (`always`; S3's own
@@ -104,11 +108,14 @@ def patch_state_columns(state: FilmState, columns: slice) -> FilmState:
 
 
 def needs_outlet_patch(solve: PointSolve, index: int, state: FilmState) -> bool:
-    """Whether the outlet stage runs after the coupled solve of level `index` converged with `state`: `always`,
+    """Whether the outlet stage runs after the coupled solve of level `index` converged with `state` (never for an
+    entrainment more than MAX_ENTRAINMENT_ANGLE from the x axis): `always`,
     `never`, or (`auto`) when the hottest film node lies on the outlet spike's rising flank (within
     SPIKE_FLANK_NODES upstream of its row's largest pressure, downstream of the contact centre) and the grid's own
     estimate of ΔT_max or μ against the coarse thermal stage exceeds AUTO_DT_MAX_ERROR or AUTO_MU_ERROR."""
     choice = solve.settings.outlet_refinement
+    if abs(solve.point.entrainment_angle) > MAX_ENTRAINMENT_ANGLE:
+        return False
     if choice != "auto":
         return choice == "always"
     level = solve.solver.levels[index]
