@@ -15,7 +15,7 @@ finest uniform grid and adds a patch (patch.py) over [X_a, outlet] with half its
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -33,8 +33,7 @@ from facegear_tehl.solution import CONVERGED, Outcome, Status
 if TYPE_CHECKING:
     from facegear_tehl.ehl.solve import PointSolve
 
-STATE_FIELDS = ("temperature", "viscosity_factor", "dissipation", "velocity_x", "velocity_y", "stress_1", "stress_2",
-                "heat_flux_1", "heat_flux_2", "compression", "heat_capacity")  # FilmState's arrays over (.., ny, nx)
+STATE_FIELDS = tuple(f.name for f in fields(FilmState) if f.name != "change")  # its arrays over (.., ny, nx)
 GHOST = 2  # upstream columns of the patch's energy equation held at the grid below's temperatures (MUSCL: two)
 # X_a / b: the patch starts on the outlet side of the centre. From -0.5 b the isothermal composite put the spike on the
 # node of the uniform grid of its spacing at S1-S5 of the default face gear case and left h_c at the value of the grid
@@ -161,7 +160,7 @@ def refine_outlet(solve: PointSolve, index: int, state: FilmState,
     temperature = np.ascontiguousarray(along_x(state.temperature)[..., columns])
     factor = np.ascontiguousarray(np.exp(along_x(np.log(state.viscosity_factor)))[..., columns])
     inflow = temperature[..., :GHOST].copy()
-    x = grid.SEMI_X.prolong_cubic(below.x[None, :])[0][columns]
+    x = along_x(below.x)[columns]
     model = PatchFilmModel(x * scaling.b, below.y * scaling.a, temperature.shape[0], solve.lubricant, solve.point,
                            start, (along_x(state.heat_flux_1), along_x(state.heat_flux_2)))
     solve.solver = solver
