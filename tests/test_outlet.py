@@ -18,7 +18,7 @@ import pytest
 
 from facegear_tehl.case import load_case
 from facegear_tehl.cli import tehl
-from facegear_tehl.ehl import solve
+from facegear_tehl.ehl import outlet
 from facegear_tehl.ehl.outlet import GHOST, PatchFilmModel, needs_outlet_patch
 from facegear_tehl.ehl.solve import solve_point
 from facegear_tehl.points import contact_analysis
@@ -143,34 +143,63 @@ def test_a_stage_that_converges_is_reported_with_its_patch(monkeypatch):
     assert refined.outcome == Outcome.CONVERGED
     assert refined.scalars["outlet_patch_start"][0] == pytest.approx(-0.5 * refined.scalars["b"][0], rel=0.05)
     assert "outlet refined" in refined.models["solver"]
-    monkeypatch.setattr(solve, "refine_outlet", lambda *args: (None, Status(Outcome.NOT_CONVERGED, "stub")))
+    monkeypatch.setattr(outlet, "refine_outlet", lambda *args: (None, Status(Outcome.NOT_CONVERGED, "stub")))
     assert "outlet_patch_start" not in solve_point(point, case.lubricant, settings).scalars
+
+
+def test_a_nested_stage_that_fails_reports_the_first_patch(monkeypatch):
+    """The quick S2 with `always`: a nested patch whose energy equation returns NaN runs away; the point reports the
+    composite of the first patch exactly as a run that stops there, and says why."""
+    case, point = _face_gear("S2")
+    settings = replace(case.solver, grid=129, grid_y=17, outlet_refinement="always")
+    with monkeypatch.context() as stop:
+        stop.setattr(outlet, "NESTED_PATCH_STARTS", ())
+        first = solve_point(point, case.lubricant, settings)
+    both = solve_point(point, case.lubricant, settings)
+    assert first.scalars["outlet_patches"][0] == 1 and both.scalars["outlet_patches"][0] == 2
+    assert both.scalars["dT_max"][0] != first.scalars["dT_max"][0]
+    real_update = PatchFilmModel.update
+    spacings = []
+
+    def poisoned(self, *args, **kwargs):
+        state = real_update(self, *args, **kwargs)
+        spacings.append(self.dx)
+        if self.dx < max(spacings):  # the nested patch
+            return replace(state, temperature=np.full_like(state.temperature, np.nan))
+        return state
+
+    monkeypatch.setattr(PatchFilmModel, "update", poisoned)
+    failed = solve_point(point, case.lubricant, settings)
+    assert failed.outcome == Outcome.CONVERGED and failed.scalars["outlet_patches"][0] == 1
+    for name in ("h_c", "h_min", "p_max", "dT_max", "mu", "error_estimate_dT_max"):
+        assert failed.scalars[name] == first.scalars[name], name
+    assert "outlet patch 2: diverged" in failed.models["solver"]
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", ["S2", "S4"])
-def test_the_outlet_patch_lands_on_the_uniform_grid_of_its_spacing(name):
-    """S2 and S4 of the default case (thermal full, Ree-Eyring; hot spot on the spike's flank), 513 x 65 with the
-    outlet patch against the uniform 1025 x 65 grid. Measured: dT_max 58.81 / 34.53 K against 58.85 / 34.58 K (513 x
-    65 alone: 56.27 / 31.72), mu +0.11 / +0.14 % (513 x 65: +0.62 / +1.0 %), p_max within 0.03 %."""
+def test_the_outlet_patches_land_on_the_uniform_grid_of_their_spacing(name):
+    """S2 and S4 of the default case (thermal full, Ree-Eyring; hot spot on the spike's flank): 513 x 65 with the two
+    nested outlet patches (half, then a quarter of its x spacing at the spike) against the uniform 2049 x 65 grid of
+    the last one's spacing. Measured: dT_max 59.82 / 35.56 K against 60.01 / 35.70 K (513 x 65 alone: 56.27 / 31.72),
+    mu +0.17 / +0.19 % (513 x 65: +0.83 / +1.3 %), p_max within 0.21 / 0.06 % (513 x 65: 2.6 / 2.5 %)."""
     case, point = _face_gear(name)
     default = solve_point(point, case.lubricant, case.solver)
     uniform = solve_point(point, case.lubricant, replace(case.solver, outlet_refinement="never"))
-    fine = solve_point(point, case.lubricant, replace(case.solver, grid=2 * case.solver.grid - 1,
+    fine = solve_point(point, case.lubricant, replace(case.solver, grid=4 * (case.solver.grid - 1) + 1,
                                                       outlet_refinement="never"))
-    assert "outlet_patch_start" in default.scalars and "outlet_patch_start" not in uniform.scalars
-    assert default.scalars["grid"][0] == uniform.scalars["grid"][0] == (fine.scalars["grid"][0] + 1) / 2
+    assert default.scalars["outlet_patches"][0] == 2 and "outlet_patch_start" not in uniform.scalars
+    assert default.scalars["grid"][0] == uniform.scalars["grid"][0] == (fine.scalars["grid"][0] - 1) / 4 + 1
 
     def gap(solution, name):
         return solution.scalars[name][0] / fine.scalars[name][0] - 1.0
 
-    assert abs(gap(default, "dT_max")) < 0.003 < 0.03 < abs(gap(uniform, "dT_max"))
+    assert abs(gap(default, "dT_max")) < 0.006 < 0.05 < abs(gap(uniform, "dT_max"))
     assert abs(gap(default, "mu")) < 0.003 < 0.005 < abs(gap(uniform, "mu"))
-    assert abs(gap(default, "p_max")) < 0.001 < 0.01 < abs(gap(uniform, "p_max"))
-    # h_c is set in the inlet, which the patch does not refine: it stays the uniform grid's within its estimate
+    assert abs(gap(default, "p_max")) < 0.003 < 0.02 < abs(gap(uniform, "p_max"))
+    # h_c is set in the inlet, which the patches do not refine: it stays the uniform grid's within its estimate
     assert abs(default.scalars["h_c"][0] / uniform.scalars["h_c"][0] - 1.0) < abs(
         uniform.scalars["error_estimate_h_c"][0])
-    # the error estimates of dT_max and mu are the patch's change, first order: they bracket the gap to 1025 x 65
-    for quantity in ("dT_max", "mu"):
-        assert abs(default.scalars[f"error_estimate_{quantity}"][0]) > abs(gap(uniform, quantity)) * 0.9
+    # the error estimate of dT_max is the last patch's change, first order: it brackets the gap to 2049 x 65
+    assert abs(default.scalars["error_estimate_dT_max"][0]) > abs(gap(default, "dT_max"))
     assert np.all(default.fields["film_thickness"].values > 0.0)

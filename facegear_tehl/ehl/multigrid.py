@@ -333,6 +333,10 @@ class MultigridSolver:
         reynolds.apply_operator(level.pressure, *self._fluxes(level), level.eps, *self._args(level), out)
         return out
 
+    def pressure_change(self, level: Level, previous: np.ndarray) -> float:
+        """The relative L1 change \\sum |P - P_previous| / \\sum |P| of level `level` from `previous`."""
+        return float(np.abs(level.pressure - previous).sum() / max(np.abs(level.pressure).sum(), 1e-300))
+
     def force_error(self, level: Level) -> float:
         """g = \\iint P dX dY + force_rhs (zero when the load balance holds)."""
         return level.load_integral() + level.force_rhs

@@ -24,6 +24,7 @@ from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import grid, jaeger
 from facegear_tehl.ehl.anderson import Anderson
 from facegear_tehl.ehl.friction import friction_coefficients
+from facegear_tehl.ehl.multigrid import Level, MultigridSolver
 from facegear_tehl.ehl.patch import COARSE_CYCLES, PatchedSolver
 from facegear_tehl.ehl.report import ORDER_DT_MAX, ORDER_MU, cell_area, richardson_error
 from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel
@@ -59,6 +60,11 @@ AUTO_MU_ERROR = 0.01
 # 9.2 s, S4 6.2 against 11.6 s CPU); one ran away for a third of the isothermal patch starts from an interpolated
 # coarse solution (patch.COARSE_CYCLES), so a stage that runs away or stalls with one is solved again with three.
 STAGE_COARSE_CYCLES = (1, COARSE_CYCLES)
+# X_a / b of the nested patches, each inside the one before (from its third column on at least: its inflow columns).
+# One: a quarter of the uniform grid's spacing at the spike. At S2 and S4 of the default case a third patch (an
+# eighth, from 0) moved ΔT_max by another 0.46 and 0.88 % (60.10 and 35.87 K) at 28 and 69 s CPU (24 and 57 outer
+# iterations), more than the rest of the point's solve.
+NESTED_PATCH_STARTS = (-0.4,)
 
 
 def along_x(values: np.ndarray) -> np.ndarray:
@@ -81,22 +87,33 @@ class PatchFilmModel(FilmThermalModel):
         self.below_flux = below_flux
         self.whole_matrix = jaeger.influence_matrix(below_flux[0].shape[1], self.dx)
 
-    def _surface(self, flux: np.ndarray, index: int, speed: float) -> np.ndarray:
-        own = slice(self.offset + GHOST, self.offset + self.x.size)
+    def composite_flux(self, flux: np.ndarray, index: int) -> np.ndarray:
+        """The wall heat flux of body `index` (0, 1) along the whole x axis at the patch's spacing: the grids'
+        below, the patch's own `flux` (over its columns with the inflow ones) from its first column on."""
         composite = self.below_flux[index].copy()
-        composite[:, own] = flux[:, GHOST:]
-        rise = jaeger.surface_temperature_rise(composite, self.dx, self.effusivity[index], matrix=self.whole_matrix,
-                                               reverse=speed < 0.0)
+        composite[:, self.offset + GHOST:self.offset + self.x.size] = flux[:, GHOST:]
+        return composite
+
+    def _surface(self, flux: np.ndarray, index: int, speed: float) -> np.ndarray:
+        rise = jaeger.surface_temperature_rise(self.composite_flux(flux, index), self.dx, self.effusivity[index],
+                                               matrix=self.whole_matrix, reverse=speed < 0.0)
         return self.t_inlet + rise[:, self.offset:self.offset + self.x.size]
 
 
 @dataclass(frozen=True)
 class OutletStage:
-    """The converged outlet stage: the patched solver (its last level the patch) and the patch's film state on its
-    own columns (GHOST columns dropped)."""
+    """A converged outlet stage: the patched solver (its last level the stage's patch), the film state of each part of
+    the composite (PatchedSolver.parts: the uniform grid's, then each patch's on its own columns) and the composite
+    wall heat fluxes of bodies 1 and 2 along the whole x axis at the last patch's spacing (W/m^2)."""
 
     solver: PatchedSolver
-    state: FilmState
+    states: tuple[FilmState, ...]
+    flux: tuple[np.ndarray, np.ndarray]
+
+    @property
+    def state(self) -> FilmState:
+        """The last patch's film state."""
+        return self.states[-1]
 
 
 def patch_state_columns(state: FilmState, columns: slice) -> FilmState:
@@ -131,48 +148,54 @@ def needs_outlet_patch(solve: PointSolve, index: int, state: FilmState) -> bool:
             or (mu != 0.0 and abs(richardson_error(mu, coarse.mu, ORDER_MU)) > AUTO_MU_ERROR))
 
 
-def refine_outlet(solve: PointSolve, index: int, state: FilmState,
-                  coarse_cycles: int = COARSE_CYCLES) -> tuple[OutletStage | None, Status]:
-    """The outlet stage on top of level `index` (the finest uniform grid, its coupled loop converged with `state`),
-    `coarse_cycles` V-cycles of the uniform hierarchy per coarse-grid correction of the patch.
-    On success `solve.solver` is the patched solver; if the stage runs away or does not converge, the uniform
-    solution is restored and None returned with the status."""
+def refine_outlet(solve: PointSolve, index: int, state: FilmState, coarse_cycles: int = COARSE_CYCLES,
+                  base: OutletStage | None = None,
+                  span_start: float = PATCH_START) -> tuple[OutletStage | None, Status]:
+    """An outlet stage: a patch over [`span_start`, outlet] (X) on top of level `index` of `solve.solver`, whose
+    coupled loop converged with the film state `state`: the finest uniform grid (`base` None), or the last patch of
+    the converged stage `base`. `coarse_cycles` V-cycles of the grid below per coarse-grid correction of the patch.
+    On success `solve.solver` is the patched solver; if the stage runs away or does not converge, the solution before
+    it is restored and None returned with the status."""
     from facegear_tehl.ehl.solve import (
         ANDERSON_DEPTH,
         CYCLES_PER_THERMAL_UPDATE,
         ENERGY_FORCING,
+        MIN_RELAXATION_SCALE,
         MIN_RISE,
         THERMAL_FLOOR_FRACTION,
         _at_thermal_floor,
         _next_film_state,
         _pressure_settled,
+        _stalled,
     )
 
-    uniform, settings, scaling = solve.solver, solve.settings, solve.scaling
-    below = uniform.levels[index]
-    saved = uniform.snapshot(index)
-    solver = PatchedSolver.over(uniform, (PATCH_START, float(below.x[-1])), coarse_cycles)
+    before, settings, scaling = solve.solver, solve.settings, solve.scaling
+    below = before.levels[index]
+    below_state = state if base is None else base.state
+    saved = _save(before, index)
+    solver = PatchedSolver.over(before, (span_start, float(below.x[-1])), coarse_cycles)
     top = index + 1
-    start = 2 * solver.first - GHOST
+    start = 2 * solver.first - GHOST  # the patch's first energy column on the grid below interpolated
     if start < 0:
         return None, Status(Outcome.NOT_CONVERGED, "outlet patch: no room for its inflow columns")
-    columns = slice(start, 2 * solver.last + 1)  # the patch with its inflow columns, on the whole fine x axis
-    temperature = np.ascontiguousarray(along_x(state.temperature)[..., columns])
-    factor = np.ascontiguousarray(np.exp(along_x(np.log(state.viscosity_factor)))[..., columns])
+    columns = slice(start, 2 * solver.last + 1)  # the patch with its inflow columns
+    temperature = np.ascontiguousarray(along_x(below_state.temperature)[..., columns])
+    factor = np.ascontiguousarray(np.exp(along_x(np.log(below_state.viscosity_factor)))[..., columns])
     inflow = temperature[..., :GHOST].copy()
     x = along_x(below.x)[columns]
+    flux = (below_state.heat_flux_1, below_state.heat_flux_2) if base is None else base.flux
     model = PatchFilmModel(x * scaling.b, below.y * scaling.a, temperature.shape[0], solve.lubricant, solve.point,
-                           start, (along_x(state.heat_flux_1), along_x(state.heat_flux_2)))
+                           solver.columns.start - GHOST, (along_x(flux[0]), along_x(flux[1])))
     solve.solver = solver
     solver.interpolate_up(top)
     solver.set_patch_state(temperature[..., GHOST:], factor[..., GHOST:])
     status = solve.cycle(top, CYCLES_PER_THERMAL_UPDATE)
     accelerator = Anderson(ANDERSON_DEPTH)
     last_change = None
-    patch_state = None
     t_in = solve.lubricant.inlet_temperature
     changes: list[float] = []
     films: list[float] = []
+    relaxation, window = 1.0, 0
     for _ in range(settings.max_thermal_iterations):
         if status.diverged:
             break
@@ -181,9 +204,9 @@ def refine_outlet(solve: PointSolve, index: int, state: FilmState,
         temperature[..., :GHOST] = inflow
         update = model.update(pressure * scaling.p_h, film * scaling.film_scale, temperature, forcing)
         rise = max(float(temperature.max() - t_in), MIN_RISE)
-        temperature, factor, last_change, _ = _next_film_state(accelerator, temperature, factor, update, 1.0, rise)
+        temperature, factor, last_change, _ = _next_film_state(accelerator, temperature, factor, update, relaxation,
+                                                               rise)
         temperature[..., :GHOST] = inflow
-        patch_state = replace(update, temperature=temperature, viscosity_factor=factor)
         solver.set_patch_state(temperature[..., GHOST:], factor[..., GHOST:])
         status = solve.cycle(top, CYCLES_PER_THERMAL_UPDATE)
         solve.history.outer += 1
@@ -198,14 +221,83 @@ def refine_outlet(solve: PointSolve, index: int, state: FilmState,
             if floor:
                 solve.history.thermal_floor = last_change
             solve._settle(top)  # on a flicker of the spike the mean of its two phases, as the uniform loop ends
-            return OutletStage(solver, patch_state_columns(patch_state, slice(GHOST, None))), CONVERGED
-    solve.solver = uniform
-    uniform.work_units = solver.work_units
-    uniform.restore(index, saved)
-    uniform.set_film_state(index, state.temperature, state.viscosity_factor)
+            patch_state = replace(update, temperature=temperature, viscosity_factor=factor)
+            states = ((state,) if base is None else base.states) + (
+                patch_state_columns(patch_state, slice(GHOST, None)),)
+            return OutletStage(solver, states, (model.composite_flux(update.heat_flux_1, 0),
+                                                model.composite_flux(update.heat_flux_2, 1))), CONVERGED
+        # A limit cycle above the floor: relax harder, as the uniform loop does. The patch on the default case's S4
+        # at the spacing of uniform 2049 x 65 flickered at 0.5-0.7 K (1.5-2 % of its rise) for 40 outer iterations
+        # at full relaxation; halved, it converged in 18.
+        if _stalled(changes[window:]):
+            relaxation = max(0.5 * relaxation, MIN_RELAXATION_SCALE)
+            window = len(changes)
+            accelerator.reset()
+    solve.solver = before
+    before.work_units = solver.work_units
+    _restore(before, index, saved)
+    if base is None:
+        before.set_film_state(index, state.temperature, state.viscosity_factor)
     if not status.diverged:
         status = Status(Outcome.NOT_CONVERGED, f"outlet patch: thermal loop not converged ({last_change:.2e} K)")
     return None, status
+
+
+def _save(solver: MultigridSolver, index: int) -> tuple[float, list[tuple[np.ndarray, ...]]]:
+    """H_0 and, for the composite's parts up to level `index` (that level alone on a uniform hierarchy), copies of
+    the pressure and right-hand sides: what a stage on top of them overwrites."""
+    first = solver.uniform_count - 1 if isinstance(solver, PatchedSolver) else index
+    return solver.h0, [(level.pressure.copy(), level.film_rhs.copy(), level.reynolds_rhs.copy(),
+                        np.array(level.force_rhs)) for level in solver.levels[first:index + 1]]
+
+
+def _restore(solver: MultigridSolver, index: int, saved: tuple[float, list[tuple[np.ndarray, ...]]]) -> None:
+    """The parts saved by _save back, their films recomputed from the lowest up (a patch's deflection takes the
+    grids' below it)."""
+    solver.h0, parts = saved
+    for level, (pressure, film_rhs, reynolds_rhs, force_rhs) in zip(solver.levels[index + 1 - len(parts):index + 1],
+                                                                     parts, strict=True):
+        level.pressure, level.film_rhs, level.reynolds_rhs = pressure, film_rhs, reynolds_rhs
+        level.force_rhs = float(force_rhs)
+        solver.update_film(level)
+
+
+def outlet_stages(solve: PointSolve, index: int, state: FilmState) -> tuple[Composite | None, str]:
+    """The outlet stages on top of level `index` (the finest uniform grid, converged with `state`): a patch at half
+    its x spacing from PATCH_START, then (`always`, or `auto` while the last patch moved ΔT_max or μ by more than
+    AUTO_DT_MAX_ERROR or AUTO_MU_ERROR) patches at half the spacing of the one before from NESTED_PATCH_STARTS, each
+    tried with STAGE_COARSE_CYCLES in turn. The composite of the last converged stage (None if the first failed) and
+    why a stage failed ("" if none did)."""
+    uniform = solve.solver.levels[index]
+    figures = _uniform_figures(solve, uniform, state)
+    stage, result, coarser = None, None, None
+    starts = (PATCH_START,) + NESTED_PATCH_STARTS
+    while stage is None or len(stage.solver.patches) < len(starts):
+        start = starts[0 if stage is None else len(stage.solver.patches)]
+        top = len(solve.solver.levels) - 1
+        for cycles in STAGE_COARSE_CYCLES:
+            refined, status = refine_outlet(solve, top, state, cycles, stage, start)
+            if refined is not None:
+                break
+        if refined is None:
+            what = "outlet patch" if stage is None else f"outlet patch {len(stage.solver.patches) + 1}"
+            return result, f"{what}: {status.message}"
+        stage, previous = refined, figures
+        result = replace(composite(solve, stage), coarser=coarser)
+        figures = {name: result.scalars[name][0] for name in ("dT_max", "mu")}
+        coarser = figures
+        moved = {name: abs(figures[name] / previous[name] - 1.0) if previous[name] != 0.0 else 0.0
+                 for name in figures}
+        if solve.settings.outlet_refinement == "auto" and not (moved["dT_max"] > AUTO_DT_MAX_ERROR
+                                                               or moved["mu"] > AUTO_MU_ERROR):
+            break
+    return result, ""
+
+
+def _uniform_figures(solve: PointSolve, level: Level, state: FilmState) -> dict[str, float]:
+    """dT_max (K) and mu of the uniform grid's solution."""
+    mu = friction_coefficients(state, level.pressure, cell_area(level, solve.scaling), solve.point.load)[0]
+    return {"dT_max": float(state.temperature.max()) - solve.lubricant.inlet_temperature, "mu": mu}
 
 
 def _with_inflow(solver: PatchedSolver, start: int) -> tuple[np.ndarray, np.ndarray]:
@@ -220,47 +312,45 @@ def _with_inflow(solver: PatchedSolver, start: int) -> tuple[np.ndarray, np.ndar
 
 @dataclass(frozen=True)
 class Composite:
-    """The composite solution on the grid below's nodes (the patch's values injected at the nodes they share) and
-    the figures of the composite over both parts (SI), which replace the grid below's in the results."""
+    """The composite solution on the grid below's nodes (the patches' values injected at the nodes they share) and
+    the figures of the composite over all its parts (SI), which replace the uniform grid's in the results."""
 
-    pressure: np.ndarray  # Pa, (ny, nx) of the grid below
+    pressure: np.ndarray  # Pa, (ny, nx) of the uniform grid
     film: np.ndarray  # m
-    state: FilmState  # the grid below's film state with the patch's injected on its columns
+    state: FilmState  # the uniform grid's film state with the patches' injected on its columns
     scalars: dict[str, tuple[float, str]]
+    note: str  # the patches, for models.solver
+    # dT_max (K) and mu of the composite one patch coarser, for the error estimates; None: the uniform grid's
+    coarser: dict[str, float] | None = None
 
 
-def composite(solve: PointSolve, stage: OutletStage, below_state: FilmState) -> Composite:
-    """The composite of the outlet stage for the results: fields on the grid below's nodes, and p_max, h_min,
-    the temperature extremes and the friction coefficients over both parts (the patch's traction integrated on its
-    spacing, the trapezoid rule across its end columns)."""
-    solver, scaling, state = stage.solver, solve.scaling, stage.state
-    below, patch = solver.below, solver.patch
-    inside = slice(solver.first, solver.last + 1)
-    outside = np.ones(below.nx, dtype=bool)
-    outside[inside] = False
-    pressure, film = below.pressure.copy(), below.film.copy()
-    pressure[:, inside], film[:, inside] = patch.pressure[:, ::2], patch.film[:, ::2]
-    injected = {}
-    for name in STATE_FIELDS:
-        value = getattr(below_state, name)
-        if value is not None:
-            value = value.copy()
-            value[..., inside] = getattr(state, name)[..., ::2]
-        injected[name] = value
+def composite(solve: PointSolve, stage: OutletStage) -> Composite:
+    """The composite of an outlet stage for the results: fields on the uniform grid's nodes, and p_max, h_min,
+    the temperature extremes and the friction coefficients over all parts (each part's traction integrated on its
+    spacing, with the weights of the composite trapezoid rule)."""
+    solver, scaling = stage.solver, solve.scaling
+    parts = [(level, own, state) for (level, own), state in zip(solver.parts(), stage.states, strict=True)]
+    # fields: each patch injected into the part below it, from the last one down
+    pressure, film = parts[-1][0].pressure.copy(), parts[-1][0].film.copy()
+    state_fields = {name: getattr(parts[-1][2], name) for name in STATE_FIELDS}
+    for (level, _, state), place in zip(reversed(parts[:-1]), reversed(solver.patches), strict=True):
+        inside = slice(place.first, place.last + 1)
+        pressure, film = _inject(level.pressure, pressure, inside), _inject(level.film, film, inside)
+        state_fields = {name: None if getattr(state, name) is None else
+                        _inject(getattr(state, name), state_fields[name], inside) for name in STATE_FIELDS}
     t_in = solve.lubricant.inlet_temperature
-    parts = ((patch.x, patch.y, patch.pressure, patch.film, state),
-             (below.x[outside], below.y, below.pressure[:, outside], below.film[:, outside],
-              patch_state_columns(below_state, outside)))
+    own_parts = [(level.x[own], level.y, level.pressure[:, own], level.film[:, own],
+                  patch_state_columns(state, own)) for level, own, state in parts if own.any()]
     scalars: dict[str, tuple[float, str]] = {}
-    hot = max(parts, key=lambda part: part[4].temperature.max())
-    cold = min(parts, key=lambda part: part[4].temperature.min())
-    low = min(parts, key=lambda part: part[3].min())
+    hot = max(own_parts, key=lambda part: part[4].temperature.max())
+    cold = min(own_parts, key=lambda part: part[4].temperature.min())
+    low = min(own_parts, key=lambda part: part[3].min())
     j, i = np.unravel_index(int(np.argmin(low[3])), low[3].shape)
     _, jc, ic = np.unravel_index(int(np.argmin(cold[4].temperature)), cold[4].temperature.shape)
-    middle = state.temperature.shape[0] // 2
+    middle = stage.state.temperature.shape[0] // 2
     scalars.update({
         "h_c": (solver.summary().h_c * scaling.film_scale, "m"),
-        "p_max": (max(float(part[2].max()) for part in parts) * scaling.p_h, "Pa"),
+        "p_max": (max(float(part[2].max()) for part in own_parts) * scaling.p_h, "Pa"),
         "h_min": (float(low[3][j, i]) * scaling.film_scale, "m"),
         "x_h_min": (float(low[0][i]) * scaling.b, "m"),
         "y_h_min": (float(low[1][j]) * scaling.a, "m"),
@@ -268,24 +358,50 @@ def composite(solve: PointSolve, stage: OutletStage, below_state: FilmState) -> 
         "dT_min": (float(cold[4].temperature.min()) - t_in, "K"),
         "x_dT_min": (float(cold[0][ic]) * scaling.b, "m"),
         "y_dT_min": (float(cold[1][jc]) * scaling.a, "m"),
-        "dT_mid_max": (max(float(part[4].temperature[middle].max()) for part in parts) - t_in, "K"),
-        "dT_surface_1_max": (max(float(part[4].temperature[0].max()) for part in parts) - t_in, "K"),
-        "dT_surface_2_max": (max(float(part[4].temperature[-1].max()) for part in parts) - t_in, "K"),
+        "dT_mid_max": (max(float(part[4].temperature[middle].max()) for part in own_parts) - t_in, "K"),
+        "dT_surface_1_max": (max(float(part[4].temperature[0].max()) for part in own_parts) - t_in, "K"),
+        "dT_surface_2_max": (max(float(part[4].temperature[-1].max()) for part in own_parts) - t_in, "K"),
     })
-    # traction: the grid below's cells outside the patch, the patch's inside (its end columns shared half and half)
-    weight_below = outside.astype(float)
-    weight_below[solver.first] = weight_below[solver.last] = 0.5
-    weight_patch = np.ones(patch.nx)
-    weight_patch[0] = weight_patch[-1] = 0.5
     mu = []
-    for stress_below, stress_patch in ((below_state.stress_1, state.stress_1), (below_state.stress_2,
-                                                                                 state.stress_2)):
-        force = (_traction(stress_below, below.pressure, weight_below) * below.hx
-                 + _traction(stress_patch, patch.pressure, weight_patch) * patch.hx) * below.hy * scaling.a * scaling.b
-        mu.append(float(np.hypot(*force) / solve.point.load))
+    for body in (1, 2):
+        force = sum(_traction(getattr(state, f"stress_{body}"), level.pressure, weight) * level.hx
+                    for (level, _, state), weight in zip(parts, _trapezoid_weights(solver), strict=True))
+        mu.append(float(np.hypot(*(force * parts[0][0].hy * scaling.a * scaling.b)) / solve.point.load))
     scalars.update({"mu": (0.5 * (mu[0] + mu[1]), "1"), "mu_1": (mu[0], "1"), "mu_2": (mu[1], "1"),
-                    "outlet_patch_start": (float(patch.x[0]) * scaling.b, "m")})
-    return Composite(pressure * scaling.p_h, film * scaling.film_scale, replace(below_state, **injected), scalars)
+                    "outlet_patch_start": (float(solver.levels[solver.uniform_count].x[0]) * scaling.b, "m"),
+                    "outlet_patches": (float(len(solver.patches)), "1")})
+    note = "; ".join(f"a patch at {'half the x spacing' if k == 0 else 'half that'} over X >= {level.x[0]:.2f} b"
+                     for k, (level, _, _) in enumerate(parts[1:]))
+    return Composite(pressure * scaling.p_h, film * scaling.film_scale, replace(parts[0][2], **state_fields), scalars,
+                     note)
+
+
+def _inject(coarse: np.ndarray, fine: np.ndarray, inside: slice) -> np.ndarray:
+    """`coarse` (.., nx) with the nodes it shares with `fine`, a patch over its columns `inside`, taken from it."""
+    out = coarse.copy()
+    out[..., inside] = fine[..., ::2]
+    return out
+
+
+def _trapezoid_weights(solver: PatchedSolver) -> list[np.ndarray]:
+    """The column weights of the composite's trapezoid rule along x on each part (uniform grid first), in cells of
+    that part: a patch's end columns a half (the grid below counts the other half), and the columns a finer patch
+    covers take its trapezoid weights off."""
+    weights = []
+    for index in range(solver.uniform_count - 1, len(solver.levels)):
+        level = solver.levels[index]
+        weight = np.ones(level.nx) if index < solver.uniform_count else _trapezoid(level.nx)
+        if index + 1 < len(solver.levels):
+            place = solver.patches[index + 1 - solver.uniform_count]
+            weight[place.first:place.last + 1] -= _trapezoid(place.last - place.first + 1)
+        weights.append(weight)
+    return weights
+
+
+def _trapezoid(n: int) -> np.ndarray:
+    weight = np.ones(n)
+    weight[0] = weight[-1] = 0.5
+    return weight
 
 
 def _traction(stress: np.ndarray, pressure: np.ndarray, weight: np.ndarray) -> np.ndarray:

@@ -242,10 +242,12 @@ def _outlet_scalars(solve: PointSolve, uniform: dict[str, tuple[float, str]]) ->
     from the uniform grid's values: the patch halves the x spacing where they are set. The energy budget stays the
     uniform grid's (its discrete balance is exact there; the composite's is not conservative across the patch's
     ends)."""
-    figures = {k: v for k, v in solve.outlet.scalars.items() if k in uniform or k == "outlet_patch_start"}
+    figures = {k: v for k, v in solve.outlet.scalars.items()
+               if k in uniform or k in ("outlet_patch_start", "outlet_patches")}
+    coarser = solve.outlet.coarser or {name: uniform[name][0] for name in ("dT_max", "mu")}
     for name, order in (("dT_max", ORDER_DT_MAX), ("mu", ORDER_MU)):
         if figures[name][0] != 0.0:
-            figures[f"error_estimate_{name}"] = (richardson_error(figures[name][0], uniform[name][0], order), "1")
+            figures[f"error_estimate_{name}"] = (richardson_error(figures[name][0], coarser[name], order), "1")
     return figures
 
 
@@ -298,9 +300,9 @@ def _models(solve: PointSolve) -> dict[str, str]:
     if solve.coarse_stage_note:
         models["solver"] += "; " + solve.coarse_stage_note
     if solve.outlet is not None:
-        start = solve.outlet.scalars["outlet_patch_start"][0] / solve.scaling.b
-        models["solver"] += (f"; outlet refined: a patch at half the x spacing over X >= {start:.2f} b (FAS composite "
-                             "grid, the film state solved on it)")
+        models["solver"] += f"; outlet refined: {solve.outlet.note} (FAS composite grid, the film state solved on each)"
+        if solve.outlet_note:
+            models["solver"] += f"; {solve.outlet_note}: the composite of the patches before it"
     elif solve.outlet_note:
         models["solver"] += f"; outlet refinement dropped ({solve.outlet_note}): the uniform grid's solution"
     if solve.start_load_fraction < 1.0:

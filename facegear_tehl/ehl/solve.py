@@ -38,7 +38,7 @@ from facegear_tehl.ehl.domain import (
     venner_lubrecht_domain,
 )
 from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem, Relaxation, at_load_fraction
-from facegear_tehl.ehl.outlet import STAGE_COARSE_CYCLES, Composite, composite, needs_outlet_patch, refine_outlet
+from facegear_tehl.ehl.outlet import Composite, needs_outlet_patch, outlet_stages
 from facegear_tehl.ehl.report import ORDER, LevelSummary, point_solution, richardson_error, summarise, with_film_state
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
 from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel, thermal_choice
@@ -396,14 +396,7 @@ class PointSolve:
             state, status = self.couple(top, frozen, self.summaries[-1].h_c)
         self.summaries.append(summarise(solver.levels[top]))
         if self.mode == "full" and status.converged and needs_outlet_patch(self, top, state):
-            for cycles in STAGE_COARSE_CYCLES:
-                stage, patch_status = refine_outlet(self, top, state, cycles)
-                if stage is not None:
-                    break
-            if stage is None:
-                self.outlet_note = patch_status.message
-            else:
-                self.outlet = composite(self, stage, state)
+            self.outlet, self.outlet_note = outlet_stages(self, top, state)
         return self.report(top, status, state)
 
     def _coarse_thermal_stage(self) -> PointSolution | PointSolve:
@@ -569,7 +562,7 @@ class PointSolve:
         previous = level.pressure.copy()
         means = 0  # period-2 cycles replaced by the mean of their phases (PHASE_MEAN_BAND)
         for extra in itertools.count():
-            change = float(np.abs(level.pressure - previous).sum() / max(np.abs(level.pressure).sum(), 1e-300))
+            change = solver.pressure_change(level, previous)
             load_error = solver.force_error(level) / load_integral
             residual = solver.residual(level)
             positive = level.pressure > 0.0
