@@ -18,7 +18,7 @@ import pytest
 
 from facegear_tehl.case import load_case
 from facegear_tehl.cli import tehl
-from facegear_tehl.ehl import outlet
+from facegear_tehl.ehl import jaeger, outlet
 from facegear_tehl.ehl.outlet import GHOST, PatchFilmModel, needs_outlet_patch
 from facegear_tehl.ehl.solve import solve_point
 from facegear_tehl.points import contact_analysis
@@ -89,6 +89,14 @@ def test_the_composite_surface_is_jaeger_over_the_whole_axis():
         distance = x - 0.0 if speed > 0 else (nx_fine - 1) * dx - x
         expected = model.t_inlet + 2.0 * q * np.sqrt(distance) / (math.sqrt(math.pi) * model.effusivity[index])
         assert np.allclose(surface, expected, rtol=1e-9)
+    # a patch flux of its own: the rise of the whole composite axis evaluated directly, both directions of motion
+    own = np.random.default_rng(1).uniform(1e7, 5e7, (ny, size))
+    for index in (0, 1):
+        for speed in (1.0, -1.0):
+            whole = jaeger.surface_temperature_rise(model.composite_flux(own, index), dx, model.effusivity[index],
+                                                    reverse=speed < 0.0)
+            assert np.allclose(model._surface(own, index, speed), model.t_inlet + whole[:, offset:offset + size],
+                               rtol=1e-12)
 
 
 def test_the_energy_sweeps_hold_the_inflow_columns():
@@ -136,9 +144,10 @@ def test_a_stage_that_fails_reports_the_uniform_solution(monkeypatch):
 
 
 def test_a_stage_that_converges_is_reported_with_its_patch(monkeypatch):
-    """The same point with the stage: its composite figures and the note on the patch."""
+    """The same point with the stage (the first patch alone): its composite figures and the note on the patch."""
     case, point = _face_gear("S2")
     settings = replace(case.solver, grid=129, grid_y=17, outlet_refinement="always")
+    monkeypatch.setattr(outlet, "NESTED_PATCH_STARTS", ())
     refined = solve_point(point, case.lubricant, settings)
     assert refined.outcome == Outcome.CONVERGED
     assert refined.scalars["outlet_patch_start"][0] == pytest.approx(-0.5 * refined.scalars["b"][0], rel=0.05)
@@ -155,6 +164,7 @@ def test_a_nested_stage_that_fails_reports_the_first_patch(monkeypatch):
     with monkeypatch.context() as stop:
         stop.setattr(outlet, "NESTED_PATCH_STARTS", ())
         first = solve_point(point, case.lubricant, settings)
+    monkeypatch.setattr(outlet, "NESTED_PATCH_STARTS", outlet.NESTED_PATCH_STARTS[:1])  # two patches: enough here
     both = solve_point(point, case.lubricant, settings)
     assert first.scalars["outlet_patches"][0] == 1 and both.scalars["outlet_patches"][0] == 2
     assert both.scalars["dT_max"][0] != first.scalars["dT_max"][0]
@@ -179,16 +189,17 @@ def test_a_nested_stage_that_fails_reports_the_first_patch(monkeypatch):
 @pytest.mark.slow
 @pytest.mark.parametrize("name", ["S2", "S4"])
 def test_the_outlet_patches_land_on_the_uniform_grid_of_their_spacing(name):
-    """S2 and S4 of the default case (thermal full, Ree-Eyring; hot spot on the spike's flank): 513 x 65 with the two
-    nested outlet patches (half, then a quarter of its x spacing at the spike) against the uniform 2049 x 65 grid of
-    the last one's spacing. Measured: dT_max 59.82 / 35.56 K against 60.01 / 35.70 K (513 x 65 alone: 56.27 / 31.72),
-    mu +0.17 / +0.19 % (513 x 65: +0.83 / +1.3 %), p_max within 0.21 / 0.06 % (513 x 65: 2.6 / 2.5 %)."""
+    """S2 and S4 of the default case (thermal full, Ree-Eyring; hot spot on the spike's flank): 513 x 65 with the
+    nested outlet patches (half, then a quarter of its x spacing at the spike; at S4 an eighth too) against the
+    uniform 2049 x 65 grid of the second's spacing. Measured: dT_max 59.82 / 35.84 K against 60.01 / 35.70 K (513 x
+    65 alone: 56.27 / 31.72), mu +0.17 / +0.12 % (513 x 65: +0.83 / +1.3 %), p_max -0.21 / +0.23 % (513 x 65: -2.6 /
+    -2.5 %)."""
     case, point = _face_gear(name)
     default = solve_point(point, case.lubricant, case.solver)
     uniform = solve_point(point, case.lubricant, replace(case.solver, outlet_refinement="never"))
     fine = solve_point(point, case.lubricant, replace(case.solver, grid=4 * (case.solver.grid - 1) + 1,
                                                       outlet_refinement="never"))
-    assert default.scalars["outlet_patches"][0] == 2 and "outlet_patch_start" not in uniform.scalars
+    assert default.scalars["outlet_patches"][0] >= 2 and "outlet_patch_start" not in uniform.scalars
     assert default.scalars["grid"][0] == uniform.scalars["grid"][0] == (fine.scalars["grid"][0] - 1) / 4 + 1
 
     def gap(solution, name):

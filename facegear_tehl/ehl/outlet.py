@@ -60,11 +60,11 @@ AUTO_MU_ERROR = 0.01
 # 9.2 s, S4 6.2 against 11.6 s CPU); one ran away for a third of the isothermal patch starts from an interpolated
 # coarse solution (patch.COARSE_CYCLES), so a stage that runs away or stalls with one is solved again with three.
 STAGE_COARSE_CYCLES = (1, COARSE_CYCLES)
-# X_a / b of the nested patches, each inside the one before (from its third column on at least: its inflow columns).
-# One: a quarter of the uniform grid's spacing at the spike. At S2 and S4 of the default case a third patch (an
-# eighth, from 0) moved ΔT_max by another 0.46 and 0.88 % (60.10 and 35.87 K) at 28 and 69 s CPU (24 and 57 outer
-# iterations), more than the rest of the point's solve.
-NESTED_PATCH_STARTS = (-0.4,)
+# X_a / b of the nested patches, each inside the one before (from its third column on at least: its inflow columns):
+# a quarter and an eighth of the uniform grid's x spacing at the spike. ΔT_max converges at order 1.4-1.7 as the spike
+# is resolved (docs/accuracy.md): at S4 of the default case the second patch still moves it by 2.9 % (the third by
+# 1.0 %, 24-35 s CPU), at S2 by 1.7 % (`auto` stops there).
+NESTED_PATCH_STARTS = (-0.4, 0.0)
 
 
 def along_x(values: np.ndarray) -> np.ndarray:
@@ -75,7 +75,7 @@ def along_x(values: np.ndarray) -> np.ndarray:
 
 class PatchFilmModel(FilmThermalModel):
     """The film state on the patch's columns with GHOST inflow columns before them (x on the patch's spacing, m).
-    The surfaces take Jaeger's rise of the composite flux: `below_flux` (the grid below's wall fluxes on the whole
+    The surfaces take Jaeger's rise of the composite flux: `below_flux` (the grids' below wall fluxes on the whole
     x axis at the patch's spacing) with the patch's own flux from column `offset + GHOST` on."""
 
     first_column = GHOST
@@ -85,7 +85,7 @@ class PatchFilmModel(FilmThermalModel):
         super().__init__(x, y, layers, lubricant, point, solve_energy=True)
         self.offset = offset
         self.below_flux = below_flux
-        self.whole_matrix = jaeger.influence_matrix(below_flux[0].shape[1], self.dx)
+        self._split: dict[tuple[int, bool], tuple[np.ndarray, np.ndarray]] = {}
 
     def composite_flux(self, flux: np.ndarray, index: int) -> np.ndarray:
         """The wall heat flux of body `index` (0, 1) along the whole x axis at the patch's spacing: the grids'
@@ -95,9 +95,21 @@ class PatchFilmModel(FilmThermalModel):
         return composite
 
     def _surface(self, flux: np.ndarray, index: int, speed: float) -> np.ndarray:
-        rise = jaeger.surface_temperature_rise(self.composite_flux(flux, index), self.dx, self.effusivity[index],
-                                               matrix=self.whole_matrix, reverse=speed < 0.0)
-        return self.t_inlet + rise[:, self.offset:self.offset + self.x.size]
+        """Jaeger's rise of the composite flux at the patch's columns. By linearity G q = G q_below + G (q - q_below)
+        where they differ: the grids' below part along the whole axis once per body, then per call the block of G
+        from the patch's own columns to its energy columns (on the eighth-spacing patch of the default case's S4 the
+        whole-axis product was 12 of its 37 s)."""
+        own = slice(self.offset + GHOST, self.offset + self.x.size)
+        key = (index, speed < 0.0)
+        if key not in self._split:
+            whole = jaeger.influence_matrix(self.below_flux[index].shape[1], self.dx)
+            if speed < 0.0:  # the surface moves toward -x: the kernel along the reversed axis
+                whole = whole[::-1, ::-1]
+            columns = slice(self.offset, self.offset + self.x.size)
+            self._split[key] = ((self.below_flux[index] @ whole.T)[:, columns], whole[columns, own].copy())
+        below, block = self._split[key]
+        rise = below + (flux[:, GHOST:] - self.below_flux[index][:, own]) @ block.T
+        return self.t_inlet + rise / self.effusivity[index]
 
 
 @dataclass(frozen=True)
