@@ -22,6 +22,7 @@ from facegear_tehl.lubricant import DENSITY_MODELS, KELVIN, OIL_TYPES, RHEOLOGY_
 from facegear_tehl.materials import Solid
 from facegear_tehl.schema import Block, CaseError, attempt, check, collecting, defaults, warn
 from facegear_tehl.settings import (  # also imported from here
+    MAX_OUTLET_PATCHES,
     OUTLET_REFINEMENTS,
     THERMAL_MODELS,
     OutputSettings,
@@ -275,6 +276,7 @@ def _solver(block: Block) -> SolverSettings:
         thermal_tolerance=block.number("thermal_tolerance", d["thermal_tolerance"], positive=True, high=0.1),
         grid_y=grid_y,
         outlet_refinement=block.choice("outlet_refinement", OUTLET_REFINEMENTS, d["outlet_refinement"]),
+        outlet_patches=block.integer("outlet_patches", d["outlet_patches"], low=1, high=MAX_OUTLET_PATCHES),
     )
     check(settings.thermal_layers % 2 == 1, block.key_path("thermal_layers"), settings.thermal_layers,
           "an odd number of layer nodes (Simpson's rule across the film), e.g. 7, 9 or 11")

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 
 THERMAL_MODELS = ("off", "reduced", "full", "auto")
 OUTLET_REFINEMENTS = ("auto", "always", "never")
+MAX_OUTLET_PATCHES = 3  # the outlet stage's nested patches (ehl/outlet.py PATCH_START, NESTED_PATCH_STARTS)
 
 
 @dataclass(frozen=True)
@@ -35,6 +36,9 @@ class SolverSettings:
     # OUTLET_REFINEMENTS; auto: where the hottest film node lies on the outlet spike's rising flank and the grid's
     # estimate of dT_max or mu misses 2 % or 1 %
     outlet_refinement: str = "auto"
+    # the most nested outlet patches (1-3: half, a quarter, an eighth of the x spacing at the spike); each after the
+    # first only where the one before moved dT_max or mu by more than 2 % or 1 % (`auto`)
+    outlet_patches: int = MAX_OUTLET_PATCHES
 
     @property
     def nodes_y(self) -> int:

@@ -22,6 +22,7 @@ from facegear_tehl.ehl import jaeger, outlet
 from facegear_tehl.ehl.outlet import GHOST, PatchFilmModel, needs_outlet_patch
 from facegear_tehl.ehl.solve import solve_point
 from facegear_tehl.points import contact_analysis
+from facegear_tehl.settings import MAX_OUTLET_PATCHES, SolverSettings
 from facegear_tehl.solution import Outcome, Status
 
 FACE_GEAR_CASE = Path(__file__).resolve().parents[1] / "cases" / "facegear_110.yaml"
@@ -113,6 +114,12 @@ def test_the_energy_sweeps_hold_the_inflow_columns():
     assert np.abs(state.temperature[1:-1, :, GHOST:] - model.t_inlet).max() > 0.1  # the rest was solved
 
 
+def test_each_patch_the_settings_allow_has_its_start():
+    assert len(outlet.NESTED_PATCH_STARTS) + 1 == MAX_OUTLET_PATCHES == SolverSettings().outlet_patches
+    starts = (outlet.PATCH_START,) + outlet.NESTED_PATCH_STARTS
+    assert all(a < b for a, b in zip(starts, starts[1:], strict=False))  # each inside the one before
+
+
 def test_a_bad_outlet_refinement_is_named(tmp_path):
     text = FACE_GEAR_CASE.read_text().replace("  grid_y: 65\n", "  grid_y: 65\n  outlet_refinement: sometimes\n")
     path = tmp_path / "case.yaml"
@@ -144,12 +151,12 @@ def test_a_stage_that_fails_reports_the_uniform_solution(monkeypatch):
 
 
 def test_a_stage_that_converges_is_reported_with_its_patch(monkeypatch):
-    """The same point with the stage (the first patch alone): its composite figures and the note on the patch."""
+    """The same point with the stage (`outlet_patches: 1`, the first patch alone): its composite figures and the note
+    on the patch."""
     case, point = _face_gear("S2")
-    settings = replace(case.solver, grid=129, grid_y=17, outlet_refinement="always")
-    monkeypatch.setattr(outlet, "NESTED_PATCH_STARTS", ())
+    settings = replace(case.solver, grid=129, grid_y=17, outlet_refinement="always", outlet_patches=1)
     refined = solve_point(point, case.lubricant, settings)
-    assert refined.outcome == Outcome.CONVERGED
+    assert refined.outcome == Outcome.CONVERGED and refined.scalars["outlet_patches"][0] == 1
     assert refined.scalars["outlet_patch_start"][0] == pytest.approx(-0.5 * refined.scalars["b"][0], rel=0.05)
     assert "outlet refined" in refined.models["solver"]
     monkeypatch.setattr(outlet, "refine_outlet", lambda *args: (None, Status(Outcome.NOT_CONVERGED, "stub")))

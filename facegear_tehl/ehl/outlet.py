@@ -283,7 +283,7 @@ def outlet_stages(solve: PointSolve, index: int, state: FilmState) -> tuple[Comp
     uniform = solve.solver.levels[index]
     figures = _uniform_figures(solve, uniform, state)
     stage, result, coarser = None, None, None
-    starts = (PATCH_START,) + NESTED_PATCH_STARTS
+    starts = ((PATCH_START,) + NESTED_PATCH_STARTS)[:solve.settings.outlet_patches]
     while stage is None or len(stage.solver.patches) < len(starts):
         start = starts[0 if stage is None else len(stage.solver.patches)]
         top = len(solve.solver.levels) - 1
