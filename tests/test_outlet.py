@@ -175,6 +175,11 @@ def test_a_nested_stage_that_fails_reports_the_first_patch(monkeypatch):
     both = solve_point(point, case.lubricant, settings)
     assert first.scalars["outlet_patches"][0] == 1 and both.scalars["outlet_patches"][0] == 2
     assert both.scalars["dT_max"][0] != first.scalars["dT_max"][0]
+    # the estimate: the change from the uniform grid (one patch's estimate is that change, first order) over the whole
+    # refinement, (f_2 - f_0)/(2^2 - 1)
+    uniform_dT = first.scalars["dT_max"][0] * (1.0 - first.scalars["error_estimate_dT_max"][0])
+    assert both.scalars["error_estimate_dT_max"][0] == pytest.approx(
+        (both.scalars["dT_max"][0] - uniform_dT) / 3.0 / both.scalars["dT_max"][0], rel=1e-9)
     real_update = PatchFilmModel.update
     spacings = []
 

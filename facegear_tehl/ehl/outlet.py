@@ -282,7 +282,7 @@ def outlet_stages(solve: PointSolve, index: int, state: FilmState) -> tuple[Comp
     why a stage failed ("" if none did)."""
     uniform = solve.solver.levels[index]
     figures = _uniform_figures(solve, uniform, state)
-    stage, result, coarser = None, None, None
+    stage, result = None, None
     starts = ((PATCH_START,) + NESTED_PATCH_STARTS)[:solve.settings.outlet_patches]
     while stage is None or len(stage.solver.patches) < len(starts):
         start = starts[0 if stage is None else len(stage.solver.patches)]
@@ -295,9 +295,8 @@ def outlet_stages(solve: PointSolve, index: int, state: FilmState) -> tuple[Comp
             what = "outlet patch" if stage is None else f"outlet patch {len(stage.solver.patches) + 1}"
             return result, f"{what}: {status.message}"
         stage, previous = refined, figures
-        result = replace(composite(solve, stage), coarser=coarser)
+        result = composite(solve, stage)
         figures = {name: result.scalars[name][0] for name in ("dT_max", "mu")}
-        coarser = figures
         moved = {name: abs(figures[name] / previous[name] - 1.0) if previous[name] != 0.0 else 0.0
                  for name in figures}
         if solve.settings.outlet_refinement == "auto" and not (moved["dT_max"] > AUTO_DT_MAX_ERROR
@@ -332,8 +331,6 @@ class Composite:
     state: FilmState  # the uniform grid's film state with the patches' injected on its columns
     scalars: dict[str, tuple[float, str]]
     note: str  # the patches, for models.solver
-    # dT_max (K) and mu of the composite one patch coarser, for the error estimates; None: the uniform grid's
-    coarser: dict[str, float] | None = None
 
 
 def composite(solve: PointSolve, stage: OutletStage) -> Composite:
