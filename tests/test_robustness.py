@@ -393,7 +393,7 @@ def test_a_pressure_that_cycling_on_a_converged_film_state_left_unconverged_is_n
 def test_a_coarse_stage_whose_pressure_cannot_hold_stops_once_its_film_state_has_settled(monkeypatch):
     """The coarse stage of a `full` thermal solve only seeds the finest grid: once its film state has settled (two
     updates within ten times the thermal tolerance) and max_cycles V-cycles on it left the pressure unconverged and
-    stalled, it stops there instead of running out max_thermal_iterations (the heavy envelope points ran 21 more
+    stalled, it stops there instead of running out max_thermal_iterations (the heavy envelope points ran 22 more
     outer iterations on 129 x 65 for the same seed). S1 of the default case on 129 x 33 (coarse stage on the grid
     below) with a pressure tolerance no V-cycle reaches (1e-14, below the algebraic floor) and a thermal tolerance
     of 0.2 % of the rise: the coarse stage ends at the outer iteration of its long cycling, well before its 30, and
