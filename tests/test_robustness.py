@@ -388,3 +388,49 @@ def test_a_pressure_that_cycling_on_a_converged_film_state_left_unconverged_is_n
     assert solution.scalar("thermal_iterations") >= 3  # the film state had outer iterations to converge over
     assert long_cycles, "the film state never converged under the unconverged pressure: the test tests nothing"
     assert len(set(long_cycles)) == len(long_cycles), long_cycles
+
+
+def test_a_coarse_stage_whose_pressure_cannot_hold_stops_once_its_film_state_has_settled(monkeypatch):
+    """The coarse stage of a `full` thermal solve only seeds the finest grid: once its film state has settled (two
+    updates within ten times the thermal tolerance) and max_cycles V-cycles on it left the pressure unconverged and
+    stalled, it stops there instead of running out max_thermal_iterations (the heavy envelope points ran 22 more
+    outer iterations on 129 x 65 for the same seed). S1 of the default case on 129 x 33 (coarse stage on the grid
+    below) with a pressure tolerance no V-cycle reaches (1e-14, below the algebraic floor) and a thermal tolerance
+    of 0.2 % of the rise: the coarse stage ends at the outer iteration of its long cycling, well before its 30, and
+    the finest grid's loop runs after it."""
+    from dataclasses import replace
+
+    from facegear_tehl.ehl import solve as solve_module
+
+    raw = yaml.safe_load((ROOT / "cases" / "facegear_110.yaml").read_text())
+    raw["gear"]["points"] = ["S1"]
+    raw["solver"].update(grid=129, grid_y=33)
+    case = parse_case(yaml.safe_dump(raw))
+    settings = replace(case.solver, tolerance=1e-14, load_tolerance=1e-14, thermal_tolerance=2e-3,
+                       max_thermal_iterations=30)
+    stages: list[tuple[int, int, int]] = []  # (level, its outer iterations, the one that cycled the pressure long)
+    long_cycle: list[int] = []
+    cycle, couple = solve_module.PointSolve.cycle, solve_module.PointSolve.couple
+
+    def counted_cycle(self, index, max_cycles, best=None):
+        if max_cycles == settings.max_cycles and self.history.thermal_changes:
+            long_cycle.append(self.history.outer)
+        return cycle(self, index, max_cycles, best)
+
+    def counted_couple(self, index, *args, **kwargs):
+        before = self.history.outer
+        long_cycle.clear()
+        try:
+            return couple(self, index, *args, **kwargs)
+        finally:
+            stages.append((index, self.history.outer - before, long_cycle[0] - before if long_cycle else -1))
+
+    monkeypatch.setattr(solve_module.PointSolve, "cycle", counted_cycle)
+    monkeypatch.setattr(solve_module.PointSolve, "couple", counted_couple)
+    point = contact_analysis(case).points[0]
+    solve_module.solve_point(point, case.lubricant, settings)
+    (coarse, coarse_outer, coarse_long), (fine, fine_outer, _) = stages[:2]
+    assert coarse < fine
+    assert coarse_long > 0, "the film state never settled under the unconverged pressure: the test tests nothing"
+    assert coarse_outer == coarse_long < settings.max_thermal_iterations, stages
+    assert fine_outer > 0

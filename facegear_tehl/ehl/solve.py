@@ -94,6 +94,12 @@ MIN_COARSE_THERMAL_GRID = 65  # the coupled problem is solved one grid coarser f
 # h_min, dT_max and mu within a quarter of their error estimates. (`reduced` keeps its coarse stage's tolerance: its
 # coarse temperatures are its result.)
 COARSE_STAGE_TOLERANCE = 10.0
+# SEED_STOP: a coarse stage whose film state has settled within that tolerance (two updates) while its pressure cannot
+# hold on its grid (max_cycles V-cycles on the settled state leave it unconverged, the change per cycle stalled: the
+# smallest of the last four cycles above half the smallest of the four before, _stalled) stops there and seeds the
+# finest grid: the pressure of the heavy envelope points stays on a 1e-3 limit cycle on 129 x 65 (a/b = 30, 2.5 GPa,
+# 10 m/s, SRR 0.5: 0.6-3.2e-3 per cycle over all 40 cycles, load error -1e-3) and their coarse stages ran out all 40
+# outer iterations, 22 of them after the state had settled, for the same seed (docs/benchmarks.md, coarse stage).
 
 # Algebraic floor of the pressure iteration (a period-2 flicker at the spike and the free boundary):
 FLOOR_STALL = 0.8  # the change per cycle fell by less than 20 % over two cycles ...
@@ -272,8 +278,9 @@ def _at_thermal_floor(changes: list[float], h_c: list[float], bound: float, h_c_
 
 
 def _stalled(changes: list[float]) -> bool:
-    """Over the last THERMAL_FLOOR_WINDOW outer iterations the change stopped falling: the smallest change of
-    the window's last half is above THERMAL_FLOOR_STALL times the smallest of its first half."""
+    """Over the last THERMAL_FLOOR_WINDOW outer iterations (or V-cycles, for the pressure's change per cycle) the
+    change stopped falling: the smallest change of the window's last half is above THERMAL_FLOOR_STALL times the
+    smallest of its first half."""
     n = THERMAL_FLOOR_WINDOW
     if len(changes) < n:
         return False
@@ -668,6 +675,11 @@ class PointSolve:
                 status = self.cycle(index, settings.max_cycles)
                 if status.diverged:
                     break
+                if seeding and not status.converged and _stalled(history.changes):
+                    # the seed is as good as this grid makes it (SEED_STOP)
+                    return state, Status(Outcome.NOT_CONVERGED, (
+                        f"coarse stage stopped at outer iteration {outer + 1}: film state within {tolerance:.2e} of "
+                        f"its last two updates, pressure stalled at {history.changes[-1]:.2e} per cycle"))
             if outer > 0 and status.converged and changes[-1] < tolerance:
                 self._settle(index)
                 return state, CONVERGED
