@@ -26,7 +26,9 @@ def hierarchy_shapes(finest_x: int, finest_y: int, coarsest: int) -> list[tuple[
     (65, 65), (129, 65), (257, 65)]; (65, 257, 17) -> [(17, 65), (33, 129), (65, 257)].
 
     The coarse grids of a grid refined along X are those of the square grid: a coarsest grid with 65 or more
-    nodes along X (the rolling direction) runs away from the Hertz start (so does a 65^2 coarsest grid).
+    nodes along X (the rolling direction) runs away from the Hertz start with the default relaxation (so does a
+    65^2 coarsest grid; with Venner's switch, the second attempt of solve.ATTEMPTS, about ten heavy contacts of the
+    envelope suite start from 65^2).
     """
     x_only = []
     while finest_x > finest_y:
