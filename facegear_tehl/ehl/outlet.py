@@ -154,8 +154,8 @@ def needs_outlet_patch(solve: PointSolve, index: int, state: FilmState) -> bool:
     coarse = solve.summaries[-2] if len(solve.summaries) >= 2 else None
     if coarse is None or not (np.isfinite(coarse.dT_max) and np.isfinite(coarse.mu)):
         return True
-    dT_max = float(state.temperature.max()) - solve.lubricant.inlet_temperature
-    mu = friction_coefficients(state, level.pressure, cell_area(level, solve.scaling), solve.point.load)[0]
+    figures = _uniform_figures(solve, level, state)
+    dT_max, mu = figures["dT_max"], figures["mu"]
     return ((dT_max != 0.0 and abs(richardson_error(dT_max, coarse.dT_max, ORDER_DT_MAX)) > AUTO_DT_MAX_ERROR)
             or (mu != 0.0 and abs(richardson_error(mu, coarse.mu, ORDER_MU)) > AUTO_MU_ERROR))
 

@@ -79,7 +79,7 @@ class _Patch:
     last: int
     columns: slice
     local: DeflectionOperator
-    cache: tuple[np.ndarray, np.ndarray, np.ndarray] | None = field(default=None)
+    cache: tuple[list[np.ndarray], np.ndarray, np.ndarray] | None = field(default=None)
 
 
 class PatchedSolver(MultigridSolver):
@@ -238,13 +238,15 @@ class PatchedSolver(MultigridSolver):
     # ---------------------------------------------------- the patch's level
     def _interpolated_below(self, index: int) -> tuple[np.ndarray, np.ndarray]:
         """The composite below patch `index` interpolated to its spacing over the patch (P_I) and its deflection at
-        the patch's nodes (K*P_I over the whole domain, without C_d), kept while that composite does not change."""
+        the patch's nodes (K*P_I over the whole domain, without C_d), kept while the pressures of the parts below (the
+        finest uniform grid and the patches under this one) do not change: a sweep of the patch compares them, and
+        builds the composite only when one did."""
         place, level = self._place(index), self.levels[index]
-        below = self.whole_pressure(index - 1)
-        if place.cache is None or not np.array_equal(place.cache[0], below):
-            interpolated = np.maximum(grid.SEMI_X.prolong_cubic(below), 0.0)
+        parts = [self.levels[i].pressure for i in range(self.uniform_count - 1, index)]
+        if place.cache is None or not all(np.array_equal(a, b) for a, b in zip(place.cache[0], parts, strict=True)):
+            interpolated = np.maximum(grid.SEMI_X.prolong_cubic(self.whole_pressure(index - 1)), 0.0)
             w = level.deflection.apply(interpolated)[:, place.columns]
-            place.cache = (below.copy(), interpolated[:, place.columns].copy(), w)
+            place.cache = ([part.copy() for part in parts], interpolated[:, place.columns].copy(), w)
         return place.cache[1], place.cache[2]
 
     def _index(self, level: Level) -> int:
