@@ -239,9 +239,9 @@ def test_a_stage_pressure_settles_with_a_small_load_bias():
 def test_the_outlet_patches_land_on_the_uniform_grid_of_their_spacing(name):
     """S2 and S4 of the default case (thermal full, Ree-Eyring; hot spot on the spike's flank): 513 x 65 with two
     nested outlet patches (half, then a quarter of its x spacing at the spike; `outlet_patches: 2`, both take a third
-    by default) against the uniform 2049 x 65 grid of the second's spacing. Measured: dT_max 60.15 / 35.64 K against
-    60.01 / 35.70 K (513 x 65 alone: 56.27 / 31.72), mu +0.12 / +0.14 % (513 x 65: +0.83 / +1.3 %), p_max +0.1 /
-    +0.07 % (513 x 65: -2.6 / -2.5 %). (The default, three patches: 60.30 / 35.85 K, +0.5 / +0.4 %: finer than
+    by default) against the uniform 2049 x 65 grid of the second's spacing. Measured: dT_max 60.00 / 35.70 K against
+    60.01 / 35.70 K (513 x 65 alone: 56.27 / 31.72), mu +0.15 / +0.21 % (513 x 65: +0.83 / +1.3 %), p_max +0.06 /
+    0.0 % (513 x 65: -2.6 / -2.5 %). (The default, three patches: 60.20 / 36.02 K, +0.3 / +0.9 %: finer than
     2049 x 65 at the spike.)"""
     case, point = _face_gear(name)
     default = solve_point(point, case.lubricant, replace(case.solver, outlet_patches=2))
