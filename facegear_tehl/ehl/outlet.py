@@ -297,14 +297,12 @@ def figures_settled(hottest: list[float], films: list[float], changes: list[floa
 
 
 def stage_pressure_settled(history: History, settings: SolverSettings) -> bool:
-    """An outlet stage's pressure has settled: the last four changes per cycle below FLOOR_BAND times the tolerance
-    (solve.py's algebraic floor) and the load error of the last two cycles within STAGE_LOAD_BAND times the load
+    """An outlet stage's pressure has settled: solve.py's algebraic floor (the last four changes per cycle below
+    FLOOR_BAND times the tolerance) with the load error of the last two cycles within STAGE_LOAD_BAND times the load
     tolerance."""
-    from facegear_tehl.ehl.solve import FLOOR_BAND
+    from facegear_tehl.ehl.solve import _pressure_settled
 
-    changes, loads = history.changes[-4:], history.loads[-2:]
-    return (len(changes) == 4 and max(changes) < FLOOR_BAND * settings.tolerance and len(loads) == 2
-            and abs(0.5 * (loads[0] + loads[1])) < STAGE_LOAD_BAND * settings.load_tolerance)
+    return _pressure_settled(history, settings, STAGE_LOAD_BAND)
 
 
 def _save(solver: MultigridSolver, index: int) -> tuple[float, list[tuple[np.ndarray, ...]]]:

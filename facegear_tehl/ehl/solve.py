@@ -230,9 +230,9 @@ def _finite(level: Level) -> bool:
     return bool(np.isfinite(level.pressure).all() and np.isfinite(level.film).all() and np.isfinite(level.eps).all())
 
 
-def _balanced(loads: list[float], settings: SolverSettings) -> bool:
-    """The load error averaged over the last two cycles is within tolerance."""
-    return len(loads) >= 2 and abs(0.5 * (loads[-1] + loads[-2])) < settings.load_tolerance
+def _balanced(loads: list[float], settings: SolverSettings, band: float = 1.0) -> bool:
+    """The load error averaged over the last two cycles is within `band` times the tolerance."""
+    return len(loads) >= 2 and abs(0.5 * (loads[-1] + loads[-2])) < band * settings.load_tolerance
 
 
 def _at_algebraic_floor(changes: list[float], loads: list[float], settings: SolverSettings) -> bool:
@@ -248,12 +248,13 @@ def _at_algebraic_floor(changes: list[float], loads: list[float], settings: Solv
     return stalled and small and _balanced(loads, settings)
 
 
-def _pressure_settled(history: History, settings: SolverSettings) -> bool:
+def _pressure_settled(history: History, settings: SolverSettings, load_band: float = 1.0) -> bool:
     """Between film-state updates the pressure stays within its algebraic floor (_at_algebraic_floor's bound:
     the last four changes per cycle below 10x the tolerance, the load error of the last two cycles within
-    tolerance), though two cycles per update are too few to see it stall."""
+    `load_band` times its tolerance), though two cycles per update are too few to see it stall."""
     changes = history.changes[-4:]
-    return len(changes) == 4 and max(changes) < FLOOR_BAND * settings.tolerance and _balanced(history.loads, settings)
+    return (len(changes) == 4 and max(changes) < FLOOR_BAND * settings.tolerance
+            and _balanced(history.loads, settings, load_band))
 
 
 def _at_thermal_floor(changes: list[float], h_c: list[float], bound: float, h_c_error: float = 0.0) -> bool:
