@@ -68,8 +68,9 @@ def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, 
 
     Ree-Eyring: Newton's method from (guess_x, guess_y) if `warm`, else from the Couette estimate, to a velocity
     residual of 1e-10 `speed` (m/s, the scale of the surface speeds). A column whose Newtonian wall stresses are both
-    below `newtonian_below` tau_0 keeps the Newtonian solution (0: never): its eta*/eta = r/sinh r departs from 1 by
-    at most r^2/6 in the log (sinh r/r = prod_k (1 + r^2/(k pi)^2) <= exp(r^2/6))."""
+    below `newtonian_below` tau_0 keeps the Newtonian solution (0: never): its Eyring stresses are the Newtonian ones
+    to a relative O(r^2), and eta*/eta = r/sinh r departs from 1 by at most r^2/6 in the log (sinh r/r =
+    prod_k (1 + r^2/(k pi)^2) <= exp(r^2/6); tests/test_layers.py, tests/test_eyring_loop.py)."""
     nz = eta.size
     # Newtonian solution: tau_s G0 + grad p G1 = du, G0 = h \\int dzeta/eta, G1 = h^2 \\int zeta dzeta/eta
     g0 = 0.0
