@@ -96,3 +96,38 @@ def test_eyring_couette_column_and_the_outputs_only_the_energy_equation_uses():
     assert np.allclose(dissipation, tau0 * r * speed / h, rtol=1e-9, atol=0)
     for with_all, without in zip(outputs[0][:4], outputs[1][:4]):
         assert np.array_equal(with_all, without)
+
+
+def eyring_column(newtonian_below, speed=0.05, gradient=2e9, eta0=0.05, h=2e-6, tau0=1e7):
+    """One Ree-Eyring column with sliding and a pressure gradient (Pa/m), solved by rheology.shear_state: (eta*/eta,
+    dissipation, stress at surface 1, thinning)."""
+    nz = 9
+    shape = (nz, 1, 1)
+    film, eta, grad = np.full((1, 1), h), np.full(shape, eta0), np.full((1, 1), gradient)
+    factor, dissipation, u, v, thinning = (np.empty(shape) for _ in range(5))
+    stress_1, stress_2 = np.zeros((2, 1, 1)), np.zeros((2, 1, 1))
+    rheology.shear_state(np.zeros((1, 1)), film, grad, np.zeros((1, 1)), eta, np.zeros(2), np.array([speed, 0.0]),
+                         tau0, False, factor, dissipation, u, v, stress_1, stress_2, thinning, newtonian_below)
+    return factor, dissipation, stress_1, thinning
+
+
+def test_a_column_below_the_newtonian_bound_takes_the_newtonian_state():
+    # Couette and Poiseuille with eta = const: the Newtonian surface stress is eta u_s/h - h grad p/2 (from
+    # \int (tau_s + z grad p)/eta dz = u_s), and the Eyring film departs from it by |ln(eta*/eta)| <= r^2/6 with r the
+    # largest |tau|/tau_0 of the column (sinh r/r <= exp(r^2/6)). A column whose Newtonian wall stresses lie below
+    # the bound takes that Newtonian state; one above it is solved in full as without the bound.
+    speed, gradient, eta0, h, tau0 = 0.05, 2e9, 0.05, 2e-6, 1e7
+    tau_s = eta0 * speed / h - h * gradient / 2.0
+    r = max(abs(tau_s), abs(tau_s + h * gradient)) / tau0  # 1e-3: the wall stresses 10 kPa and 5 kPa
+    factor, dissipation, stress_1, thinning = eyring_column(1.001 * r)
+    assert np.all(factor == 1.0) and np.all(thinning == 1.0)
+    assert stress_1[0, 0, 0] == pytest.approx(tau_s, rel=1e-12)
+    tau = tau_s + gradient * h * np.linspace(0.0, 1.0, 9)
+    assert np.allclose(dissipation[:, 0, 0], tau * tau / eta0, rtol=1e-12, atol=0)
+    full = eyring_column(0.0)
+    log_factor = np.log(full[0])
+    assert 0.0 < np.abs(log_factor).max() <= r * r / 6.0  # the full solution departs, by no more than the bound
+    assert stress_1[0, 0, 0] == pytest.approx(full[2][0, 0, 0], rel=r * r)
+    above = eyring_column(0.999 * r)
+    for with_bound, without in zip(above, full):
+        assert np.array_equal(with_bound, without)

@@ -98,15 +98,23 @@ def column_integrals(viscosity_factor):
     temperature (hence rho and eta) the same in every layer, F0 = a0/eta, F1 = a1/eta, R0 = rho, R1 = rho b1/eta,
     R2 = rho b2/eta, so that (flow module) 12 (F1 R2/F0 - R1) = 12 (rho/eta)(a1 b2/a0 - b1) and R2/F0 = rho b2/a0:
     both shapes stay fixed while the pressure cycles on a frozen state (`isothermal_layered_coefficients`). For a
-    Newtonian column (phi = 1): 1/12 and 1/2 (Poiseuille h^3/(12 eta), Couette u_e h)."""
+    Newtonian column (phi = 1): 1/12 and 1/2 (Poiseuille h^3/(12 eta), Couette u_e h), evaluated once by the same rule
+    for every column with phi = 1 in all layers (most of the inlet of an isothermal Ree-Eyring film, rheology.py)."""
     nz, ny, nx = viscosity_factor.shape
     out = np.empty((2, ny, nx))
     fluidity = np.empty(nz)
     ones = np.ones(nz)
+    a0, a1, _, b1, b2 = fluidity_integrals(ones, ones)
+    newtonian = (a1 * b2 / a0 - b1, b2 / a0)
     for j in range(ny):
         for i in range(nx):
+            uniform = True
             for k in range(nz):
                 fluidity[k] = 1.0 / viscosity_factor[k, j, i]
+                uniform = uniform and viscosity_factor[k, j, i] == 1.0
+            if uniform:
+                out[0, j, i], out[1, j, i] = newtonian
+                continue
             a0, a1, _, b1, b2 = fluidity_integrals(fluidity, ones)
             out[0, j, i] = a1 * b2 / a0 - b1
             out[1, j, i] = b2 / a0

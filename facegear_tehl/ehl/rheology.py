@@ -60,13 +60,17 @@ def _shear_rate(tx, ty, eta, inverse_eta, tau0, inverse_tau0):
 
 @njit(cache=True, error_model="numpy")
 def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, warm, speed, rate_x, rate_y,
-                   inverse_eta, inverse_tau0):
+                   inverse_eta, inverse_tau0, newtonian_below=0.0):
     """Stress (tau_x, tau_y) at surface 1 such that \\int gamma_dot dz = (dux, duy); eta per layer (Pa s); returns
-    (tau_x, tau_y, rated): `rated` True when rate_x, rate_y (per layer, in place) hold the shear rate at the stress
-    returned (the residual evaluation that ended Newton's method), else they are to be evaluated.
+    (tau_x, tau_y, rated, newtonian): `rated` True when rate_x, rate_y (per layer, in place) hold the shear rate at the
+    stress returned (the residual evaluation that ended Newton's method), else they are to be evaluated; `newtonian`
+    True when the column is taken as Newtonian (below).
 
     Ree-Eyring: Newton's method from (guess_x, guess_y) if `warm`, else from the Couette estimate, to a velocity
-    residual of 1e-10 `speed` (m/s, the scale of the surface speeds)."""
+    residual of 1e-10 `speed` (m/s, the scale of the surface speeds). A column whose Newtonian wall stresses are both
+    below `newtonian_below` tau_0 keeps the Newtonian solution (0: never): its Eyring stresses are the Newtonian ones
+    to a relative O(r^2), and eta*/eta = r/sinh r departs from 1 by at most r^2/6 in the log (sinh r/r =
+    prod_k (1 + r^2/(k pi)^2) <= exp(r^2/6); tests/test_layers.py, tests/test_eyring_loop.py)."""
     nz = eta.size
     # Newtonian solution: tau_s G0 + grad p G1 = du, G0 = h \\int dzeta/eta, G1 = h^2 \\int zeta dzeta/eta
     g0 = 0.0
@@ -80,7 +84,11 @@ def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, 
     tx = (dux - gpx * g1) / g0
     ty = (duy - gpy * g1) / g0
     if not math.isfinite(tau0):
-        return tx, ty, False
+        return tx, ty, False, True
+    if newtonian_below > 0.0:
+        wall = max(math.sqrt(tx * tx + ty * ty), math.sqrt((tx + h * gpx) ** 2 + (ty + h * gpy) ** 2))
+        if wall < newtonian_below * tau0:
+            return tx, ty, False, True
     if warm:
         tx, ty = guess_x, guess_y
     else:
@@ -112,7 +120,7 @@ def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, 
             jc += w * c
         norm = math.hypot(fx, fy)
         if norm <= 1e-10 * speed:
-            return tx, ty, True
+            return tx, ty, True, False
         if norm > residual_norm:
             # backtrack: the last Newton step overshot; go back half of what is left of it
             step_x *= 0.5
@@ -126,15 +134,18 @@ def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, 
         step_y = -(-jb * fx + ja * fy) / det
         tx += step_x
         ty += step_y
-    return tx, ty, False
+    return tx, ty, False, False
 
 
 @njit(cache=True, error_model="numpy")
 def shear_state(pressure, film, grad_x, grad_y, eta_newtonian, u1, u2, tau0, warm,
-                viscosity_factor, dissipation, velocity_x, velocity_y, stress_1, stress_2, thinning):
+                viscosity_factor, dissipation, velocity_x, velocity_y, stress_1, stress_2, thinning,
+                newtonian_below=0.0):
     """Across-film shear state at every node (in place), shapes (nz, ny, nx) for layer fields.
 
     warm: stress_1 holds the previous solution, used as the Newton start (Ree-Eyring).
+    newtonian_below: a column whose Newtonian wall stresses are below this multiple of tau_0 takes the Newtonian state
+    (eta*/eta = 1, error in ln(eta*/eta) at most newtonian_below^2/6; surface_stress); 0: every column is solved.
     thinning: tanh(r)/r with r = |tau|/tau_0 (1 for a Newtonian film): d ln(dissipation)/d ln(eta) at fixed
     shear rate, for the implicit treatment of viscous heating in energy.py; an empty array: not evaluated (a film
     without the energy equation: its tanh took 28 % of the kernel, the velocities another 20 %: 35 -> 20 ms without
@@ -166,12 +177,22 @@ def shear_state(pressure, film, grad_x, grad_y, eta_newtonian, u1, u2, tau0, war
                 inverse_eta[k] = 1.0 / eta[k]
             gpx = grad_x[j, i]
             gpy = grad_y[j, i]
-            tx, ty, rated = surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, stress_1[0, j, i],
-                                           stress_1[1, j, i], warm, speed, rate_x, rate_y, inverse_eta, inverse_tau0)
+            tx, ty, rated, newtonian = surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, stress_1[0, j, i],
+                                                      stress_1[1, j, i], warm, speed, rate_x, rate_y, inverse_eta,
+                                                      inverse_tau0, newtonian_below)
             for k in range(nz):
                 z = h * k / (nz - 1)
                 sx = tx + z * gpx
                 sy = ty + z * gpy
+                if newtonian and math.isfinite(tau0):  # a column taken as Newtonian (newtonian_below)
+                    gx, gy = sx * inverse_eta[k], sy * inverse_eta[k]
+                    rate_x[k] = gx
+                    rate_y[k] = gy
+                    viscosity_factor[k, j, i] = 1.0
+                    if heating:
+                        thinning[k, j, i] = 1.0
+                    dissipation[k, j, i] = sx * gx + sy * gy
+                    continue
                 if rated:  # Newton's last residual evaluated these (the same stress, the same operations)
                     gx, gy = rate_x[k], rate_y[k]
                 else:

@@ -124,9 +124,11 @@ class FilmThermalModel:
     first_column = 0  # the energy equation is solved from this column on (outlet.py: a patch's inflow columns)
 
     def __init__(self, x: np.ndarray, y: np.ndarray, layers: int, lubricant: Lubricant, point: ContactPoint,
-                 solve_energy: bool):
+                 solve_energy: bool, newtonian_below: float = 0.0):
         """`layers`: odd number of layer nodes across the film; `point` gives the solids, their surface velocities
-        and the Hertz half-width; `solve_energy`: False for an isothermal (Ree-Eyring) film."""
+        and the Hertz half-width; `solve_energy`: False for an isothermal (Ree-Eyring) film; `newtonian_below`: the
+        columns whose Newtonian wall stresses stay below this multiple of tau_0 are taken as Newtonian
+        (rheology.shear_state; 0: none)."""
         if layers < 3 or layers % 2 == 0:
             raise ValueError(f"layers across the film must be odd and >= 3, got {layers}")
         self.x, self.y = x, y
@@ -139,6 +141,7 @@ class FilmThermalModel:
         self.law = lubricant.law_parameters()
         self.t_inlet = lubricant.inlet_temperature
         self.tau0 = lubricant.eyring_stress if lubricant.rheology == "ree_eyring" else math.inf
+        self.newtonian_below = newtonian_below
         self.matrix = jaeger.influence_matrix(x.size, self.dx)
         self._stress = None  # surface-1 shear stress of the last update: the warm start of the next
         half_width = point.hertz.b
@@ -195,7 +198,7 @@ class FilmThermalModel:
         eta = lub.viscosity * ratio
         rheology.shear_state(p, film, np.ascontiguousarray(grad_x), np.ascontiguousarray(grad_y), eta,
                              self.velocity_1, self.velocity_2, self.tau0, warm, viscosity_factor, dissipation,
-                             velocity_x, velocity_y, stress_1, stress_2, thinning)
+                             velocity_x, velocity_y, stress_1, stress_2, thinning, self.newtonian_below)
         compression = None
         if self.solve_energy:
             expansivity = lub.thermal_expansion / (1.0 - lub.thermal_expansion * (temperature - self.t_inlet))

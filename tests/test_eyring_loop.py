@@ -1,0 +1,43 @@
+"""The isothermal Ree-Eyring outer loop (ehl/solve.py): the Newtonian columns of its film state."""
+
+import math
+
+import numpy as np
+import pytest
+
+from facegear_tehl.contact import ContactPoint
+from facegear_tehl.ehl import solve
+from facegear_tehl.ehl.friction import friction_coefficients
+from facegear_tehl.ehl.report import cell_area
+from facegear_tehl.lubricant import Lubricant
+from facegear_tehl.materials import Solid
+from facegear_tehl.settings import SolverSettings
+
+STEEL = Solid(elastic_modulus=2.0e11, poisson_ratio=0.3)
+OIL = Lubricant(viscosity=0.04, pressure_viscosity=2.2e-8, rheology="ree_eyring", eyring_stress=1.0e7)
+
+
+def test_newtonian_columns_of_a_converged_eyring_film(monkeypatch):
+    # A ball on a flat (p_h = 1.33 GPa, 5 m/s, SRR 0.5) solved isothermal Ree-Eyring on 65 x 65: its film state at the
+    # converged pressure, evaluated with the columns below the Newtonian bound r_N = sqrt(6 share tolerance) taken as
+    # Newtonian and with every column solved, differs by no more than r_N^2/6 in ln(eta*/eta) (sinh r/r <= exp(r^2/6));
+    # the bound takes effect (the inlet's columns are Newtonian), and the friction coefficient is the same to 1e-6.
+    point = ContactPoint.from_rolling_sliding("ball", 0.01, 0.01, 100.0, 5.0, 0.5, 0.0, STEEL, STEEL)
+    solver = solve.PointSolve(point, OIL, SolverSettings(grid=65, thermal="off"))
+    assert solver.begin().converged
+    level = solver.solver.levels[-1]
+    pressure, film = level.pressure * solver.scaling.p_h, level.film * solver.scaling.film_scale
+    bounded = solver._film_model(level)
+    bound = math.sqrt(6.0 * solve.EYRING_NEWTONIAN_SHARE * solver.settings.thermal_tolerance)
+    assert bounded.newtonian_below == pytest.approx(bound, rel=1e-12)
+    monkeypatch.setattr(solve, "EYRING_NEWTONIAN_SHARE", 0.0)
+    full = solver._film_model(level)
+    temperature = full.initial_temperature()
+    states = [model.update(pressure, film, temperature) for model in (bounded, full)]
+    newtonian = np.all(states[0].viscosity_factor == 1.0, axis=0)
+    assert 0.3 < newtonian.mean() < 1.0 and not np.any(np.all(states[1].viscosity_factor == 1.0, axis=0))
+    difference = np.abs(np.log(states[0].viscosity_factor) - np.log(states[1].viscosity_factor))
+    assert 0.0 < difference.max() <= bound * bound / 6.0
+    mu = [friction_coefficients(state, level.pressure, cell_area(level, solver.scaling), point.load)[0]
+          for state in states]
+    assert mu[0] == pytest.approx(mu[1], rel=1e-6)
