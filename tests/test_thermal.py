@@ -184,7 +184,7 @@ def test_thermal_floor_is_a_stalled_small_change_with_a_steady_film():
 def test_a_flickering_pressure_feeds_the_film_state_the_mean_of_its_two_phases():
     """On a period-2 flicker of the pressure (the change per cycle stalled below 10x the tolerance) the outer
     loop evaluates the film state at the mean of the last two iterates and ends on it (solve.PointSolve
-    ._settled_pressure, ._settle): the film is affine in (P, H_0), so the mean film handed to the energy equation
+    .settled_pressure, .settle): the film is affine in (P, H_0), so the mean film handed to the energy equation
     is the film the solver computes for the mean iterate; a pressure still converging is used as it is."""
     from facegear_tehl.ehl.multigrid import Iterate
     from facegear_tehl.ehl.solve import PointSolve
@@ -200,13 +200,13 @@ def test_a_flickering_pressure_feeds_the_film_state_the_mean_of_its_two_phases()
     solve.before_cycle = (solver.snapshot(top), level.film.copy())
     solver.restore(top, Iterate(phase_a, 0.32))
     solve.history.changes = [math.nan, 2.9e-4, 2.8e-4, 2.9e-4]
-    pressure, film = solve._settled_pressure(top)
+    pressure, film = solve.settled_pressure(top)
     assert np.allclose(pressure, 0.5 * (phase_a + phase_b))
-    solve._settle(top)
+    solve.settle(top)
     assert solver.h0 == pytest.approx(0.31)
     assert np.allclose(level.pressure, pressure) and np.allclose(level.film, film, rtol=1e-12, atol=1e-14)
     solve.history.changes = [math.nan, 2.9e-4, 1.5e-4, 0.9e-4]  # still falling: no flicker
-    pressure, film = solve._settled_pressure(top)
+    pressure, film = solve.settled_pressure(top)
     assert pressure is level.pressure and film is level.film
 
 

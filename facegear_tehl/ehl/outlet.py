@@ -237,7 +237,7 @@ def refine_outlet(solve: PointSolve, index: int, state: FilmState, coarse_cycles
         if status.diverged:
             break
         forcing = ENERGY_FORCING * last_change if last_change is not None else np.inf
-        pressure, film = _with_inflow(solver, start, *solve._settled_pressure(top))
+        pressure, film = _with_inflow(solver, start, *solve.settled_pressure(top))
         temperature[..., :GHOST] = inflow
         update = model.update(pressure * scaling.p_h, film * scaling.film_scale, temperature, forcing)
         rise = max(float(temperature.max() - t_in), MIN_RISE)
@@ -259,7 +259,7 @@ def refine_outlet(solve: PointSolve, index: int, state: FilmState, coarse_cycles
                              and stage_pressure_settled(solve.history, settings)):
             if floor:
                 solve.history.thermal_floor = last_change
-            solve._settle(top)  # on a flicker of the spike the mean of its two phases, as the uniform loop ends
+            solve.settle(top)  # on a flicker of the spike the mean of its two phases, as the uniform loop ends
             patch_state = replace(update, temperature=temperature, viscosity_factor=factor)
             states = ((state,) if base is None else base.states) + (
                 patch_state_columns(patch_state, slice(GHOST, None)),)
@@ -364,7 +364,7 @@ def _uniform_figures(solve: PointSolve, level: Level, state: FilmState) -> dict[
 def _with_inflow(solver: PatchedSolver, start: int, pressure: np.ndarray,
                  film: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The composite pressure and film on the patch's energy columns: the grid below interpolated (bicubic along x)
-    on the GHOST inflow columns, then the patch's `pressure` and `film` (its settled ones, PointSolve._settled_pressure:
+    on the GHOST inflow columns, then the patch's `pressure` and `film` (its settled ones, PointSolve.settled_pressure:
     on a flicker of the spike the mean of its two phases, as the uniform loop evaluates its film state)."""
     below = solver.below
     ghost = slice(start, start + GHOST)

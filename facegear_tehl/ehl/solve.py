@@ -640,7 +640,7 @@ class PointSolve:
         cycled_out = False  # the pressure was cycled to its tolerance on a converged film state (below)
         for outer in range(settings.max_thermal_iterations):
             forcing = ENERGY_FORCING * last_change if last_change is not None else math.inf
-            pressure, film = self._settled_pressure(index)
+            pressure, film = self.settled_pressure(index)
             update = model.update(pressure * scaling.p_h, film * scaling.film_scale, temperature, forcing)
             rise = max(float(temperature.max() - self.lubricant.inlet_temperature), MIN_RISE)
             temperature, factor, thermal_change, viscosity_change = _next_film_state(
@@ -661,7 +661,7 @@ class PointSolve:
                 changes = history.viscosity_changes
             if status.diverged:  # its film is not finite: no h_c is recorded
                 break
-            film = self._settled_pressure(index)[1]
+            film = self.settled_pressure(index)[1]
             history.thermal_h_c.append(grid.bilinear_at(film, level.x, level.y, 0.0, 0.0) * scaling.film_scale)
             last_finite = (solver.snapshot(index), state)
             if model.solve_energy:
@@ -689,7 +689,7 @@ class PointSolve:
                         f"coarse stage stopped at outer iteration {outer + 1}: film state within {tolerance:.2e} of "
                         f"its last two updates, pressure stalled at {history.changes[-1]:.2e} per cycle"))
             if outer > 0 and status.converged and changes[-1] < tolerance:
-                self._settle(index)
+                self.settle(index)
                 return state, CONVERGED
             coarse_error = _h_c_error(history.thermal_h_c[-1], coarse_h_c * scaling.film_scale)
             if ((status.converged or _pressure_settled(history, settings))
@@ -698,7 +698,7 @@ class PointSolve:
                     history.thermal_floor = changes[-1]
                 else:
                     history.viscosity_floor = changes[-1]
-                self._settle(index)
+                self.settle(index)
                 return state, CONVERGED
             if _stalled(changes[window:]):  # a limit cycle above the floor (or with h_c unsteady): relax harder
                 relaxation = max(0.5 * relaxation, MIN_RELAXATION_SCALE)
@@ -728,7 +728,7 @@ class PointSolve:
             return False
         return FLOOR_STALL * changes[-3] < changes[-1] < PHASE_MEAN_BAND * self.settings.tolerance
 
-    def _settled_pressure(self, index: int) -> tuple[np.ndarray, np.ndarray]:
+    def settled_pressure(self, index: int) -> tuple[np.ndarray, np.ndarray]:
         """The pressure and film of level `index` (dimensionless) the film state is evaluated at: on a period-2
         flicker of the pressure (_flickering) the mean of its last two iterates, the fixed point the two phases
         straddle; else the last iterate. (On the lengthened 513 x 65 grid of S3 of the default face gear case the
@@ -740,8 +740,8 @@ class PointSolve:
         iterate, film = self.before_cycle
         return 0.5 * (level.pressure + iterate.pressure), 0.5 * (level.film + film)
 
-    def _settle(self, index: int) -> None:
-        """Leave level `index` on the mean of its last two iterates if its pressure flickers (_settled_pressure):
+    def settle(self, index: int) -> None:
+        """Leave level `index` on the mean of its last two iterates if its pressure flickers (settled_pressure):
         the result then does not depend on the phase the loop stops on."""
         if self._flickering(index):
             self._restore_mean(index)
