@@ -63,8 +63,9 @@ AUTO_MU_ERROR = 0.01
 STAGE_COARSE_CYCLES = (1, COARSE_CYCLES)
 # X_a / b of the nested patches, each inside the one before (from its third column on at least: its inflow columns):
 # a quarter and an eighth of the uniform grid's x spacing at the spike. ΔT_max converges at order 1.4-1.7 as the spike
-# is resolved (docs/accuracy.md): at S4 of the default case the second patch still moves it by 2.9 % (the third by
-# 1.0 %, 24-35 s CPU), at S2 by 1.7 % (`auto` stops there).
+# is resolved (docs/accuracy.md): at S4 of the default case the second patch still moves it by 3.8 % (the third by
+# 0.9 %), at S2 by 2.1 % (both take the third under `auto`; at 842c29a, whose stages ran to the uniform loop's floor,
+# S2's second moved it by 1.7 % and `auto` stopped there).
 NESTED_PATCH_STARTS = (-0.4, 0.0)
 # A stage's loop also stops once the figure it is run for has settled: over the last FIGURE_WINDOW outer iterations the
 # hottest film temperature rise of the patch's updates spans at most FIGURE_SPREAD of its mean (a quarter of the
