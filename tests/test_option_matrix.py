@@ -188,10 +188,11 @@ def run_and_check(folder: Path, contact: Contact, combo: Combo, grid: int = GRID
                 values = np.asarray(getattr(value, "values", value))
                 if values.dtype.kind in "biuf":
                     assert np.all(np.isfinite(values)), f"{name}.{key} not finite\n{log}"
-        # a film that closed (h_min <= 0) is written without fields or film scalars (ehl/report.py), never
-        # as a film; any film that is written is open
+        # a film that closed (h_min <= 0), and the last iterate of a failed solve that does not carry the load, are
+        # written without fields or film scalars (ehl/report.py), never as a film; any film that is written is open
         if not point.fields:
-            assert point.outcome == "film closed" and "h_min" not in point.scalars, where
+            unloaded = point.outcome in ("diverged", "not converged") and "does not carry the load" in point.message
+            assert (point.outcome == "film closed" or unloaded) and "h_min" not in point.scalars, where
         else:
             assert point.scalars["h_min"] > 0.0, where
             assert point.fields["film_thickness"].values.min() > 0.0, where

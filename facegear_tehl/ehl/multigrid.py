@@ -4,7 +4,8 @@ Algorithm of Venner & Lubrecht (2000, ch. 8), written for any ellipticity and en
 - Unknowns per level: pressure P; film H = H_0 + C_d K*P + F_h, where F_h is the film right-hand side
   (the gap geometry on the finest grid; on coarse grids the FAS term that makes H(I P) = I H).
 - Coarse-grid correction (FAS): P_c = I P, f_c = I (f - L P) + L_c P_c, F_c = I H - H_0 - C_d K_c*P_c,
-  force balance g_c = g_h + \\iint P_h - \\iint P_c; then P += I(P_c - I P) where P > 0.
+  force balance g_c = g_h + \\iint P_h - \\iint P_c; then P += I(P_c - I P) where P > 0 (near the solution, where
+  no neighbour is cavitated: `corrected_nodes`).
 - The force balance \\iint P dX dY = 2 pi/3 fixes H_0; it is relaxed on the coarsest grid
   (H_0 += c_h g), where its FAS right-hand side carries the fine-grid information.
 - Work unit: one relaxation sweep on the finest grid; a sweep on a grid with n nodes costs n/n_finest.
@@ -41,6 +42,30 @@ class Problem:
     domain_x: tuple[float, float]
     domain_y: tuple[float, float]
     load_integral: float = 2.0 * math.pi / 3.0
+
+
+def corrected_nodes(pressure: np.ndarray) -> np.ndarray:
+    """The nodes that take the coarse-grid correction near the solution: pressurised (P > 0) and none of their four
+    neighbours cavitated (an interior node at P = 0; the domain's boundary nodes, zero by the boundary condition, do
+    not count). The coarse grid sees the cavitation boundary smeared over its own cells: added at the last pressurised
+    nodes, its correction flipped the boundary by one node every V-cycle, a period-2 limit cycle that held the
+    pressure change at 3-6e-4 per cycle on the default face gear case's 513 x 65 grids, isothermal Newtonian too (the
+    "algebraic floor"); without it the change falls by ~0.55 per cycle to 3e-6 (docs/benchmarks.md). This follows
+    the truncated coarse-grid corrections of multigrid for obstacle problems (Kornhuber 1994, Numer. Math.
+    69:167-184): a node next to the contact set is left to the relaxation. The discrete solution is unchanged (the
+    correction vanishes at convergence). Far from the solution the truncated correction can run away where the
+    pressurised zone is a few nodes wide (the circle at M = 20, L = 10 on 513 x 33 from its full-multigrid start):
+    PointSolve.cycle truncates only below TRUNCATION_BAND (solve.py)."""
+    wet = pressure > 0.0
+    dry = ~wet
+    dry[0, :] = dry[-1, :] = False
+    dry[:, 0] = dry[:, -1] = False
+    near = dry.copy()
+    near[:, 1:] |= dry[:, :-1]
+    near[:, :-1] |= dry[:, 1:]
+    near[1:, :] |= dry[:-1, :]
+    near[:-1, :] |= dry[1:, :]
+    return wet & ~near
 
 
 def at_load_fraction(problem: Problem, fraction: float) -> Problem:
@@ -150,6 +175,7 @@ class MultigridSolver:
         self.h0 = 0.0
         self.last_h0_step = 0.0  # H_0 change of the last coarsest-grid solve
         self.work_units = 0.0
+        self.truncated = False  # the coarse-grid corrections skip the nodes next to cavitation (corrected_nodes)
         self.finest_nodes = self.levels[-1].nodes
 
     # ----------------------------------------------------------------- set-up
@@ -388,10 +414,11 @@ class MultigridSolver:
         coarse.force_rhs = fine.force_rhs + fine.load_integral() - coarse.load_integral()
 
     def refine(self, index: int) -> None:
-        """Add the interpolated coarse-grid correction where the fine pressure is positive."""
+        """Add the interpolated coarse-grid correction where the fine pressure is positive (`truncated`: at the
+        nodes `corrected_nodes` picks)."""
         fine, coarse = self.levels[index], self.levels[index - 1]
         correction = self.transfers[index].prolong(coarse.pressure - coarse.pressure_restricted)
-        active = fine.pressure > 0.0
+        active = corrected_nodes(fine.pressure) if self.truncated else fine.pressure > 0.0
         fine.pressure[active] += correction[active]
         np.maximum(fine.pressure, 0.0, out=fine.pressure)
         self.update_film(fine)

@@ -29,7 +29,7 @@ import numpy as np
 
 from facegear_tehl.ehl import flow, grid
 from facegear_tehl.ehl.elastic import DeflectionOperator
-from facegear_tehl.ehl.multigrid import Level, MultigridSolver, Problem, Relaxation
+from facegear_tehl.ehl.multigrid import Level, MultigridSolver, Problem, Relaxation, corrected_nodes
 
 # V-cycles of the uniform hierarchy per coarse-grid correction of the patch. One (a plain V-cycle) leaves the grid
 # below's composite problem (its own equations outside the patch, the FAS ones inside) too far from solved near the
@@ -308,7 +308,7 @@ class PatchedSolver(MultigridSolver):
         return None
 
     def refine(self, index: int) -> None:
-        """The grid below's correction, interpolated linearly, where the patch's pressure is positive; its end
+        """The grid below's correction, interpolated linearly, at the patch's `corrected_nodes`; its end
         columns take the grid below's values."""
         place = self._place(index)
         if place is None:
@@ -316,7 +316,7 @@ class PatchedSolver(MultigridSolver):
         patch, below = self.levels[index], self.levels[index - 1]
         columns = slice(place.first, place.last + 1)
         correction = grid.prolong_linear_x((below.pressure - below.pressure_restricted)[:, columns])
-        active = patch.pressure > 0.0
+        active = corrected_nodes(patch.pressure)
         patch.pressure[active] += correction[active]
         np.maximum(patch.pressure, 0.0, out=patch.pressure)
         patch.pressure[:, 0] = below.pressure[:, place.first]
