@@ -34,11 +34,11 @@ SWEEPS = [0.0]  # column nodes swept by the energy equation in the solve under w
 
 
 def _counted(sweep_columns):
-    """energy.sweep_columns, adding the column nodes it sweeps to SWEEPS."""
+    """energy.sweep_columns, adding the columns it solves to SWEEPS."""
     def counted(temperature, *args):
-        done, change = sweep_columns(temperature, *args)
-        SWEEPS[0] += done * temperature[0].size
-        return done, change
+        done, change, solved = sweep_columns(temperature, *args)
+        SWEEPS[0] += solved
+        return done, change, solved
     return counted
 
 

@@ -242,3 +242,33 @@ def test_layer_widths_sum_to_the_film_and_integrate_cubics_exactly(nz):
         assert (w * z**power).sum() == pytest.approx(1.0 / (power + 1), rel=1e-13), power
     if nz >= 7:
         assert np.allclose(w[:4] * 24 * (nz - 1), [9, 28, 23, 24])
+
+
+def test_column_sweeps_after_the_first_solve_only_the_columns_next_to_one_that_moved():
+    """A converged film whose heating rises in a few columns near its outlet: sweeping only the columns next to one
+    that moved (energy.ACTIVE_SHARE) reaches the temperatures that sweeping every column reaches, to the sweeps'
+    tolerance (the same fixed point), and solves fewer columns (measured on this 9 x 65 film: 5653 against 7605 in 13
+    sweeps each, the temperatures within 4e-10 K; a face gear film spends most of its sweeps on the columns around
+    the outlet spike)."""
+    ny, nx, tolerance = 9, 65, 1e-8
+    f = _synthetic_film(ny=ny, nx=nx)
+    args = [f[name] for name in ("velocity_x", "velocity_y", "source", "sensitivity", "expansivity_grad", "rho_c",
+                                 "conductivity", "film", "dx", "dy", "t_inlet")]
+    energy.solve_film_temperature(f["temperature"], *args, 20000, 1e-12)
+    source = args[2].copy()
+    source[:, 4, 56:59] *= 1.5  # a local rise of the heating
+    fx, fy, fz, _ = energy.transport_fluxes(f["velocity_x"], f["velocity_y"], f["rho_c"], f["film"], f["dx"], f["dy"])
+    results = {}
+    for share in (-1.0, energy.ACTIVE_SHARE):  # -1: every column passes its move on, every sweep solves them all
+        temperature = f["temperature"].copy()
+        fixed = energy.fixed_parts(fz, source, f["sensitivity"], temperature.copy(), f["expansivity_grad"],
+                                   f["conductivity"], f["film"])
+        done, change, solved = energy.sweep_columns(temperature, fx, fy, fz, *fixed, f["conductivity"], f["film"],
+                                                    f["dx"], f["dy"], f["t_inlet"], 20000, tolerance, 0, 0, share)
+        assert change < tolerance
+        results[share] = temperature, done, solved
+    (every, every_done, every_solved), (active, _, active_solved) = results[-1.0], results[energy.ACTIVE_SHARE]
+    assert every_solved == every_done * ny * nx
+    assert np.abs(active - f["temperature"]).max() > 0.5  # the heating moved the film
+    assert np.abs(active - every).max() < 10.0 * tolerance
+    assert active_solved < 0.85 * every_solved
