@@ -21,6 +21,7 @@ e = (H_h - H_2h)/(2^2 - 1).
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from enum import Enum
 import itertools
 import math
 import time
@@ -124,14 +125,28 @@ FLOOR_BAND = 10.0  # ... while below this multiple of the tolerance (h_c, h_min 
 # same call (the outer loop's two cycles per update never qualify).
 PHASE_MEAN_BAND = 100.0
 MAX_PHASE_MEANS = 10
-# The coarse-grid corrections of `cycle` skip the nodes next to cavitation (multigrid.corrected_nodes) once the last
-# cycle changed the pressure by less than this multiple of the tolerance (the floor's band): the floor above was
-# mostly a period-2 flip of the cavitation boundary by the full correction (isothermal Newtonian S2 of the default
-# case on 513 x 65: 5.5e-4 per cycle for ever; truncated from 7.6e-4 on, 1.1e-6 after 25 cycles). Truncated from the
-# start, the circle at M = 20, L = 10 on 513 x 33 (its pressurised zone 7 nodes wide across the spike) ran away in 4
-# cycles, and the hard case heavy_m5000_l20 no longer converged on 513^2 (its result fell back to 257^2, h_min 7.6
-# against 67 nm); gated, both are as before.
+# The coarse-grid corrections of `cycle` skip the nodes next to cavitation (multigrid.corrected_nodes) from a stall of
+# the pressure change below this multiple of the tolerance (the floor's band) on, for the rest of the solve: the floor
+# above was mostly a period-2 flip of the cavitation boundary by the full correction (isothermal Newtonian S2 of the
+# default case on 513 x 65: 5.5e-4 per cycle for ever; truncated, 1e-6 after 20 cycles). Not before: from the start
+# the truncated correction ran away on the circle at M = 20, L = 10 on 513 x 33 (its pressurised zone 7 nodes wide
+# across the spike), the hard case heavy_m5000_l20 no longer converged on 513^2 (its result fell back to 257^2, h_min
+# 7.6 against 67 nm), and switched on at 1e-3 the envelope's a/b = 5, 1.5 GPa, 2 m/s contact ran away from 8.3e-4 per
+# cycle, where the full correction kept falling to its tolerance. A truncation that lets the change leave the band on
+# one film state is switched off for good, and within the call of `cycle` that switched it on its iterate is taken back
+# to where it began (and ends there, if that was the algebraic floor, as without the trial: the circle on 513 x 33
+# above, whose full correction also runs away when cycled on past its floor); a stall while it is on is taken as the
+# floor only after TRUNCATION_TRIAL cycles.
 TRUNCATION_BAND = 10.0
+TRUNCATION_TRIAL = 4
+
+
+class Truncation(Enum):
+    """The truncated coarse-grid correction of a solve: not yet tried, on, or switched off after it failed."""
+
+    OFF = "off"
+    ON = "on"
+    FAILED = "failed"
 # Algebraic floor of the thermal outer loop (see _at_thermal_floor):
 THERMAL_FLOOR_WINDOW = 8  # outer iterations over which a stalled thermal change is judged
 THERMAL_FLOOR_STALL = 0.5  # stalled: the smallest change of the window's last half above this share of its first
@@ -376,6 +391,11 @@ class PointSolve:
         self.outlet: Composite | None = None  # the outlet stage's composite solution (outlet.py), when it ran
         self.outlet_note = ""  # why the outlet stage was not reported (it ran away or did not converge)
         self.before_cycle: tuple[Iterate, np.ndarray] | None = None  # the iterate and film before the last V-cycle
+        self.truncation = Truncation.OFF  # the truncated coarse-grid correction (TRUNCATION_BAND)
+        self.truncated_since = 0  # cycles in the history when it was switched on
+        # the iterate it was switched on at, its change if that was the algebraic floor (else NaN), the call of `cycle`
+        self.before_truncation: tuple[Iterate, float, int] | None = None
+        self.cycle_calls = 0  # calls of `cycle` so far
         self.elapsed = elapsed  # s spent up to the last pause (a solve paused between stages has no clock)
         self._clock = time.perf_counter() - elapsed
 
@@ -583,6 +603,7 @@ class PointSolve:
         level = solver.levels[index]
         load_integral = solver.problem.load_integral
         previous = level.pressure.copy()
+        self.cycle_calls += 1
         means = 0  # period-2 cycles replaced by the mean of their phases (PHASE_MEAN_BAND)
         for extra in itertools.count():
             change = solver.pressure_change(level, previous)
@@ -602,7 +623,9 @@ class PointSolve:
                     best.score, best.iterate = score, solver.snapshot(index)
             if extra > 0 and change < settings.tolerance and abs(load_error) < settings.load_tolerance:
                 return CONVERGED
-            if extra > 0 and _at_algebraic_floor(history.changes, history.loads, settings):
+            if extra > 0 and self._update_truncation(index, settings, extra):
+                return CONVERGED  # a failed truncation taken back to the floor it began at
+            if extra > 0 and _at_algebraic_floor(history.changes, history.loads, settings) and not self._on_trial():
                 history.floor = change
                 return CONVERGED
             if extra == max_cycles:
@@ -610,15 +633,14 @@ class PointSolve:
                     f"not converged after {history.cycles} cycles on the finest grid: pressure change {change:.2e} "
                     f"(tolerance {settings.tolerance:.0e}), load error {load_error:.2e} "
                     f"(tolerance {settings.load_tolerance:.0e})"))
-            if (extra >= 3 and means < MAX_PHASE_MEANS
+            if (extra >= 3 and means < MAX_PHASE_MEANS and self.before_cycle is not None
                     and FLOOR_BAND * settings.tolerance <= change < PHASE_MEAN_BAND * settings.tolerance
                     and change > FLOOR_STALL * history.changes[-3]):
                 self._restore_mean(index)
                 means += 1
             previous = level.pressure.copy()
             self.before_cycle = (Iterate(previous, solver.h0), level.film.copy())
-            last = history.changes[-1] if history.changes else math.nan
-            solver.truncated = last < TRUNCATION_BAND * settings.tolerance
+            solver.truncated = self.truncation is Truncation.ON
             try:
                 solver.cycle(index)
             finally:
@@ -627,6 +649,38 @@ class PointSolve:
             if not _finite(level):
                 return Status(Outcome.DIVERGED,
                               f"diverged at cycle {history.cycles} on the finest grid (non-finite pressure or film)")
+
+    def _update_truncation(self, index: int, settings: SolverSettings, extra: int) -> bool:
+        """Switch the truncated coarse-grid correction (TRUNCATION_BAND) on at a stall of the pressure change below
+        the band (the last change above FLOOR_STALL times the one two cycles before); switch it off for good once the
+        change leaves the band on one film state (`extra`: the cycle of this call of `cycle`; its first follows a
+        film-state update in the outer loops) and, within the call that switched it on, take level `index` back to
+        the iterate it was switched on at. Returns True when that iterate was at the algebraic floor
+        (_at_algebraic_floor), which is then where the iteration ends, as it would have without the trial."""
+        history = self.history
+        changes = history.changes
+        band = TRUNCATION_BAND * settings.tolerance
+        same_call = self.before_truncation is not None and self.before_truncation[2] == self.cycle_calls
+        if self.truncation is Truncation.OFF and len(changes) >= 3 and band > changes[-1] > FLOOR_STALL * changes[-3]:
+            self.truncation, self.truncated_since = Truncation.ON, len(changes)
+            floor = changes[-1] if _at_algebraic_floor(changes, history.loads, settings) else math.nan
+            self.before_truncation = (self.solver.snapshot(index), floor, self.cycle_calls)
+        elif self.truncation is Truncation.ON and changes[-1] > band and (extra > 1 or same_call):
+            self.truncation = Truncation.FAILED
+            iterate, floor, _ = self.before_truncation
+            self.before_truncation = None
+            if same_call:
+                self.solver.restore(index, iterate)
+                self.before_cycle = None  # its phases are the trial's
+                if math.isfinite(floor):
+                    history.floor = floor
+                    return True
+        return False
+
+    def _on_trial(self) -> bool:
+        """The truncated correction was switched on less than TRUNCATION_TRIAL cycles ago: a stall is not yet a
+        floor."""
+        return self.truncation is Truncation.ON and len(self.history.changes) - self.truncated_since < TRUNCATION_TRIAL
 
     def couple(self, index: int, initial: FilmState | None = None,
                coarse_h_c: float = math.nan) -> tuple[FilmState | None, Status]:
