@@ -70,8 +70,9 @@ CENTRAL_PECLET = 2.0
 # than ACTIVE_SHARE of the sweeps' tolerance since it was last solved. Its own nonlinear terms (limiters, linearised
 # heating) move it a little more on a second solve, which the outer loop's next update picks up: the fixed point is
 # the same. Most of a film settles in the first sweeps while the columns around the outlet spike take all of them:
-# S1-S5 of the default case 46.3 -> 43.8 s CPU (136 -> 139 outer iterations), the three outlet stages of the 41-point
-# cycle's P21 22.4 -> 19.6 s, figures within their flicker (docs/benchmarks.md).
+# S1-S5 of the default case 46.3 -> 43.8 s CPU (136 -> 139 outer iterations; the pressure's truncated correction
+# switched on below 10x its tolerance), the three outlet stages of the 41-point cycle's P21 22.4 -> 19.6 s, figures
+# within their flicker (docs/benchmarks.md).
 ACTIVE_REACH = 2
 ACTIVE_SHARE = 0.1
 
