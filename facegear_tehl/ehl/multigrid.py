@@ -55,7 +55,7 @@ def corrected_nodes(pressure: np.ndarray) -> np.ndarray:
     69:167-184): a node next to the contact set is left to the relaxation. The discrete solution is unchanged (the
     correction vanishes at convergence). Far from the solution the truncated correction can run away where the
     pressurised zone is a few nodes wide (the circle at M = 20, L = 10 on 513 x 33 from its full-multigrid start):
-    PointSolve.cycle truncates only below TRUNCATION_BAND (solve.py)."""
+    PointSolve.cycle truncates from a stall below TRUNCATION_BAND on (solve.py)."""
     wet = pressure > 0.0
     dry = ~wet
     dry[0, :] = dry[-1, :] = False

@@ -147,6 +147,8 @@ class Truncation(Enum):
     OFF = "off"
     ON = "on"
     FAILED = "failed"
+
+
 # Algebraic floor of the thermal outer loop (see _at_thermal_floor):
 THERMAL_FLOOR_WINDOW = 8  # outer iterations over which a stalled thermal change is judged
 THERMAL_FLOOR_STALL = 0.5  # stalled: the smallest change of the window's last half above this share of its first
