@@ -11,8 +11,9 @@ import pytest
 from facegear_tehl.case import load_case
 from facegear_tehl.cli import summary_table, tehl
 from facegear_tehl.contact import ContactPoint
+from facegear_tehl.ehl.energy import energy_budget
 from facegear_tehl.ehl.solve import solve_point
-from facegear_tehl.ehl.thermal import gupta_reduction, thermal_choice
+from facegear_tehl.ehl.thermal import FilmThermalModel, gupta_reduction, thermal_choice
 from facegear_tehl.results import read_result
 from facegear_tehl.solution import Outcome
 
@@ -291,3 +292,46 @@ def test_the_outlet_hot_spot_is_the_adiabatic_compression_through_the_pressure_s
     adiabatic = float(np.sum(0.5 * (integrand[1:] + integrand[:-1]) * np.diff(pressure)))
     assert pressure[-1] - pressure[0] > 0.15 * sol.scalar("p_hertz")  # the spike's rising flank
     assert 1.0 < (temperature[-1] - temperature[0]) / adiabatic < 1.25
+
+
+def test_deferred_wall_fluxes_are_the_updates_own_and_close_its_energy_budget():
+    # An outer loop's updates leave out their wall heat fluxes (they cost a sweep) and `completed` adds them for the
+    # state the loop ends on: the fluxes an update computes itself, and with them its discrete energy budget closes
+    # (energy.energy_budget: generated + mass defect = conducted + convected, to the sweeps' tolerance).
+    point, lub, _ = plain(SLIDING)
+    a, b = point.hertz.a, point.hertz.b
+    x, y = np.linspace(-3.0 * b, 1.5 * b, 33), np.linspace(-2.0 * a, 2.0 * a, 17)
+    xx, yy = np.meshgrid(x, y)
+    pressure = point.hertz.p_max * np.sqrt(np.maximum(1.0 - (xx / b) ** 2 - (yy / a) ** 2, 0.0))
+    film = 1e-7 + xx**2 / (2.0 * point.hertz.radius_x) + yy**2 / (2.0 * point.hertz.radius_y)
+
+    def model():
+        return FilmThermalModel(x, y, 7, lub, point, solve_energy=True)
+
+    entry = model().initial_temperature()
+    whole = model().update(pressure, film, entry)
+    deferring = model()
+    first = deferring.update(pressure, film, entry, wall_fluxes=False)
+    assert first.heat_flux_1 is None and first.heat_flux_2 is None
+    later = [deferring.update(pressure, film, first.temperature, wall_fluxes=False) for _ in range(2)]
+    completed = deferring.completed(dataclasses.replace(later[0], temperature=later[0].temperature + 1.0))
+    assert completed.heat_flux_1 is not None  # the update before the last one: kept for a loop that runs away
+    with pytest.raises(ValueError):
+        deferring.completed(first)  # three updates back: no longer kept
+    state = model().completed(whole)  # a state with its fluxes stays as it is
+    assert state is whole
+    again, temperature = model(), entry
+    for _ in range(30):  # the updates' fixed point at this pressure: the state an outer loop ends on
+        state = again.update(pressure, film, temperature, wall_fluxes=False)
+        temperature = state.temperature
+    assert state.change < 1e-6 * (temperature.max() - lub.inlet_temperature)
+    state = again.completed(state)
+    exact = model().update(pressure, film, temperature)  # the same fixed point, its fluxes computed by the update
+    assert np.allclose(state.heat_flux_1, exact.heat_flux_1, rtol=1e-9, atol=0.0)
+    budget = energy_budget(state, film, x[1] - x[0], y[1] - y[0], lub.inlet_temperature)
+    assert budget["heat_conducted"] > 0.0
+    assert abs(budget["energy_balance_error"]) < 1e-6
+    fresh = model()
+    deferred = fresh.completed(fresh.update(pressure, film, entry, wall_fluxes=False))
+    assert np.array_equal(deferred.heat_flux_1, whole.heat_flux_1)
+    assert np.array_equal(deferred.heat_flux_2, whole.heat_flux_2)

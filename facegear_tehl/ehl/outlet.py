@@ -240,7 +240,8 @@ def refine_outlet(solve: PointSolve, index: int, state: FilmState, coarse_cycles
         forcing = ENERGY_FORCING * last_change if last_change is not None else np.inf
         pressure, film = _with_inflow(solver, start, *solve.settled_pressure(top))
         temperature[..., :GHOST] = inflow
-        update = model.update(pressure * scaling.p_h, film * scaling.film_scale, temperature, forcing)
+        update = model.update(pressure * scaling.p_h, film * scaling.film_scale, temperature, forcing,
+                              wall_fluxes=False)
         rise = max(float(temperature.max() - t_in), MIN_RISE)
         temperature, factor, last_change, _ = _next_film_state(accelerator, temperature, factor, update, relaxation,
                                                                rise)
@@ -261,6 +262,7 @@ def refine_outlet(solve: PointSolve, index: int, state: FilmState, coarse_cycles
             if floor:
                 solve.history.thermal_floor = last_change
             solve.settle(top)  # on a flicker of the spike the mean of its two phases, as the uniform loop ends
+            update = model.completed(update)
             patch_state = replace(update, temperature=temperature, viscosity_factor=factor)
             states = ((state,) if base is None else base.states) + (
                 patch_state_columns(patch_state, slice(GHOST, None)),)

@@ -710,7 +710,8 @@ class PointSolve:
         for outer in range(settings.max_thermal_iterations):
             forcing = ENERGY_FORCING * last_change if last_change is not None else math.inf
             pressure, film = self.settled_pressure(index)
-            update = model.update(pressure * scaling.p_h, film * scaling.film_scale, temperature, forcing)
+            update = model.update(pressure * scaling.p_h, film * scaling.film_scale, temperature, forcing,
+                                  wall_fluxes=False)
             rise = max(float(temperature.max() - self.lubricant.inlet_temperature), MIN_RISE)
             temperature, factor, thermal_change, viscosity_change = _next_film_state(
                 accelerator, temperature, factor, update, relaxation, rise if model.solve_energy else None)
@@ -754,12 +755,12 @@ class PointSolve:
                     break
                 if seeding and not status.converged and _stalled(history.changes):
                     # the seed is as good as this grid makes it (SEED_STOP)
-                    return state, Status(Outcome.NOT_CONVERGED, (
+                    return model.completed(state), Status(Outcome.NOT_CONVERGED, (
                         f"coarse stage stopped at outer iteration {outer + 1}: film state within {tolerance:.2e} of "
                         f"its last two updates, pressure stalled at {history.changes[-1]:.2e} per cycle"))
             if outer > 0 and status.converged and changes[-1] < tolerance:
                 self.settle(index)
-                return state, CONVERGED
+                return model.completed(state), CONVERGED
             coarse_error = _h_c_error(history.thermal_h_c[-1], coarse_h_c * scaling.film_scale)
             if ((status.converged or _pressure_settled(history, settings))
                     and _at_thermal_floor(changes[first:], history.thermal_h_c[first:], floor_bound, coarse_error)):
@@ -768,18 +769,18 @@ class PointSolve:
                 else:
                     history.viscosity_floor = changes[-1]
                 self.settle(index)
-                return state, CONVERGED
+                return model.completed(state), CONVERGED
             if _stalled(changes[window:]):  # a limit cycle above the floor (or with h_c unsteady): relax harder
                 relaxation = max(0.5 * relaxation, MIN_RELAXATION_SCALE)
                 window = len(changes)
                 accelerator.reset()
         if status.diverged:
-            return self._last_finite(index, model, initial, *last_finite), status
+            return model.completed(self._last_finite(index, model, initial, *last_finite)), status
         what = ("thermal loop not converged after {} outer iterations: temperature change {:.2e} K (tolerance {:.0e} "
                 "of the rise)" if model.solve_energy else
                 "Ree-Eyring loop not converged after {} outer iterations: largest change of ln(eta*/eta) {:.2e} "
                 "(tolerance {:.0e})")
-        return state, Status(Outcome.NOT_CONVERGED, (
+        return model.completed(state), Status(Outcome.NOT_CONVERGED, (
             what.format(settings.max_thermal_iterations, changes[-1], settings.thermal_tolerance)
             + f", last pressure change {history.changes[-1]:.2e}"))
 
