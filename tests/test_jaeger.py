@@ -10,6 +10,8 @@ from scipy import integrate
 from facegear_tehl.ehl.jaeger import (
     band_source_maximum,
     band_source_temperature,
+    convolved_rise,
+    influence_block,
     influence_matrix,
     surface_temperature_rise,
 )
@@ -83,6 +85,29 @@ def test_exact_for_piecewise_linear_flux():
     tent = np.where(x <= 1.0, x, 2.0 - x)
     ramp = lambda start: 4 / 3 * np.clip(x - start, 0, None) ** 1.5 / math.sqrt(math.pi)  # noqa: E731
     np.testing.assert_allclose(surface_temperature_rise(tent, dx, 1.0), ramp(0.0) - 2 * ramp(1.0), atol=1e-13)
+
+
+
+def test_fft_convolution_and_blocks_are_the_product_integration():
+    # The FFT convolution along the axis and a block of the matrix built on its own (the outlet patch's whole axis of
+    # 4097 nodes) against the closed forms of a piecewise-linear flux above (exact for the product integration).
+    x = np.linspace(0.0, 2.0, 41)
+    dx = x[1] - x[0]
+    alpha, beta = 3.0, -1.25
+    exact = (2 * alpha * np.sqrt(x) + 4 / 3 * beta * x**1.5) / math.sqrt(math.pi)
+    rows = np.stack([alpha + beta * x, 2.0 * (alpha + beta * x)])
+    np.testing.assert_allclose(convolved_rise(rows, dx), np.stack([exact, 2.0 * exact]), rtol=1e-12, atol=1e-13)
+    whole = influence_matrix(41, dx)
+    np.testing.assert_array_equal(influence_block(41, dx, slice(5, 30), slice(0, 41)), whole[5:30])
+    np.testing.assert_array_equal(influence_block(41, dx, np.array([40, 3, 0]), np.array([0, 2, 39])),
+                                  whole[np.ix_([40, 3, 0], [0, 2, 39])])
+    # the rise at nodes 5..29 from the flux at nodes 10..40 alone: the kernel looks upstream only
+    block = influence_block(41, dx, slice(5, 30), slice(10, 41))
+    flux = np.where(np.arange(41) >= 10, alpha + beta * x, 0.0)
+    np.testing.assert_allclose(block @ flux[10:], convolved_rise(flux, dx)[5:30], rtol=1e-12, atol=1e-13)
+    assert np.all(block[:5] == 0.0)
+    with pytest.raises(ValueError):
+        convolved_rise(np.ones(1), dx)
 
 
 def test_grid_convergence_semi_elliptical():

@@ -124,15 +124,20 @@ class PatchFilmModel(FilmThermalModel):
         """Jaeger's rise of the composite flux at the patch's columns. By linearity G q = G q_below + G (q - q_below)
         where they differ: the grids' below part along the whole axis once per body, then per call the block of G
         from the patch's own columns to its energy columns (on the eighth-spacing patch of the default case's S4 the
-        whole-axis product was 12 of its 37 s)."""
+        whole-axis product was 12 of its 37 s), the whole axis's by an FFT convolution (jaeger.convolved_rise) and the
+        block alone of its matrix (jaeger.influence_block): 4097 nodes along x there."""
         own = slice(self.offset + GHOST, self.offset + self.x.size)
         key = (index, speed < 0.0)
         if key not in self._split:
-            whole = jaeger.influence_matrix(self.below_flux[index].shape[1], self.dx)
+            nodes = self.below_flux[index].shape[1]
+            columns = np.arange(self.offset, self.offset + self.x.size)
             if speed < 0.0:  # the surface moves toward -x: the kernel along the reversed axis
-                whole = whole[::-1, ::-1]
-            columns = slice(self.offset, self.offset + self.x.size)
-            self._split[key] = ((self.below_flux[index] @ whole.T)[:, columns], whole[columns, own].copy())
+                whole = jaeger.convolved_rise(self.below_flux[index][:, ::-1], self.dx)[:, ::-1]
+                block = jaeger.influence_block(nodes, self.dx, nodes - 1 - columns, nodes - 1 - np.arange(nodes)[own])
+            else:
+                whole = jaeger.convolved_rise(self.below_flux[index], self.dx)
+                block = jaeger.influence_block(nodes, self.dx, columns, own)
+            self._split[key] = (whole[:, columns], block)
         below, block = self._split[key]
         rise = below + (flux[:, GHOST:] - self.below_flux[index][:, own]) @ block.T
         return self.t_inlet + rise / self.effusivity[index]
