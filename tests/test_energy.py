@@ -272,3 +272,52 @@ def test_column_sweeps_after_the_first_solve_only_the_columns_next_to_one_that_m
     assert np.abs(active - f["temperature"]).max() > 0.5  # the heating moved the film
     assert np.abs(active - every).max() < 10.0 * tolerance
     assert active_solved < 0.85 * every_solved
+
+
+def _muscl_face(temperature, k, j, i, dj, di, t_inlet):
+    """The face value of van Leer's MUSCL scheme (van Leer 1979) from node (j, i), upwind, towards (j + dj, i + di),
+    written out from its definition: T_up + 0.5 psi(r) (T_up - T_up2), psi(r) = (r + |r|)/(1 + |r|) with
+    r = (T_down - T_up)/(T_up - T_up2); the inlet temperature outside the domain, the linear extrapolation on a
+    boundary face the oil leaves by."""
+    _, ny, nx = temperature.shape
+
+    def value(jj, ii):
+        return temperature[k, jj, ii] if 0 <= jj < ny and 0 <= ii < nx else t_inlet
+
+    up, up2 = value(j, i), value(j - dj, i - di)
+    if not (0 <= j + dj < ny and 0 <= i + di < nx):
+        return up + 0.5 * (up - up2)
+    if up == up2:
+        return up
+    r = (value(j + dj, i + di) - up) / (up - up2)
+    return up + 0.5 * (r + abs(r)) / (1.0 + abs(r)) * (up - up2)
+
+
+def test_convection_along_the_film_reads_the_stencil_as_the_muscl_face_values_do():
+    """The convection along x and y of a node (energy._xy_form, through wall_convection's wall layers) on a random
+    film with flow in and out through every face, at boundary columns (bounds-checked reads) and interior ones (read
+    directly): a = sum of the inflows, b = sum over faces of the inflow times the face value, less the outflow times
+    the face value's excess over the node, with the MUSCL face values written out from their definition."""
+    rng = np.random.default_rng(7)
+    nz, ny, nx, dx, dy, t_inlet = 5, 9, 10, 2e-6, 3e-6, 313.0
+    temperature = t_inlet + 40.0 * rng.random((nz, ny, nx))
+    film = 1e-6 * (1.0 + rng.random((ny, nx)))
+    flux_x = rng.normal(size=(nz, ny, nx + 1))
+    flux_y = rng.normal(size=(nz, ny + 1, nx))
+    flux_x[:, 3, 4] = 0.0  # faces without flow
+    walls = energy.wall_convection(temperature, flux_x, flux_y, film, dx, dy, t_inlet)
+    for side, k in ((0, 0), (1, nz - 1)):
+        for j in range(ny):
+            for i in range(nx):
+                t, a, b = temperature[k, j, i], 0.0, 0.0
+                faces = ((flux_x[k, j, i + 1] / dx, 0, 1), (-flux_x[k, j, i] / dx, 0, -1),
+                         (flux_y[k, j + 1, i] / dy, 1, 0), (-flux_y[k, j, i] / dy, -1, 0))
+                for outward, dj, di in faces:
+                    g = outward / film[j, i]
+                    if g > 0.0:
+                        b -= g * (_muscl_face(temperature, k, j, i, dj, di, t_inlet) - t)
+                    elif g < 0.0:
+                        a -= g
+                        b -= g * _muscl_face(temperature, k, j + dj, i + di, -dj, -di, t_inlet)
+                assert walls[side, 0, j, i] == pytest.approx(a, rel=1e-12, abs=1e-9)
+                assert walls[side, 1, j, i] == pytest.approx(b, rel=1e-12, abs=1e-6)

@@ -215,26 +215,43 @@ def _face_positions(nz):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _face_term(temperature, k, j, i, g, dj, di, t, t_inlet, a, b):
-    """(a, b) of `_node_form` with the convection through one face along x or y added: g the outward flux over
-    h times the face's length per cell area (W/(m^3 K)), (dj, di) the direction to the neighbour across it."""
+def _face_term(g, t, t_back, t_near, t_far, leaves, a, b):
+    """(a, b) of `_node_form` with the convection through one face along x or y added, from the temperatures of
+    the line through it (`_face_value`'s, with the inlet temperature outside the domain): the node's own t, t_back
+    behind it, t_near across the face and t_far beyond; g the outward flux over h times the face's length per cell
+    area (W/(m^3 K)); `leaves`: the face is on the domain's boundary (where the oil flows out, its value is the
+    linear extrapolation)."""
     if g == 0.0:  # no flow through the face
         return a, b
     if g > 0.0:  # outflow: the face carries this node's value and its limited correction
-        return a, b - g * (_face_value(temperature, k, j, i, dj, di, t_inlet) - t)
+        if leaves:
+            return a, b - g * ((t + 0.5 * (t - t_back)) - t)
+        return a, b - g * ((t + _limited_half(t_near - t, t - t_back) * (t - t_back)) - t)
     # inflow from the neighbour
-    return a - g, b - g * _face_value(temperature, k, j + dj, i + di, -dj, -di, t_inlet)
+    return a - g, b - g * (t_near + _limited_half(t - t_near, t_near - t_far) * (t_near - t_far))
 
 
 @njit(cache=True, error_model="numpy", inline="always")
 def _xy_form(temperature, k, j, i, flux_x, flux_y, rdxh, rdyh, t_inlet):
-    """(a, b) of node (k, j, i)'s convection along x and y, face by face (outward flux, direction to the
-    neighbour across it); rdxh, rdyh: 1/(dx h), 1/(dy h)."""
+    """(a, b) of node (k, j, i)'s convection along x and y, face by face (outward flux, the temperatures of the
+    line through the face); rdxh, rdyh: 1/(dx h), 1/(dy h). The same numbers as `_face_value` on each face, by
+    reading the node's stencil once: 1.5 -> 0.3 us per column of nine layers on 513 x 65."""
+    nz, ny, nx = temperature.shape
     t = temperature[k, j, i]
-    a, b = _face_term(temperature, k, j, i, flux_x[k, j, i + 1] * rdxh, 0, 1, t, t_inlet, 0.0, 0.0)
-    a, b = _face_term(temperature, k, j, i, -flux_x[k, j, i] * rdxh, 0, -1, t, t_inlet, a, b)
-    a, b = _face_term(temperature, k, j, i, flux_y[k, j + 1, i] * rdyh, 1, 0, t, t_inlet, a, b)
-    return _face_term(temperature, k, j, i, -flux_y[k, j, i] * rdyh, -1, 0, t, t_inlet, a, b)
+    if 2 <= i < nx - 2 and 2 <= j < ny - 2:  # the stencil lies inside the domain: no bounds to check
+        west2, west = temperature[k, j, i - 2], temperature[k, j, i - 1]
+        east, east2 = temperature[k, j, i + 1], temperature[k, j, i + 2]
+        south2, south = temperature[k, j - 2, i], temperature[k, j - 1, i]
+        north, north2 = temperature[k, j + 1, i], temperature[k, j + 2, i]
+    else:
+        west2, west = _value(temperature, k, j, i - 2, t_inlet), _value(temperature, k, j, i - 1, t_inlet)
+        east, east2 = _value(temperature, k, j, i + 1, t_inlet), _value(temperature, k, j, i + 2, t_inlet)
+        south2, south = _value(temperature, k, j - 2, i, t_inlet), _value(temperature, k, j - 1, i, t_inlet)
+        north, north2 = _value(temperature, k, j + 1, i, t_inlet), _value(temperature, k, j + 2, i, t_inlet)
+    a, b = _face_term(flux_x[k, j, i + 1] * rdxh, t, west, east, east2, i == nx - 1, 0.0, 0.0)
+    a, b = _face_term(-flux_x[k, j, i] * rdxh, t, east, west, west2, i == 0, a, b)
+    a, b = _face_term(flux_y[k, j + 1, i] * rdyh, t, south, north, north2, j == ny - 1, a, b)
+    return _face_term(-flux_y[k, j, i] * rdyh, t, north, south, south2, j == 0, a, b)
 
 
 @njit(cache=True, error_model="numpy")
@@ -326,36 +343,13 @@ def _node_form(temperature, k, j, i, flux_z, blended, implicit, explicit, heatin
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _node_diagonal(k, j, i, flux_x, flux_y, flux_z, implicit, inverse_width, rdxh, rdyh, inverse_h):
-    """`a` of `_node_form` alone, by the same operations in the same order (bit-identical): the inflows along x and
-    y (`_face_term`), the upwind flux across the layers, the implicit part. No face value is needed for it."""
-    nz = flux_z.shape[0] - 1
-    a = 0.0
-    for g in (flux_x[k, j, i + 1] * rdxh, -flux_x[k, j, i] * rdxh, flux_y[k, j + 1, i] * rdyh,
-              -flux_y[k, j, i] * rdyh):
-        if not g >= 0.0:  # an inflow (g == 0 and outflows leave a as it is)
-            a = a - g
-    rw = inverse_width[k] * inverse_h
-    if k < nz - 1:
-        z = flux_z[k + 1, j, i]
-        if not z >= 0.0:
-            a -= z * rw
-    if k > 0:
-        z = flux_z[k, j, i]
-        if not z <= 0.0:
-            a += z * rw
-    return a + implicit[k, j, i]
-
-
-@njit(cache=True, error_model="numpy", inline="always")
 def _forms(temperature, j, i, flux_x, flux_y, flux_z, blended, implicit, explicit, heating, conductivity, film, dx, dy,
-           t_inlet, face_position, inverse_width, walls, a, lo, up, b, wall_rows=False):
+           t_inlet, face_position, inverse_width, walls, a, lo, up, b):
     """The linear forms of every node of column (j, i) (in place), the walls' convection along x and y from
     `wall_convection`, the fixed parts from `fixed_parts`; returns (k/dz^2, theta): Numerov's weight
     theta = min(1, 12 k/(dz^2 max a)) over the interior nodes keeps the off-diagonals of the column's matrix
     negative (no overshoot) where convection outweighs conduction across the film (thick inlet films); there the
-    scheme tends to the second-order one. `wall_rows`: the whole forms of the three nodes next to each wall only
-    (what `wall_fluxes` reads), `a` alone of the others (theta)."""
+    scheme tends to the second-order one."""
     nz = temperature.shape[0]
     h = max(film[j, i], 1e-12)
     dz = h / (nz - 1)
@@ -364,18 +358,14 @@ def _forms(temperature, j, i, flux_x, flux_y, flux_z, blended, implicit, explici
     inverse_h = 1.0 / h
     rdxh = inverse_h / dx
     rdyh = inverse_h / dy
+    # the convection along x and y of every node first, then the rest of its form: one loop for both was 1.4x slower
+    a[0], b[0] = walls[0, 0, j, i], walls[0, 1, j, i]
+    a[nz - 1], b[nz - 1] = walls[1, 0, j, i], walls[1, 1, j, i]
+    for k in range(1, nz - 1):
+        a[k], b[k] = _xy_form(temperature, k, j, i, flux_x, flux_y, rdxh, rdyh, t_inlet)
     for k in range(nz):
-        if wall_rows and 2 < k < nz - 3:
-            a[k] = _node_diagonal(k, j, i, flux_x, flux_y, flux_z, implicit, inverse_width, rdxh, rdyh, inverse_h)
-            largest = max(largest, a[k])
-            continue
-        if k == 0 or k == nz - 1:
-            side = 0 if k == 0 else 1
-            ax, bx = walls[side, 0, j, i], walls[side, 1, j, i]
-        else:
-            ax, bx = _xy_form(temperature, k, j, i, flux_x, flux_y, rdxh, rdyh, t_inlet)
         a[k], lo[k], up[k], b[k] = _node_form(temperature, k, j, i, flux_z, blended, implicit, explicit, heating,
-                                              inverse_width, face_position, ax, bx, inverse_h)
+                                              inverse_width, face_position, a[k], b[k], inverse_h)
         if 0 < k < nz - 1:
             largest = max(largest, a[k])
     kz = conductance / dz
@@ -527,8 +517,7 @@ def wall_fluxes(temperature, flux_x, flux_y, flux_z, implicit, explicit, heating
     for j in range(ny):
         for i in range(nx):
             kz, theta = _forms(temperature, j, i, flux_x, flux_y, flux_z, blended, implicit, explicit, heating,
-                               conductivity, film, dx, dy, t_inlet, face_position, inverse_width, walls, a, lo, up, b,
-                               True)
+                               conductivity, film, dx, dy, t_inlet, face_position, inverse_width, walls, a, lo, up, b)
             for k in (0, 1, 2, nz - 3, nz - 2, nz - 1):
                 value = a[k] * temperature[k, j, i] - b[k]
                 if k > 0:
