@@ -80,12 +80,16 @@ def _wedge(qx, qy, j, i, sx, sy, rhx, rhy):
     return w
 
 
+@njit(cache=True, inline="always")
+def _poiseuille(p, j, i, xe, xw, xn, xs, xsum):
+    """The Poiseuille part of L(P) at node (j, i) from its coefficients (`_coefficients`; xsum their sum)."""
+    return xe * p[j, i + 1] + xw * p[j, i - 1] + xn * p[j + 1, i] + xs * p[j - 1, i] - xsum * p[j, i]
+
+
 @njit(cache=True)
 def _operator(p, qx, qy, eps, j, i, rhx, rhy, rhx2, rhy2k, sx, sy):
     xe, xw, xn, xs = _coefficients(eps, j, i, rhx2, rhy2k)
-    poiseuille = (xe * p[j, i + 1] + xw * p[j, i - 1] + xn * p[j + 1, i] + xs * p[j - 1, i]
-                  - (xe + xw + xn + xs) * p[j, i])
-    return poiseuille - _wedge(qx, qy, j, i, sx, sy, rhx, rhy)
+    return _poiseuille(p, j, i, xe, xw, xn, xs, xe + xw + xn + xs) - _wedge(qx, qy, j, i, sx, sy, rhx, rhy)
 
 
 @njit(cache=True)
@@ -201,6 +205,7 @@ def relax_lines(p, qx, qy, fx, fy, eps, f, hx, hy, px, py, sx, sy, e_gs, e_jd, w
     rhs = np.zeros(n)
     x = np.zeros(n)
     pj = p.copy()
+    patterns = np.stack((e_gs, e_jd))
     gs = np.zeros((ny, nx), dtype=np.bool_)
     for j in range(1, ny - 1):
         for i in range(1, nx - 1):
@@ -213,9 +218,12 @@ def relax_lines(p, qx, qy, fx, fy, eps, f, hx, hy, px, py, sx, sy, e_gs, e_jd, w
             r = i - 1
             xe, xw, xn, xs = _coefficients(eps, j, i, rhx2, rhy2k)
             xsum = xe + xw + xn + xs
-            src = pj if gs[j, i] else p
-            poiseuille = (xe * src[j, i + 1] + xw * src[j, i - 1] + xn * src[j + 1, i] + xs * src[j - 1, i]
-                          - xsum * src[j, i])
+            # (one call per array: choosing an array, `src = pj if ... else p`, costs Numba a reference count per
+            # node, and with the pattern below made the sweep 1.8x slower)
+            if gs[j, i]:
+                poiseuille = _poiseuille(pj, j, i, xe, xw, xn, xs, xsum)
+            else:
+                poiseuille = _poiseuille(p, j, i, xe, xw, xn, xs, xsum)
             rhs[r] = f[j, i] - (poiseuille - _wedge(qx, qy, j, i, sx, sy, rhx, rhy))
             # Does the node couple to its line neighbours? (not across a cavitation boundary)
             coupled = pj[j, i] > 0.0
@@ -231,23 +239,24 @@ def relax_lines(p, qx, qy, fx, fy, eps, f, hx, hy, px, py, sx, sy, e_gs, e_jd, w
                     continue
                 if m != 0 and not coupled:
                     continue
-                pat = e_gs if gs[j, k] else e_jd
+                q = 0 if gs[j, k] else 1  # the pattern of column k: patterns[q] (an index, not an array)
                 # elastic part: -d(wedge)/d(delta_k)
                 el = 0.0
                 if sx != 0:
                     if cxp != 0.0:
-                        el += cxp * fx[j, i + sx] * pat[0, i + sx - k + reach]
-                    el += cx0 * fx[j, i] * pat[0, i - k + reach]
-                    el += cx1 * fx[j, i - sx] * pat[0, i - sx - k + reach]
+                        el += cxp * fx[j, i + sx] * patterns[q, 0, i + sx - k + reach]
+                    el += cx0 * fx[j, i] * patterns[q, 0, i - k + reach]
+                    el += cx1 * fx[j, i - sx] * patterns[q, 0, i - sx - k + reach]
                     if cx2 != 0.0:
-                        el += cx2 * fx[j, i - 2 * sx] * pat[0, i - 2 * sx - k + reach]
+                        el += cx2 * fx[j, i - 2 * sx] * patterns[q, 0, i - 2 * sx - k + reach]
                     el *= rhx
                 if sy != 0:
-                    ey = cy0 * fy[j, i] * pat[0, i - k + reach] + cy1 * fy[j - sy, i] * pat[1, i - k + reach]
+                    ey = (cy0 * fy[j, i] * patterns[q, 0, i - k + reach]
+                          + cy1 * fy[j - sy, i] * patterns[q, 1, i - k + reach])
                     if cyp != 0.0:
-                        ey += cyp * fy[j + sy, i] * pat[1, i - k + reach]
+                        ey += cyp * fy[j + sy, i] * patterns[q, 1, i - k + reach]
                     if cy2 != 0.0:
-                        ey += cy2 * fy[j - 2 * sy, i] * pat[2, i - k + reach]
+                        ey += cy2 * fy[j - 2 * sy, i] * patterns[q, 2, i - k + reach]
                     el += rhy * ey
                 # Poiseuille part, for the pattern of column k
                 po = 0.0
