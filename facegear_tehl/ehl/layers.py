@@ -11,7 +11,7 @@ from numba import njit
 import numpy as np
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def simpson_weight(k: int, nz: int) -> float:
     """Weight of node k in Simpson's rule for \\int_0^1 g d zeta on nz (odd) nodes."""
     dz = 1.0 / (nz - 1)
@@ -28,7 +28,7 @@ def simpson_weights(nz: int) -> np.ndarray:
     return w / (3.0 * (nz - 1))
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def cumulative_stencil(k: int, nz: int):
     """Nodes and weights (times dz) of \\int over [zeta_k-1, zeta_k]: (first node, w0, w1, w2, w3) for
     sum_m w_m g_first+m. The cubic through the four nearest nodes, (-1, 13, 13, -1)/24, one-sided
@@ -45,7 +45,7 @@ def cumulative_stencil(k: int, nz: int):
     return k - 2, -1.0 / 24.0, 13.0 / 24.0, 13.0 / 24.0, -1.0 / 24.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def cumulative_step(g: np.ndarray, k: int, dz: float) -> float:
     """\\int over [zeta_k-1, zeta_k] of g given on equally spaced nodes (spacing dz; `cumulative_stencil`)."""
     first, w0, w1, w2, w3 = cumulative_stencil(k, g.size)

@@ -28,7 +28,7 @@ BAND = 3  # half-width of the banded line Jacobian (columns i-3 .. i+3)
 PATTERN_REACH = 2 * BAND  # |d| range of the pattern-effect kernels (wedge reaches i - 2 and band 3, +1 spread)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _upwind(i: int, s: int, n: int):
     """Coefficients (c_+1, c_0, c_-1, c_-2) of q_i+s, q_i, q_i-s, q_i-2s in the upwind difference (times 1/h).
 
@@ -46,7 +46,7 @@ def _upwind(i: int, s: int, n: int):
     return 0.0, 1.0, -1.0, 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _coefficients(eps, j, i, rhx2, rhy2k):
     e0 = eps[j, i]
     xe = 0.5 * (eps[j, i + 1] + e0) * rhx2
@@ -56,7 +56,7 @@ def _coefficients(eps, j, i, rhx2, rhy2k):
     return xe, xw, xn, xs
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _wedge(qx, qy, j, i, sx, sy, rhx, rhy):
     """Upwind divergence of the Couette mass flux: sx d(qx)/dX + sy d(qy)/dY (qx, qy signed by sx, sy)."""
     ny, nx = qx.shape
@@ -86,7 +86,7 @@ def _poiseuille(p, j, i, xe, xw, xn, xs, xsum):
     return xe * p[j, i + 1] + xw * p[j, i - 1] + xn * p[j + 1, i] + xs * p[j - 1, i] - xsum * p[j, i]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _operator(p, qx, qy, eps, j, i, rhx, rhy, rhx2, rhy2k, sx, sy):
     xe, xw, xn, xs = _coefficients(eps, j, i, rhx2, rhy2k)
     return _poiseuille(p, j, i, xe, xw, xn, xs, xe + xw + xn + xs) - _wedge(qx, qy, j, i, sx, sy, rhx, rhy)

@@ -58,7 +58,7 @@ def _shear_rate(tx, ty, eta, inverse_eta, tau0, inverse_tau0):
     return gx, gy, a, (d_amp - ratio) * nx * ny, c
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, warm, speed, rate_x, rate_y,
                    inverse_eta, inverse_tau0, newtonian_below=0.0):
     """Stress (tau_x, tau_y) at surface 1 such that \\int gamma_dot dz = (dux, duy); eta per layer (Pa s); returns
