@@ -5,13 +5,20 @@ import pytest
 
 from facegear_tehl.ehl.flow import (
     column_integrals,
+    frozen_layered_coefficients,
+    frozen_shapes,
     isothermal_coefficients,
     isothermal_layered_coefficients,
     layer_integrals,
-    layered_coefficients,
     temperature_factors,
 )
 from facegear_tehl.lubricant import Lubricant
+
+
+def layered_coefficients(p, film, temperature, factors, viscosity_factor, law, lam, kappa, sx, sy, u1, u2, *out):
+    """eps, f_x, f_y of a layered film at the pressure p (Pa) it is frozen at: the layer integrals themselves."""
+    shapes = frozen_shapes(p, temperature, factors, viscosity_factor, law)
+    frozen_layered_coefficients(p, film, shapes, law, lam, kappa, sx, sy, u1, u2, *out)
 
 
 @pytest.mark.parametrize("nz", [3, 5, 9])
@@ -118,3 +125,55 @@ def test_isothermal_newtonian_column_is_closed_form():
                                     column_integrals(np.ones((5, 6, 7))), law, 0.7, kappa, 1.0, 1.0, u1, u2, *b)
     for x, y in zip(a, b):
         assert np.allclose(x, y, rtol=1e-12, atol=0)
+
+
+def _layered_film(law_name, layered_temperature):
+    """A film state of 9 layers on 6 x 7 columns: Eyring factors across the film, temperatures rising from the walls
+    to mid-film (or one per column), pressures 0.2-1.2 GPa."""
+    lub = Lubricant(viscosity=0.03, inlet_temperature=313.15, pressure_viscosity=1.5e-8, density=880.0,
+                    temperature_viscosity=0.04, thermal_expansion=7e-4, viscosity_model=law_name)
+    rng = np.random.default_rng(4)
+    shape = (9, 6, 7)
+    zeta = np.linspace(0.0, 1.0, shape[0])[:, None, None]
+    column_t = rng.uniform(313.15, 340.0, shape[1:])
+    rise = 4.0 * zeta * (1.0 - zeta) * rng.uniform(20.0, 60.0, shape[1:]) if layered_temperature else 0.0
+    temperature = np.ascontiguousarray(column_t + rise + np.zeros(shape))
+    factor = np.exp(-rng.uniform(0.0, 3.0, shape))
+    return lub.law_parameters(), temperature, factor, rng.uniform(0.2e9, 1.2e9, shape[1:]), rng.uniform(0.5, 2.0,
+                                                                                                       shape[1:])
+
+
+def _frozen_against_exact(law, temperature, factor, p0, film, p1):
+    """The largest relative difference of eps, f_x, f_y between the state frozen at p0 (Pa) evaluated at p1 and
+    the layer integrals at p1."""
+    u1, u2, kappa = np.array([1.3, 0.01]), np.array([0.7, 0.03]), 0.05
+    factors = temperature_factors(temperature, law)
+    frozen = [np.empty(film.shape) for _ in range(3)]
+    exact = [np.empty(film.shape) for _ in range(3)]
+    frozen_layered_coefficients(p1, film, frozen_shapes(p0, temperature, factors, factor, law), law, 0.7, kappa, 1.0,
+                                -1.0, u1, u2, *frozen)
+    layered_coefficients(p1, film, temperature, factors, factor, law, 0.7, kappa, 1.0, -1.0, u1, u2, *exact)
+    return max(float(np.abs(a / b - 1.0).max()) for a, b in zip(frozen, exact))
+
+
+@pytest.mark.parametrize("law_name, layered", [("barus", True), ("roelands", False)])
+def test_a_frozen_film_follows_the_pressure_exactly_where_its_layers_share_one_viscosity_law(law_name, layered):
+    # Barus: ln(eta) moves by alpha dp in every layer; Roelands with one temperature per column: by ln-term S dv
+    # with the same temperature factor S in every layer. The frozen shapes then scale exactly, the pressure moved by
+    # up to +-0.4 GPa (the Eyring factors eta*/eta stay frozen in both).
+    law, temperature, factor, p0, film = _layered_film(law_name, layered)
+    p1 = p0 + np.random.default_rng(5).uniform(-0.4e9, 0.4e9, p0.shape)
+    assert _frozen_against_exact(law, temperature, factor, p0, film, p1) < 1e-11
+
+
+def test_a_frozen_layered_film_departs_from_its_integrals_at_second_order_in_the_pressure_change():
+    # Roelands with temperatures rising by 20-60 K to mid-film: the layers' viscosities move with the pressure at
+    # slopes that differ by their temperature factors; the frozen film moves its two shapes along their exact first
+    # derivatives, so it departs from the layer integrals by O(dp^2): halving the pressure change quarters the
+    # difference (a 20 MPa change: 5e-5).
+    law, temperature, factor, p0, film = _layered_film("roelands", True)
+    step = 0.02e9
+    large = _frozen_against_exact(law, temperature, factor, p0, film, p0 + step)
+    small = _frozen_against_exact(law, temperature, factor, p0, film, p0 + 0.5 * step)
+    assert 1e-7 < large < 2e-4
+    assert large / small == pytest.approx(4.0, rel=0.1)

@@ -129,7 +129,8 @@ def test_the_same_sweeps_without_coarse_grid_correction_are_much_slower(n, v_cyc
 
 def test_a_film_state_with_one_temperature_per_column_takes_the_column_form():
     # The frozen isothermal Ree-Eyring state (every layer at one temperature) gives each grid the flow coefficients of
-    # the layer-by-layer integrals of the same state (to rounding); a state whose layers differ keeps the layered form.
+    # the layer-by-layer integrals of the same state (to rounding); a state whose layers differ takes the layered
+    # form, frozen on every grid.
     solver = full_multigrid_start(33)
     top = len(solver.levels) - 1
     level = solver.levels[top]
@@ -141,12 +142,13 @@ def test_a_film_state_with_one_temperature_per_column_takes_the_column_form():
     assert all(lv.column_shapes is not None for lv in solver.levels)
     column = [a.copy() for a in (level.eps, level.flux_x, level.flux_y)]
     level.column_shapes = None
+    solver.freeze(level, level.pressure)
     solver.update_film(level)
     for a, b in zip(column, (level.eps, level.flux_x, level.flux_y)):
         assert np.allclose(a, b, rtol=1e-12, atol=1e-300)
     temperature[nz // 2] += 5.0
     solver.set_film_state(top, temperature, factor)
-    assert all(lv.column_shapes is None for lv in solver.levels)
+    assert all(lv.column_shapes is None and lv.frozen is not None for lv in solver.levels)
 
 
 def test_the_truncated_correction_skips_the_nodes_next_to_cavitation_only():

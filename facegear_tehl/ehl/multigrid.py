@@ -134,6 +134,7 @@ class Level:
     temperature: np.ndarray | None = None
     viscosity_factor: np.ndarray | None = None
     temperature_factor: np.ndarray | None = None  # flow.temperature_factors of `temperature`, set with it
+    frozen: np.ndarray | None = None  # flow.frozen_shapes of a layered state, set with it (None: isothermal)
     # A state whose layers share one temperature per column (an isothermal Ree-Eyring film): flow.column_integrals of
     # its viscosity_factor, (2, ny, nx); None: the layered coefficients
     column_shapes: np.ndarray | None = None
@@ -251,12 +252,14 @@ class MultigridSolver:
         film at the inlet temperature. The temperature factor is evaluated node by node on level `index` once and
         injected like the state (the same numbers as evaluating it on each grid). A state with one temperature per
         column (every layer at the first layer's: an isothermal Ree-Eyring film) carries its columns' Eyring shapes
-        (flow.column_integrals) on each grid instead, for flow.isothermal_layered_coefficients."""
+        (flow.column_integrals) on each grid instead, for flow.isothermal_layered_coefficients; any other state its
+        columns' integrals at the pressure of level `index`, injected (flow.frozen_shapes), for
+        flow.frozen_layered_coefficients."""
         top = self.levels[index]
         factor = None if temperature is None else flow.temperature_factors(temperature, self.problem.law)
         isothermal = temperature is not None and bool((temperature == temperature[0]).all())
         for level in self.levels[:index + 1]:
-            level.column_shapes = None
+            level.column_shapes = level.frozen = None
             if temperature is None:
                 level.temperature = level.viscosity_factor = level.temperature_factor = None
                 continue
@@ -266,7 +269,14 @@ class MultigridSolver:
             level.temperature_factor = np.ascontiguousarray(factor[:, ::sy, ::sx])
             if isothermal:
                 level.column_shapes = flow.column_integrals(level.viscosity_factor)
+            else:
+                self.freeze(level, top.pressure[::sy, ::sx])
         self.update_film(top)
+
+    def freeze(self, level: Level, pressure: np.ndarray) -> None:
+        """The flow shapes of the layered film state of `level` frozen at `pressure` (dimensionless, on its nodes)."""
+        level.frozen = flow.frozen_shapes(np.ascontiguousarray(pressure) * self.problem.p_hertz, level.temperature,
+                                          level.temperature_factor, level.viscosity_factor, self.problem.law)
 
     def prolong_layers(self, index: int, layers: np.ndarray) -> np.ndarray:
         """Each layer of `layers` (nz, ny, nx) on level `index - 1` interpolated to level `index`."""
@@ -303,10 +313,9 @@ class MultigridSolver:
                                                  float(np.sign(pb.wedge_x)), float(np.sign(pb.wedge_y)),
                                                  pb.velocity_1, pb.velocity_2, level.eps, level.flux_x, level.flux_y)
         else:
-            flow.layered_coefficients(p_pa, level.film, level.temperature, level.temperature_factor,
-                                      level.viscosity_factor, pb.law, pb.lam,
-                                      1.0 / pb.ellipticity, float(np.sign(pb.wedge_x)), float(np.sign(pb.wedge_y)),
-                                      pb.velocity_1, pb.velocity_2, level.eps, level.flux_x, level.flux_y)
+            flow.frozen_layered_coefficients(p_pa, level.film, level.frozen, pb.law, pb.lam, 1.0 / pb.ellipticity,
+                                             float(np.sign(pb.wedge_x)), float(np.sign(pb.wedge_y)), pb.velocity_1,
+                                             pb.velocity_2, level.eps, level.flux_x, level.flux_y)
 
     def deflection(self, level: Level) -> np.ndarray:
         """W = K*P at the nodes of `level` (without C_d): its own pressure on its own grid."""

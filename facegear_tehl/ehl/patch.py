@@ -184,6 +184,7 @@ class PatchedSolver(MultigridSolver):
         patch.temperature = np.ascontiguousarray(temperature)
         patch.viscosity_factor = np.ascontiguousarray(viscosity_factor)
         patch.temperature_factor = flow.temperature_factors(patch.temperature, self.problem.law)
+        self.freeze(patch, patch.pressure)
         self.update_film(patch)
 
     # ------------------------------------------------------------ composite
