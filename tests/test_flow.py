@@ -18,7 +18,8 @@ from facegear_tehl.lubricant import Lubricant
 def layered_coefficients(p, film, temperature, factors, viscosity_factor, law, lam, kappa, sx, sy, u1, u2, *out):
     """eps, f_x, f_y of a layered film at the pressure p (Pa) it is frozen at: the layer integrals themselves."""
     shapes = frozen_shapes(p, temperature, factors, viscosity_factor, law)
-    frozen_layered_coefficients(p, film, shapes, law, lam, kappa, sx, sy, u1, u2, *out)
+    frozen_layered_coefficients(p, film, shapes, temperature, factors, viscosity_factor, law, lam, kappa, sx, sy, u1,
+                                u2, *out)
 
 
 @pytest.mark.parametrize("nz", [3, 5, 9])
@@ -150,8 +151,10 @@ def _frozen_against_exact(law, temperature, factor, p0, film, p1):
     factors = temperature_factors(temperature, law)
     frozen = [np.empty(film.shape) for _ in range(3)]
     exact = [np.empty(film.shape) for _ in range(3)]
-    frozen_layered_coefficients(p1, film, frozen_shapes(p0, temperature, factors, factor, law), law, 0.7, kappa, 1.0,
-                                -1.0, u1, u2, *frozen)
+    shapes = frozen_shapes(p0, temperature, factors, factor, law)
+    refrozen = frozen_layered_coefficients(p1, film, shapes, temperature, factors, factor, law, 0.7, kappa, 1.0, -1.0,
+                                           u1, u2, *frozen)
+    assert refrozen == 0
     layered_coefficients(p1, film, temperature, factors, factor, law, 0.7, kappa, 1.0, -1.0, u1, u2, *exact)
     return max(float(np.abs(a / b - 1.0).max()) for a, b in zip(frozen, exact))
 

@@ -170,8 +170,16 @@ def temperature_factors(temperature, law):
 
 # The rows of `frozen_shapes`: per column, at the pressure the film state is frozen at, the Poiseuille and Couette
 # shapes 12 (F1 R2/F0 - R1) and R2/F0, R0, the slopes of their logarithms against the law's pressure variable
-# (`_pressure_variable`), that variable and the density's pressure factor.
-POISEUILLE, COUETTE, MEAN_DENSITY, POISEUILLE_SLOPE, COUETTE_SLOPE, VARIABLE, COMPRESSION = range(7)
+# (`_pressure_variable`), that variable, the density's pressure factor and the spread of the layers' slopes of ln(eta).
+POISEUILLE, COUETTE, MEAN_DENSITY, POISEUILLE_SLOPE, COUETTE_SLOPE, VARIABLE, COMPRESSION, SPREAD = range(8)
+FROZEN_ROWS = 8
+# A column whose layers' ln(eta) moved apart by more than this since it was frozen (the spread of their slopes times the
+# change of the pressure variable) is frozen again at its pressure (`frozen_layered_coefficients`): the shapes' error
+# is second order in that product, 5e-5 relative at 0.06 (tests/test_flow.py: a 20 MPa change, 20-60 K across the
+# film), about 1.5e-4 at 0.1. Without it, the envelope's thermal a/b = 30, 1.5 GPa, 10 m/s, SRR 2 contact (its film
+# heated by about 200 K, its last attempt starting at a fraction of its load) ran away in its coarse stage: the
+# pressure moves by much of p_h between two film-state updates there.
+REFREEZE_SPREAD = 0.1
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -184,11 +192,63 @@ def _pressure_variable(p, law):
     return max(p, 0.0)
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _freeze_column(out, j, i, p, temperature, temperature_factor, viscosity_factor, law, fluidity, change, rho):
+    """Column (j, i) of `frozen_shapes` at the pressure p (Pa), into out[:, j, i]; fluidity, change, rho: (nz,)
+    work arrays."""
+    nz = temperature.shape[0]
+    roelands = law[0] == ROELANDS
+    pressure_factor = roelands_pressure_factor_at(p, law)
+    compression = density_pressure_factor_at(p, law)
+    lowest = highest = first_ratio = 0.0
+    for k in range(nz):
+        t = temperature[k, j, i]
+        if roelands:
+            factor = temperature_factor[k, j, i]
+            if k > 0 and factor == temperature_factor[0, j, i]:
+                ratio = first_ratio
+            else:
+                ratio = roelands_ratio(pressure_factor, factor, law)
+            if k == 0:
+                first_ratio = ratio
+            rate = law[3] * factor  # -d ln(phi_k)/dv
+        else:
+            ratio = viscosity_ratio_at(p, t, law)
+            rate = law[1]
+        fluidity[k] = 1.0 / max(ratio * viscosity_factor[k, j, i], 1e-300)
+        change[k] = -rate * fluidity[k]
+        rho[k] = compression * density_thermal_factor_at(t, law)
+        lowest = rate if k == 0 else min(lowest, rate)
+        highest = rate if k == 0 else max(highest, rate)
+    f0, f1, r0, r1, r2 = fluidity_integrals(fluidity, rho)
+    d0, d1, _, e1, e2 = fluidity_integrals(change, rho)
+    poiseuille_slope = couette_slope = 0.0
+    if f0 > 0.0:
+        poiseuille = 12.0 * (f1 * r2 / f0 - r1)
+        couette = r2 / f0
+        derivative = 12.0 * ((d1 * r2 + f1 * e2) / f0 - f1 * r2 * d0 / (f0 * f0) - e1)
+        if poiseuille > 0.0:
+            poiseuille_slope = -derivative / poiseuille
+        if couette > 0.0:
+            couette_slope = -(e2 / f0 - r2 * d0 / (f0 * f0)) / couette
+    else:  # infinitely viscous film (overflowing viscosity of a running-away iterate): no Poiseuille flow
+        poiseuille = 0.0
+        couette = 0.5 * r0
+    out[POISEUILLE, j, i] = poiseuille
+    out[COUETTE, j, i] = couette
+    out[MEAN_DENSITY, j, i] = r0
+    out[POISEUILLE_SLOPE, j, i] = poiseuille_slope
+    out[COUETTE_SLOPE, j, i] = couette_slope
+    out[VARIABLE, j, i] = _pressure_variable(p, law)
+    out[COMPRESSION, j, i] = compression
+    out[SPREAD, j, i] = highest - lowest
+
+
 @njit(cache=True, error_model="numpy")
 def frozen_shapes(pressure_pa, temperature, temperature_factor, viscosity_factor, law):
     """Per column of a film state frozen at the pressures pressure_pa (Pa, (ny, nx)) with layer temperatures (K),
-    their `temperature_factors` and viscosity factors eta*/eta (nz, ny, nx): the rows POISEUILLE .. COMPRESSION,
-    (7, ny, nx), that `frozen_layered_coefficients` evaluates at the pressures of the V-cycles.
+    their `temperature_factors` and viscosity factors eta*/eta (nz, ny, nx): the rows POISEUILLE .. SPREAD,
+    (FROZEN_ROWS, ny, nx), that `frozen_layered_coefficients` evaluates at the pressures of the V-cycles.
 
     The layer integrals (`fluidity_integrals`) at the freezing pressure, and the derivatives of the logarithms of the
     two shapes against the law's pressure variable v (`_pressure_variable`): every layer's fluidity phi_k moves
@@ -196,86 +256,45 @@ def frozen_shapes(pressure_pa, temperature, temperature_factor, viscosity_factor
     F0, F1, R1, R2 are linear in the fluidities, so their derivatives are the same integrals of -c_k phi_k.
     A layer whose temperature factor equals the first layer's (an isothermal film) reuses its viscosity ratio."""
     nz, ny, nx = temperature.shape
-    out = np.empty((7, ny, nx))
-    fluidity = np.empty((nz, nx))
-    rho = np.empty((nz, nx))
-    column_fluidity = np.empty(nz)
-    column_change = np.empty(nz)
-    column_rho = np.empty(nz)
-    pressure_factor = np.empty(nx)
-    compression = np.empty(nx)
-    first_factor = np.empty(nx)
-    first_ratio = np.empty(nx)
-    roelands = law[0] == ROELANDS
+    out = np.empty((FROZEN_ROWS, ny, nx))
+    fluidity, change, rho = np.empty(nz), np.empty(nz), np.empty(nz)
     for j in range(ny):
         for i in range(nx):
-            p = pressure_pa[j, i]
-            pressure_factor[i] = roelands_pressure_factor_at(p, law)
-            compression[i] = density_pressure_factor_at(p, law)
-        for k in range(nz):
-            for i in range(nx):
-                t = temperature[k, j, i]
-                if roelands:
-                    factor = temperature_factor[k, j, i]
-                    if k > 0 and factor == first_factor[i]:
-                        ratio = first_ratio[i]
-                    else:
-                        ratio = roelands_ratio(pressure_factor[i], factor, law)
-                    if k == 0:
-                        first_factor[i], first_ratio[i] = factor, ratio
-                else:
-                    ratio = viscosity_ratio_at(pressure_pa[j, i], t, law)
-                fluidity[k, i] = 1.0 / max(ratio * viscosity_factor[k, j, i], 1e-300)
-                rho[k, i] = compression[i] * density_thermal_factor_at(t, law)
-        for i in range(nx):
-            for k in range(nz):
-                column_fluidity[k] = fluidity[k, i]
-                column_rho[k] = rho[k, i]
-                rate = law[3] * temperature_factor[k, j, i] if roelands else law[1]  # -d ln(phi_k)/dv
-                column_change[k] = -rate * fluidity[k, i]
-            f0, f1, r0, r1, r2 = fluidity_integrals(column_fluidity, column_rho)
-            d0, d1, _, e1, e2 = fluidity_integrals(column_change, column_rho)
-            poiseuille_slope = couette_slope = 0.0
-            if f0 > 0.0:
-                poiseuille = 12.0 * (f1 * r2 / f0 - r1)
-                couette = r2 / f0
-                change = 12.0 * ((d1 * r2 + f1 * e2) / f0 - f1 * r2 * d0 / (f0 * f0) - e1)
-                if poiseuille > 0.0:
-                    poiseuille_slope = -change / poiseuille
-                if couette > 0.0:
-                    couette_slope = -(e2 / f0 - r2 * d0 / (f0 * f0)) / couette
-            else:  # infinitely viscous film (overflowing viscosity of a running-away iterate): no Poiseuille flow
-                poiseuille = 0.0
-                couette = 0.5 * r0
-            out[POISEUILLE, j, i] = poiseuille
-            out[COUETTE, j, i] = couette
-            out[MEAN_DENSITY, j, i] = r0
-            out[POISEUILLE_SLOPE, j, i] = poiseuille_slope
-            out[COUETTE_SLOPE, j, i] = couette_slope
-            out[VARIABLE, j, i] = _pressure_variable(pressure_pa[j, i], law)
-            out[COMPRESSION, j, i] = compression[i]
+            _freeze_column(out, j, i, pressure_pa[j, i], temperature, temperature_factor, viscosity_factor, law,
+                           fluidity, change, rho)
     return out
 
 
 @njit(cache=True, error_model="numpy")
-def frozen_layered_coefficients(pressure_pa, film, shapes, law, lam, kappa, sx, sy, u1, u2, eps, fx, fy):
-    """eps, f_x, f_y (in place) of a layered film state frozen with `frozen_shapes`, at the pressures pressure_pa (Pa)
-    and film H (dimensionless); u1, u2: surface velocities divided by |u_e|, in the (x, y) frame.
+def frozen_layered_coefficients(pressure_pa, film, shapes, temperature, temperature_factor, viscosity_factor, law, lam,
+                                kappa, sx, sy, u1, u2, eps, fx, fy):
+    """eps, f_x, f_y (in place) of a layered film state frozen with `frozen_shapes` (the state's arrays as given
+    there), at the pressures pressure_pa (Pa) and film H (dimensionless); u1, u2: surface velocities divided by |u_e|,
+    in the (x, y) frame. Returns the number of columns frozen again.
 
     The shapes move with the law's pressure variable v (`_pressure_variable`) as exp(-slope (v - v_0)), v_0 its value
     at the freeze, and R0 and both shapes with the density's pressure factor (one for every layer):
     eps = POISEUILLE x those x H^3/lambda, R2/F0 = COUETTE x those. Exact at the freezing pressure, for Barus at any,
     and for a column of one temperature (every layer then has the same slope: an isothermal film); otherwise to
-    second order in the change of v since the freeze (the pressure moves by a V-cycle's change between two film-state
-    updates, and at the outer loop's fixed point, where it no longer moves, the film is the layer integrals' own).
-    One pressure factor and two exponentials per column instead of an exponential per layer node and the integrals:
-    3.0 -> 0.7 ms on 513 x 65 x 9 (S1 of the face gear case)."""
+    second order in the change of v since the freeze, and a column whose layers moved apart by more than
+    REFREEZE_SPREAD is frozen again at its pressure first (the pressure moves by a V-cycle's change between two
+    film-state updates, and at the outer loop's fixed point, where it no longer moves, the film is the layer
+    integrals' own). One pressure factor and two exponentials per column instead of an exponential per layer node and
+    the integrals: 3.0 -> 0.7 ms on 513 x 65 x 9 (S1 of the face gear case)."""
+    nz = temperature.shape[0]
     ny, nx = film.shape
+    fluidity, change_k, rho = np.empty(nz), np.empty(nz), np.empty(nz)
+    refrozen = 0
     for j in range(ny):
         for i in range(nx):
             p = pressure_pa[j, i]
-            density = density_pressure_factor_at(p, law) / shapes[COMPRESSION, j, i]
             change = _pressure_variable(p, law) - shapes[VARIABLE, j, i]
+            if abs(change) * shapes[SPREAD, j, i] > REFREEZE_SPREAD:
+                _freeze_column(shapes, j, i, p, temperature, temperature_factor, viscosity_factor, law, fluidity,
+                               change_k, rho)
+                change = 0.0
+                refrozen += 1
+            density = density_pressure_factor_at(p, law) / shapes[COMPRESSION, j, i]
             h = max(film[j, i], 0.0)
             eps[j, i] = (shapes[POISEUILLE, j, i] * density * math.exp(-shapes[POISEUILLE_SLOPE, j, i] * change)
                          * h * h * h / lam)
@@ -283,3 +302,4 @@ def frozen_layered_coefficients(pressure_pa, film, shapes, law, lam, kappa, sx, 
             couette = shapes[COUETTE, j, i] * density * math.exp(-shapes[COUETTE_SLOPE, j, i] * change)
             fx[j, i] = sx * (u1[0] * r0 + (u2[0] - u1[0]) * couette)
             fy[j, i] = sy * kappa * (u1[1] * r0 + (u2[1] - u1[1]) * couette)
+    return refrozen

@@ -313,9 +313,11 @@ class MultigridSolver:
                                                  float(np.sign(pb.wedge_x)), float(np.sign(pb.wedge_y)),
                                                  pb.velocity_1, pb.velocity_2, level.eps, level.flux_x, level.flux_y)
         else:
-            flow.frozen_layered_coefficients(p_pa, level.film, level.frozen, pb.law, pb.lam, 1.0 / pb.ellipticity,
-                                             float(np.sign(pb.wedge_x)), float(np.sign(pb.wedge_y)), pb.velocity_1,
-                                             pb.velocity_2, level.eps, level.flux_x, level.flux_y)
+            flow.frozen_layered_coefficients(p_pa, level.film, level.frozen, level.temperature,
+                                             level.temperature_factor, level.viscosity_factor, pb.law, pb.lam,
+                                             1.0 / pb.ellipticity, float(np.sign(pb.wedge_x)),
+                                             float(np.sign(pb.wedge_y)), pb.velocity_1, pb.velocity_2, level.eps,
+                                             level.flux_x, level.flux_y)
 
     def deflection(self, level: Level) -> np.ndarray:
         """W = K*P at the nodes of `level` (without C_d): its own pressure on its own grid."""
