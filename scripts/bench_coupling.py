@@ -60,7 +60,8 @@ for name in ("fixed_parts", "sweep_columns", "wall_fluxes"):
     if hasattr(energy, name):  # fixed_parts: a kernel of its own since addacab
         timed(energy, name, "energy")
 timed(jaeger, "surface_temperature_rise", "energy")
-for name in ("layered_coefficients", "temperature_factors", "isothermal_layered_coefficients", "column_integrals"):
+for name in ("layered_coefficients", "temperature_factors", "isothermal_layered_coefficients", "column_integrals",
+             "frozen_shapes", "frozen_layered_coefficients"):
     if hasattr(flow, name):  # the isothermal film's column form: a kernel of its own since this script's --thermal
         timed(flow, name, "flow")
 timed(thermal.FilmThermalModel, "update", "update")
