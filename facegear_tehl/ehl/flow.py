@@ -15,7 +15,10 @@ In the solver's variables (scaling.py; rho, eta as ratios to rho_0, eta_0; veloc
     f_x = s_x [u_1x R0 + (u_2x - u_1x) R2/F0],   f_y = s_y kappa [u_1y R0 + (u_2y - u_1y) R2/F0]
 
 (s_x, s_y: signs of the entrainment components, which orient the upwind differences in reynolds.py).
-The layer count is odd (Simpson's rule across the film; layers.py).
+The layer count is odd (Simpson's rule across the film; layers.py). Between two film-state updates only the pressure
+moves: a layered state is frozen with its columns' shapes and their derivatives in the pressure (`frozen_shapes`,
+evaluated by `frozen_layered_coefficients` at every relaxation sweep), a state of one temperature per column with the
+shapes of its Eyring profile (`column_integrals`, `isothermal_layered_coefficients`).
 """
 
 from __future__ import annotations
@@ -68,7 +71,7 @@ def layer_integrals(eta, rho):
 @njit(cache=True, error_model="numpy", inline="always")
 def fluidity_integrals(fluidity, rho):
     """`layer_integrals` from the fluidity 1/eta per layer node (one division per node, not one per stencil
-    weight: layered_coefficients runs at every relaxation sweep)."""
+    weight: a frozen column is integrated again whenever its pressure moved far, `frozen_layered_coefficients`)."""
     nz = fluidity.size
     dz = 1.0 / (nz - 1)
     f0 = 0.0
@@ -126,10 +129,11 @@ def column_integrals(viscosity_factor):
 @njit(cache=True, error_model="numpy")
 def isothermal_layered_coefficients(pressure_pa, film, temperature, temperature_factor, shapes, law, lam, kappa, sx,
                                     sy, u1, u2, eps, fx, fy):
-    """`layered_coefficients` of a film whose layers share one temperature per column: temperature (K) and its
-    `temperature_factors` of one layer (ny, nx), `shapes` from `column_integrals` (in place). One viscosity ratio
-    and one density per column; R0 = rho (Simpson's weights sum to 1). On 513 x 65 x 9 (S1 of the face gear case,
-    isothermal Ree-Eyring) 3.6 -> 1.0 ms per call against the layered kernel; the same numbers to rounding."""
+    """eps, f_x, f_y (in place) of a film whose layers share one temperature per column, from the layer integrals of
+    its Eyring profile: temperature (K) and its `temperature_factors` of one layer (ny, nx), `shapes` from
+    `column_integrals`. One viscosity ratio and one density per column; R0 = rho (Simpson's weights sum to 1). On
+    513 x 65 x 9 (S1 of the face gear case, isothermal Ree-Eyring) 3.6 -> 1.0 ms per call against the layer-by-layer
+    integrals at every sweep; the same numbers to rounding (tests/test_flow.py)."""
     ny, nx = film.shape
     roelands = law[0] == ROELANDS
     for j in range(ny):
