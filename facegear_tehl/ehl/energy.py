@@ -132,12 +132,20 @@ def _face_value(temperature, k, j, i, dj, di, t_inlet):
     face value is the linear extrapolation T_up + 0.5 (T_up - T_up2) (second order; a limiter against the inlet
     temperature would fall to first order there, halving the convective derivative of the boundary node)."""
     nz, ny, nx = temperature.shape
-    t_up = _value(temperature, k, j, i, t_inlet)
-    t_up2 = _value(temperature, k, j - dj, i - di, t_inlet)
     jd, id_ = j + dj, i + di
-    if not (0 <= jd < ny and 0 <= id_ < nx):
+    leaves = not (0 <= jd < ny and 0 <= id_ < nx)
+    t_down = t_inlet if leaves else temperature[k, jd, id_]
+    return _muscl(_value(temperature, k, j, i, t_inlet), _value(temperature, k, j - dj, i - di, t_inlet), t_down,
+                  leaves)
+
+
+@njit(cache=True, inline="always")
+def _muscl(t_up, t_up2, t_down, leaves):
+    """`_face_value` from the temperatures of the line through the face: upwind t_up, t_up2 behind it, t_down across
+    the face; `leaves`: a boundary face the oil flows out by (t_down is then not read)."""
+    if leaves:
         return t_up + 0.5 * (t_up - t_up2)
-    return t_up + _limited_half(temperature[k, jd, id_] - t_up, t_up - t_up2) * (t_up - t_up2)
+    return t_up + _limited_half(t_down - t_up, t_up - t_up2) * (t_up - t_up2)
 
 
 @njit(cache=True)
@@ -224,11 +232,9 @@ def _face_term(g, t, t_back, t_near, t_far, leaves, a, b):
     if g == 0.0:  # no flow through the face
         return a, b
     if g > 0.0:  # outflow: the face carries this node's value and its limited correction
-        if leaves:
-            return a, b - g * ((t + 0.5 * (t - t_back)) - t)
-        return a, b - g * ((t + _limited_half(t_near - t, t - t_back) * (t - t_back)) - t)
+        return a, b - g * (_muscl(t, t_back, t_near, leaves) - t)
     # inflow from the neighbour
-    return a - g, b - g * (t_near + _limited_half(t - t_near, t_near - t_far) * (t_near - t_far))
+    return a - g, b - g * _muscl(t_near, t_far, t, False)
 
 
 @njit(cache=True, error_model="numpy", inline="always")

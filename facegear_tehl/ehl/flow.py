@@ -202,7 +202,7 @@ def _freeze_column(out, j, i, p, temperature, temperature_factor, viscosity_fact
     work arrays."""
     nz = temperature.shape[0]
     roelands = law[0] == ROELANDS
-    pressure_factor = roelands_pressure_factor_at(p, law)
+    variable = _pressure_variable(p, law)  # for Roelands its pressure factor
     compression = density_pressure_factor_at(p, law)
     lowest = highest = first_ratio = 0.0
     for k in range(nz):
@@ -212,7 +212,7 @@ def _freeze_column(out, j, i, p, temperature, temperature_factor, viscosity_fact
             if k > 0 and factor == temperature_factor[0, j, i]:
                 ratio = first_ratio
             else:
-                ratio = roelands_ratio(pressure_factor, factor, law)
+                ratio = roelands_ratio(variable, factor, law)
             if k == 0:
                 first_ratio = ratio
             rate = law[3] * factor  # -d ln(phi_k)/dv
@@ -243,7 +243,7 @@ def _freeze_column(out, j, i, p, temperature, temperature_factor, viscosity_fact
     out[MEAN_DENSITY, j, i] = r0
     out[POISEUILLE_SLOPE, j, i] = poiseuille_slope
     out[COUETTE_SLOPE, j, i] = couette_slope
-    out[VARIABLE, j, i] = _pressure_variable(p, law)
+    out[VARIABLE, j, i] = variable
     out[COMPRESSION, j, i] = compression
     out[SPREAD, j, i] = highest - lowest
 
