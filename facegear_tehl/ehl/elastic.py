@@ -12,7 +12,9 @@ is the closed form of Venner & Lubrecht (2000, eq. 8.6) for 1/r over a rectangle
     R(x1, x2; y1, y2) = F(x2, y2) - F(x1, y2) - F(x2, y1) + F(x1, y1),   F(x, y) = x asinh(y/|x|) + y asinh(x/|y|).
 
 The discrete convolution W_ij = sum K(|i - i'|, |j - j'|) P_i'j' is evaluated with real FFTs on a grid padded
-to `scipy.fft.next_fast_len(2 n - 1)` (linear, not circular, convolution).
+to `scipy.fft.next_fast_len(2 n - 1)` (linear, not circular, convolution). The two-dimensional transforms are taken
+one axis at a time, so that the rows of zeros the padding adds are never transformed along X and only the rows
+of the grid are transformed back (a pruned FFT).
 """
 
 from __future__ import annotations
@@ -54,20 +56,17 @@ class DeflectionOperator:
         full[:ny, -(nx - 1):] = k[:, :0:-1]
         full[-(ny - 1):, :nx] = k[:0:-1, :]
         full[-(ny - 1):, -(nx - 1):] = k[:0:-1, :0:-1]
-        self._kernel_hat = fft.rfft2(full)
-        self._padded: np.ndarray | None = None  # the zero-padded pressure, kept between calls (not pickled)
+        # K is real and even along both axes, so its transform is real (its imaginary part is rounding, 3e-17 of it):
+        # the product with a real array costs half the complex one.
+        self._kernel_hat = np.ascontiguousarray(fft.rfft2(full).real)
 
     def apply(self, pressure: np.ndarray) -> np.ndarray:
-        """W_ij = sum_{i'j'} K(|i - i'|, |j - j'|) P_{i'j'}; pressure shape (ny, nx). The same transforms as
-        rfft2(pressure, s=shape), into a padded array kept between calls and a product taken in place: 2.2 -> 1.8 ms
-        on 513 x 65."""
-        if self._padded is None:
-            self._padded = np.zeros(self.shape)
-        self._padded[: self.ny, : self.nx] = pressure
-        p_hat = fft.rfft2(self._padded)
-        p_hat *= self._kernel_hat
-        return fft.irfft2(p_hat, s=self.shape, overwrite_x=True)[: self.ny, : self.nx]
-
-    def __getstate__(self) -> dict:
-        """A solve paused between stages travels to another process without the padded pressure."""
-        return {**self.__dict__, "_padded": None}
+        """W_ij = sum_{i'j'} K(|i - i'|, |j - j'|) P_{i'j'}; pressure shape (ny, nx). The transform of the padded
+        pressure one axis at a time: along X its ny rows alone (the padding's rows transform to zero), along Y
+        every column; back along Y every column, along X the ny rows kept. The padded two-dimensional transforms
+        cost 1.8 ms on 513 x 65, these 1.1 ms (9.6 against 19.6 ms on 4097 x 65); the results agree to 1e-15."""
+        rows = fft.rfft(pressure, n=self.shape[1], axis=1)
+        spectrum = fft.fft(rows, n=self.shape[0], axis=0, overwrite_x=True)
+        spectrum *= self._kernel_hat
+        rows = fft.ifft(spectrum, axis=0, overwrite_x=True)[: self.ny]
+        return fft.irfft(rows, n=self.shape[1], axis=1)[:, : self.nx]
