@@ -20,7 +20,7 @@ from facegear_tehl.case import load_case
 from facegear_tehl.cli import tehl
 from facegear_tehl.ehl import jaeger, outlet
 from facegear_tehl.ehl.outlet import GHOST, PatchFilmModel, needs_outlet_patch
-from facegear_tehl.ehl.solve import solve_point
+from facegear_tehl.ehl.solve import THERMAL_FLOOR_H_C, solve_point
 from facegear_tehl.points import contact_analysis
 from facegear_tehl.settings import MAX_OUTLET_PATCHES, SolverSettings
 from facegear_tehl.solution import Outcome, Status
@@ -263,3 +263,58 @@ def test_the_outlet_patches_land_on_the_uniform_grid_of_their_spacing(name):
     # the error estimate of dT_max is the last patch's change, first order: it brackets the gap to 2049 x 65
     assert abs(default.scalars["error_estimate_dT_max"][0]) > abs(gap(default, "dT_max"))
     assert np.all(default.fields["film_thickness"].values > 0.0)
+
+
+def test_the_next_stage_is_certain_beyond_the_margin():
+    """_next_certain: under `auto` a candidate whose ΔT_max or μ moved by more than PROVISIONAL_MARGIN times the
+    bounds asked of them (2 %, 1 %) makes the next stage certain, one that moved by less does not (the stage then
+    runs to convergence and `auto` decides on its converged figures); under `always` it is always certain."""
+    previous = {"dT_max": 40.0, "mu": 0.01}
+    margin = outlet.PROVISIONAL_MARGIN
+    assert margin > 1.0  # a provisional decision needs more than the converged one
+
+    def certain(dT_max: float, mu: float, choice: str = "auto") -> bool:
+        fake = SimpleNamespace(settings=SimpleNamespace(outlet_refinement=choice))
+        with pytest.MonkeyPatch.context() as patch:
+            patch.setattr(outlet, "_stage_figures", lambda solve, candidate: {"dT_max": dT_max, "mu": mu})
+            return outlet._next_certain(fake, previous)(None)
+
+    step_dT, step_mu = outlet.AUTO_DT_MAX_ERROR * 40.0, outlet.AUTO_MU_ERROR * 0.01
+    assert certain(40.0 + 1.01 * margin * step_dT, 0.01) and certain(40.0 - 1.01 * margin * step_dT, 0.01)
+    assert certain(40.0, 0.01 + 1.01 * margin * step_mu)
+    assert not certain(40.0 + 0.99 * margin * step_dT, 0.01 - 0.99 * margin * step_mu)
+    assert not certain(40.0 + 1.2 * step_dT, 0.01)  # moved beyond the bound itself, but not by the margin
+    assert certain(40.0, 0.01, choice="always")
+
+
+def test_a_provisional_stage_leaves_the_result_within_the_last_stage_tolerance(monkeypatch):
+    """The quick S2 with `always` and two patches: the first ends provisionally after PROVISIONAL_MIN_ITERATIONS
+    outer iterations, the second converges on top of it. Against the same refinement with the first converged, the
+    figures differ by less than the last stage's own stopping tolerance (FIGURE_SPREAD of ΔT_max, a fifth of the
+    accuracy asked of μ, h_c within the spread the outer loops accept, THERMAL_FLOOR_H_C): the stage below matters
+    only through the strip upstream of the next patch."""
+    case, point = _face_gear("S2")
+    settings = replace(case.solver, grid=129, grid_y=17, outlet_refinement="always")
+    monkeypatch.setattr(outlet, "NESTED_PATCH_STARTS", outlet.NESTED_PATCH_STARTS[:1])
+    real_refine = outlet.refine_outlet
+    ended = []
+
+    def spied(solve, *args):
+        outer = solve.history.outer
+        stage, status = real_refine(solve, *args)
+        ended.append((stage is not None and stage.provisional, solve.history.outer - outer))
+        return stage, status
+
+    monkeypatch.setattr(outlet, "refine_outlet", spied)
+    early = solve_point(point, case.lubricant, settings)
+    assert ended == [(True, outlet.PROVISIONAL_MIN_ITERATIONS), (False, ended[1][1])]
+    ended.clear()
+    monkeypatch.setattr(outlet, "PROVISIONAL_MIN_ITERATIONS", 10**6)
+    converged = solve_point(point, case.lubricant, settings)
+    assert [provisional for provisional, _ in ended] == [False, False] and ended[0][1] > ended[1][1] / 4
+    assert early.outcome == converged.outcome == Outcome.CONVERGED
+    assert early.scalars["outlet_patches"][0] == converged.scalars["outlet_patches"][0] == 2
+    assert early.scalars["dT_max"][0] == pytest.approx(converged.scalars["dT_max"][0], rel=outlet.FIGURE_SPREAD)
+    assert early.scalars["mu"][0] == pytest.approx(converged.scalars["mu"][0], rel=0.2 * outlet.AUTO_MU_ERROR)
+    assert early.scalars["h_c"][0] == pytest.approx(converged.scalars["h_c"][0], rel=THERMAL_FLOOR_H_C)
+    assert early.scalars["iterations"][0] < converged.scalars["iterations"][0]

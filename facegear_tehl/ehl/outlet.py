@@ -16,7 +16,8 @@ finest uniform grid and adds a patch (patch.py) over [X_a, outlet] with half its
 from __future__ import annotations
 
 from dataclasses import dataclass, fields, replace
-from typing import TYPE_CHECKING
+import pickle
+from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
@@ -91,6 +92,18 @@ STAGE_LOAD_BAND = 10.0
 # stages in 23 outer iterations and 26 V-cycles instead of 27 and 54 (12.5 against 21.1 s CPU), S2 in 17 and 20
 # instead of 18 and 32 (9.9 against 12.0 s), ΔT_max +0.5 and -0.2 %, μ within 3e-4 (docs/benchmarks.md).
 STAGE_CYCLES_PER_UPDATE = 1
+# A stage with another on top of it ends provisionally once that next stage is certain: `always`, or (`auto`) the
+# composite's ΔT_max or μ has moved against the figures before the stage by more than PROVISIONAL_MARGIN times
+# AUTO_DT_MAX_ERROR or AUTO_MU_ERROR at each of its last PROVISIONAL_WINDOW outer iterations, from its
+# PROVISIONAL_MIN_ITERATIONS-th on. Only its figures had to be converged for that decision: the next patch covers
+# all of it but the strip upstream of the next start (its inflow columns, its load and Jaeger's composite flux
+# there), which is far from the spike. The hot spot of a nested stage flickered by 0.5-2 K for 12-20 outer
+# iterations on the pitch-point side of the default case's 41-point cycle (P21, P24) while its ΔT_max had moved by
+# 5-9 %. The first iteration is the interpolated state's transient (changes of 15-30 % of the rise), hence the
+# minimum of three.
+PROVISIONAL_MARGIN = 1.5
+PROVISIONAL_WINDOW = 2
+PROVISIONAL_MIN_ITERATIONS = 3
 
 
 def along_x(values: np.ndarray) -> np.ndarray:
@@ -145,13 +158,15 @@ class PatchFilmModel(FilmThermalModel):
 
 @dataclass(frozen=True)
 class OutletStage:
-    """A converged outlet stage: the patched solver (its last level the stage's patch), the film state of each part of
-    the composite (PatchedSolver.parts: the uniform grid's, then each patch's on its own columns) and the composite
-    wall heat fluxes of bodies 1 and 2 along the whole x axis at the last patch's spacing (W/m^2)."""
+    """An outlet stage that ended (converged, or provisional): the patched solver (its last level the stage's patch),
+    the film state of each part of the composite (PatchedSolver.parts: the uniform grid's, then each patch's on its
+    own columns) and the composite wall heat fluxes of bodies 1 and 2 along the whole x axis at the last patch's
+    spacing (W/m^2; None for a candidate whose figures are only looked at)."""
 
     solver: PatchedSolver
     states: tuple[FilmState, ...]
-    flux: tuple[np.ndarray, np.ndarray]
+    flux: tuple[np.ndarray, np.ndarray] | None
+    provisional: bool = False  # ended once the stage on top of it was certain (PROVISIONAL_MARGIN), not converged
 
     @property
     def state(self) -> FilmState:
@@ -192,13 +207,15 @@ def needs_outlet_patch(solve: PointSolve, index: int, state: FilmState) -> bool:
 
 
 def refine_outlet(solve: PointSolve, index: int, state: FilmState, coarse_cycles: int = COARSE_CYCLES,
-                  base: OutletStage | None = None,
-                  span_start: float = PATCH_START) -> tuple[OutletStage | None, Status]:
+                  base: OutletStage | None = None, span_start: float = PATCH_START,
+                  next_certain: Callable[[OutletStage], bool] | None = None) -> tuple[OutletStage | None, Status]:
     """An outlet stage: a patch over [`span_start`, outlet] (X) on top of level `index` of `solve.solver`, whose
     coupled loop converged with the film state `state`: the finest uniform grid (`base` None), or the last patch of
-    the converged stage `base`. `coarse_cycles` V-cycles of the grid below per coarse-grid correction of the patch.
-    On success `solve.solver` is the patched solver; if the stage runs away or does not converge, the solution before
-    it is restored and None returned with the status."""
+    the stage `base`. `coarse_cycles` V-cycles of the grid below per coarse-grid correction of the patch.
+    `next_certain` (a stage with another on top of it): whether that next stage is certain, asked of the candidate
+    stage of each outer iteration; the stage ends provisionally once it holds (PROVISIONAL_MARGIN). On success
+    `solve.solver` is the patched solver; if the stage runs away or does not converge, the solution before it is
+    restored and None returned with the status."""
     from facegear_tehl.ehl.solve import (
         ANDERSON_DEPTH,
         ENERGY_FORCING,
@@ -239,6 +256,7 @@ def refine_outlet(solve: PointSolve, index: int, state: FilmState, coarse_cycles
     films: list[float] = []
     hottest: list[float] = []  # the largest film temperature rise of each update on the patch (K)
     relaxation, window = 1.0, 0
+    certain = 0  # consecutive outer iterations at which the next stage was certain
     for _ in range(settings.max_thermal_iterations):
         if status.diverged:
             break
@@ -262,17 +280,24 @@ def refine_outlet(solve: PointSolve, index: int, state: FilmState, coarse_cycles
         # the thermal floor of solve.py's outer loop: a flicker of the hot spot below 1 % of the rise, h_c steady
         settled = status.converged or _pressure_settled(solve.history, settings)
         floor = settled and _at_thermal_floor(changes, films, THERMAL_FLOOR_FRACTION * rise)
-        if done or floor or (figures_settled(hottest, films, changes, rise)
-                             and stage_pressure_settled(solve.history, settings)):
+        below_states = (state,) if base is None else base.states
+        ended = done or floor or (figures_settled(hottest, films, changes, rise)
+                                  and stage_pressure_settled(solve.history, settings))
+        judged = len(changes) > PROVISIONAL_MIN_ITERATIONS - PROVISIONAL_WINDOW  # the window can end by the minimum
+        if not ended and next_certain is not None and judged:
+            candidate = replace(update, temperature=temperature, viscosity_factor=factor)
+            candidate_states = below_states + (patch_state_columns(candidate, slice(GHOST, None)),)
+            certain = certain + 1 if next_certain(OutletStage(solver, candidate_states, None)) else 0
+        provisional = not ended and certain >= PROVISIONAL_WINDOW and len(changes) >= PROVISIONAL_MIN_ITERATIONS
+        if ended or provisional:
             if floor:
                 solve.history.thermal_floor = last_change
             solve.settle(top)  # on a flicker of the spike the mean of its two phases, as the uniform loop ends
             update = model.completed(update)
             patch_state = replace(update, temperature=temperature, viscosity_factor=factor)
-            states = ((state,) if base is None else base.states) + (
-                patch_state_columns(patch_state, slice(GHOST, None)),)
+            states = below_states + (patch_state_columns(patch_state, slice(GHOST, None)),)
             return OutletStage(solver, states, (model.composite_flux(update.heat_flux_1, 0),
-                                                model.composite_flux(update.heat_flux_2, 1))), CONVERGED
+                                                model.composite_flux(update.heat_flux_2, 1)), provisional), CONVERGED
         # A limit cycle above the floor: relax harder, as the uniform loop does. The patch on the default case's S4
         # at the spacing of uniform 2049 x 65 flickered at 0.5-0.7 K (1.5-2 % of its rise) for 40 outer iterations
         # at full relaxation; halved, it converged in 18.
@@ -336,31 +361,66 @@ def outlet_stages(solve: PointSolve, index: int, state: FilmState) -> tuple[Comp
     """The outlet stages on top of level `index` (the finest uniform grid, converged with `state`): a patch at half
     its x spacing from PATCH_START, then (`always`, or `auto` while the last patch moved ΔT_max or μ by more than
     AUTO_DT_MAX_ERROR or AUTO_MU_ERROR) patches at half the spacing of the one before from NESTED_PATCH_STARTS, each
-    tried with STAGE_COARSE_CYCLES in turn. The composite of the last converged stage (None if the first failed) and
-    why a stage failed ("" if none did)."""
-    uniform = solve.solver.levels[index]
-    figures = _uniform_figures(solve, uniform, state)
-    stage, result = None, None
+    tried with STAGE_COARSE_CYCLES in turn; a stage with another on top of it may end provisionally
+    (PROVISIONAL_MARGIN). The composite of the last converged stage (None if the first failed) and why a stage
+    failed ("" if none did). A stage that fails on top of a provisional one: the solve goes back to where the
+    stages began (a copy of it kept then) and solves the stages below the failed one again, each to convergence, as
+    a run whose settings stop there (`solver.outlet_patches`); the work of both counts."""
     starts = ((PATCH_START,) + NESTED_PATCH_STARTS)[:solve.settings.outlet_patches]
+    before = pickle.dumps(solve) if len(starts) > 1 else None  # the solve as the stages find it
+    result, note, depth, provisional = _in_stages(solve, index, state, starts, early=True)
+    if provisional:
+        outer, cycles, work = solve.history.outer, solve.history.cycles, solve.solver.work_units
+        solve.__dict__.update(pickle.loads(before).__dict__)
+        solve.history.outer, solve.history.cycles, solve.solver.work_units = outer, cycles, work
+        result, _, _, _ = _in_stages(solve, index, state, starts[:depth], early=False)
+    return result, note
+
+
+def _in_stages(solve: PointSolve, index: int, state: FilmState, starts: tuple[float, ...],
+               early: bool) -> tuple[Composite | None, str, int, bool]:
+    """outlet_stages' stages from `starts` (`early`: a stage with another on top of it may end provisionally): the
+    composite of the last stage that ended, why a stage failed ("" if none did), how many stages ended, and whether
+    the last of them is provisional (then its composite is not a result)."""
+    figures = _uniform_figures(solve, solve.solver.levels[index], state)
+    stage, result = None, None
     while stage is None or len(stage.solver.patches) < len(starts):
-        start = starts[0 if stage is None else len(stage.solver.patches)]
+        depth = 0 if stage is None else len(stage.solver.patches)
         top = len(solve.solver.levels) - 1
+        next_certain = _next_certain(solve, figures) if early and depth + 1 < len(starts) else None
         for cycles in STAGE_COARSE_CYCLES:
-            refined, status = refine_outlet(solve, top, state, cycles, stage, start)
+            refined, status = refine_outlet(solve, top, state, cycles, stage, starts[depth], next_certain)
             if refined is not None:
                 break
         if refined is None:
-            what = "outlet patch" if stage is None else f"outlet patch {len(stage.solver.patches) + 1}"
-            return result, f"{what}: {status.message}"
+            what = "outlet patch" if stage is None else f"outlet patch {depth + 1}"
+            return result, f"{what}: {status.message}", depth, stage is not None and stage.provisional
         stage, previous = refined, figures
         result = composite(solve, stage)
-        figures = {name: result.scalars[name][0] for name in ("dT_max", "mu")}
-        moved = {name: abs(figures[name] / previous[name] - 1.0) if previous[name] != 0.0 else 0.0
-                 for name in figures}
-        if solve.settings.outlet_refinement == "auto" and not (moved["dT_max"] > AUTO_DT_MAX_ERROR
-                                                               or moved["mu"] > AUTO_MU_ERROR):
+        figures = _figures(result)
+        if solve.settings.outlet_refinement == "auto" and not _moved(figures, previous, 1.0):
             break
-    return result, ""
+    return result, "", len(stage.solver.patches), stage.provisional
+
+
+def _next_certain(solve: PointSolve, previous: dict[str, float]) -> Callable[[OutletStage], bool]:
+    """Whether the stage on top of a candidate stage is certain: always under `always`; under `auto` when the
+    candidate's composite moved ΔT_max or μ against `previous` by more than PROVISIONAL_MARGIN times the bounds."""
+    if solve.settings.outlet_refinement != "auto":
+        return lambda candidate: True
+    return lambda candidate: _moved(_stage_figures(solve, candidate), previous, PROVISIONAL_MARGIN)
+
+
+def _figures(result: Composite) -> dict[str, float]:
+    """dT_max (K) and mu of a composite."""
+    return {name: result.scalars[name][0] for name in ("dT_max", "mu")}
+
+
+def _moved(figures: dict[str, float], previous: dict[str, float], margin: float) -> bool:
+    """ΔT_max or μ moved from `previous` by more than `margin` times AUTO_DT_MAX_ERROR or AUTO_MU_ERROR (relative;
+    a previous value of zero never counts)."""
+    moved = {name: abs(figures[name] / previous[name] - 1.0) if previous[name] != 0.0 else 0.0 for name in figures}
+    return moved["dT_max"] > margin * AUTO_DT_MAX_ERROR or moved["mu"] > margin * AUTO_MU_ERROR
 
 
 def _uniform_figures(solve: PointSolve, level: Level, state: FilmState) -> dict[str, float]:
@@ -430,11 +490,7 @@ def composite(solve: PointSolve, stage: OutletStage) -> Composite:
         "dT_surface_1_max": (max(float(part[4].temperature[0].max()) for part in own_parts) - t_in, "K"),
         "dT_surface_2_max": (max(float(part[4].temperature[-1].max()) for part in own_parts) - t_in, "K"),
     })
-    mu = []
-    for body in (1, 2):
-        force = sum(_traction(getattr(state, f"stress_{body}"), level.pressure, weight) * level.hx
-                    for (level, _, state), weight in zip(parts, _trapezoid_weights(solver), strict=True))
-        mu.append(float(np.hypot(*(force * parts[0][0].hy * scaling.a * scaling.b)) / solve.point.load))
+    mu = _friction(solve, stage)
     scalars.update({"mu": (0.5 * (mu[0] + mu[1]), "1"), "mu_1": (mu[0], "1"), "mu_2": (mu[1], "1"),
                     "outlet_patch_start": (float(solver.levels[solver.uniform_count].x[0]) * scaling.b, "m"),
                     "outlet_patches": (float(len(solver.patches)), "1")})
@@ -442,6 +498,25 @@ def composite(solve: PointSolve, stage: OutletStage) -> Composite:
                      for k, (level, _, _) in enumerate(parts[1:]))
     return Composite(pressure * scaling.p_h, film * scaling.film_scale, replace(parts[0][2], **state_fields), scalars,
                      note)
+
+
+def _friction(solve: PointSolve, stage: OutletStage) -> tuple[float, float]:
+    """The friction coefficients of bodies 1 and 2 over the composite: each part's traction on its own spacing, with
+    the weights of the composite trapezoid rule, over the load."""
+    solver, scaling, mu = stage.solver, solve.scaling, []
+    levels = [level for level, _ in solver.parts()]
+    for body in (1, 2):
+        force = sum(_traction(getattr(state, f"stress_{body}"), level.pressure, weight) * level.hx
+                    for level, state, weight in zip(levels, stage.states, _trapezoid_weights(solver), strict=True))
+        mu.append(float(np.hypot(*(force * levels[0].hy * scaling.a * scaling.b)) / solve.point.load))
+    return mu[0], mu[1]
+
+
+def _stage_figures(solve: PointSolve, stage: OutletStage) -> dict[str, float]:
+    """dT_max (K) and mu of a stage's composite, as `composite` has them, without its fields."""
+    hottest = max(float(patch_state_columns(state, own).temperature.max())
+                  for (_, own), state in zip(stage.solver.parts(), stage.states, strict=True) if own.any())
+    return {"dT_max": hottest - solve.lubricant.inlet_temperature, "mu": 0.5 * sum(_friction(solve, stage))}
 
 
 def _inject(coarse: np.ndarray, fine: np.ndarray, inside: slice) -> np.ndarray:
