@@ -419,7 +419,8 @@ def _figures(result: Composite) -> dict[str, float]:
 def _moved(figures: dict[str, float], previous: dict[str, float], margin: float) -> bool:
     """ΔT_max or μ moved from `previous` by more than `margin` times AUTO_DT_MAX_ERROR or AUTO_MU_ERROR (relative;
     a previous value of zero never counts)."""
-    moved = {name: abs(figures[name] / previous[name] - 1.0) if previous[name] != 0.0 else 0.0 for name in figures}
+    moved = {name: abs(figures[name] / previous[name] - 1.0) if previous[name] != 0.0 else 0.0
+             for name in ("dT_max", "mu")}
     return moved["dT_max"] > margin * AUTO_DT_MAX_ERROR or moved["mu"] > margin * AUTO_MU_ERROR
 
 
@@ -470,7 +471,7 @@ def composite(solve: PointSolve, stage: OutletStage) -> Composite:
     own_parts = [(level.x[own], level.y, level.pressure[:, own], level.film[:, own],
                   patch_state_columns(state, own)) for level, own, state in parts if own.any()]
     scalars: dict[str, tuple[float, str]] = {}
-    hot = max(own_parts, key=lambda part: part[4].temperature.max())
+    figures = _stage_figures(solve, stage)
     cold = min(own_parts, key=lambda part: part[4].temperature.min())
     low = min(own_parts, key=lambda part: part[3].min())
     j, i = np.unravel_index(int(np.argmin(low[3])), low[3].shape)
@@ -482,7 +483,7 @@ def composite(solve: PointSolve, stage: OutletStage) -> Composite:
         "h_min": (float(low[3][j, i]) * scaling.film_scale, "m"),
         "x_h_min": (float(low[0][i]) * scaling.b, "m"),
         "y_h_min": (float(low[1][j]) * scaling.a, "m"),
-        "dT_max": (float(hot[4].temperature.max()) - t_in, "K"),
+        "dT_max": (figures["dT_max"], "K"),
         "dT_min": (float(cold[4].temperature.min()) - t_in, "K"),
         "x_dT_min": (float(cold[0][ic]) * scaling.b, "m"),
         "y_dT_min": (float(cold[1][jc]) * scaling.a, "m"),
@@ -490,8 +491,7 @@ def composite(solve: PointSolve, stage: OutletStage) -> Composite:
         "dT_surface_1_max": (max(float(part[4].temperature[0].max()) for part in own_parts) - t_in, "K"),
         "dT_surface_2_max": (max(float(part[4].temperature[-1].max()) for part in own_parts) - t_in, "K"),
     })
-    mu = _friction(solve, stage)
-    scalars.update({"mu": (0.5 * (mu[0] + mu[1]), "1"), "mu_1": (mu[0], "1"), "mu_2": (mu[1], "1"),
+    scalars.update({"mu": (figures["mu"], "1"), "mu_1": (figures["mu_1"], "1"), "mu_2": (figures["mu_2"], "1"),
                     "outlet_patch_start": (float(solver.levels[solver.uniform_count].x[0]) * scaling.b, "m"),
                     "outlet_patches": (float(len(solver.patches)), "1")})
     note = "; ".join(f"a patch at {'half the x spacing' if k == 0 else 'half that'} over X >= {level.x[0]:.2f} b"
@@ -513,10 +513,13 @@ def _friction(solve: PointSolve, stage: OutletStage) -> tuple[float, float]:
 
 
 def _stage_figures(solve: PointSolve, stage: OutletStage) -> dict[str, float]:
-    """dT_max (K) and mu of a stage's composite, as `composite` has them, without its fields."""
+    """dT_max (K) and the friction coefficients mu, mu_1, mu_2 of a stage's composite, over all its parts (`composite`
+    takes them from here; a candidate stage of refine_outlet needs no more)."""
     hottest = max(float(patch_state_columns(state, own).temperature.max())
                   for (_, own), state in zip(stage.solver.parts(), stage.states, strict=True) if own.any())
-    return {"dT_max": hottest - solve.lubricant.inlet_temperature, "mu": 0.5 * sum(_friction(solve, stage))}
+    mu_1, mu_2 = _friction(solve, stage)
+    return {"dT_max": hottest - solve.lubricant.inlet_temperature, "mu": 0.5 * (mu_1 + mu_2), "mu_1": mu_1,
+            "mu_2": mu_2}
 
 
 def _inject(coarse: np.ndarray, fine: np.ndarray, inside: slice) -> np.ndarray:
