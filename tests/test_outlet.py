@@ -318,3 +318,19 @@ def test_a_provisional_stage_leaves_the_result_within_the_last_stage_tolerance(m
     assert early.scalars["mu"][0] == pytest.approx(converged.scalars["mu"][0], rel=0.2 * outlet.AUTO_MU_ERROR)
     assert early.scalars["h_c"][0] == pytest.approx(converged.scalars["h_c"][0], rel=THERMAL_FLOOR_H_C)
     assert early.scalars["iterations"][0] < converged.scalars["iterations"][0]
+
+
+def test_auto_goes_on_while_the_reported_estimate_misses_its_bound():
+    """_estimate_above is the estimate the result reports (report._outlet_scalars: Richardson over the whole refinement,
+    first order, (f_n - f_0)/(2^n - 1)/f_n), judged against the 2 % and 1 % asked of ΔT_max and μ. S2 of the default
+    case: uniform 56.28 K; two patches 60.00 K, an estimate of 2.07 % although the second moved it by 1.6 % only, so a
+    third follows; with it 60.27 K, 0.95 %. μ alone: 1.5 % over one patch (the uniform grid's 1.5 % off) goes on."""
+    uniform = {"dT_max": 56.28, "mu": 0.013894}
+    two = {"dT_max": 60.00, "mu": 0.013804}
+    three = {"dT_max": 60.27, "mu": 0.013795}
+    assert not outlet._moved(two, {"dT_max": 59.04, "mu": 0.013822}, 1.0)
+    assert outlet._estimate_above(two, uniform, 2)
+    assert not outlet._estimate_above(three, uniform, 3)
+    assert (60.00 - 56.28) / 3 / 60.00 == pytest.approx(0.0207, abs=1e-4)  # the estimate, written out
+    assert outlet._estimate_above({"dT_max": 56.28, "mu": 0.013894 * 1.015}, uniform, 1)
+    assert not outlet._estimate_above({"dT_max": 56.28 * 1.019, "mu": 0.013894 * 1.009}, uniform, 1)

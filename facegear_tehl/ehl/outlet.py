@@ -382,7 +382,7 @@ def _in_stages(solve: PointSolve, index: int, state: FilmState, starts: tuple[fl
     """outlet_stages' stages from `starts` (`early`: a stage with another on top of it may end provisionally): the
     composite of the last stage that ended, why a stage failed ("" if none did), how many stages ended, and whether
     the last of them is provisional (then its composite is not a result)."""
-    figures = _uniform_figures(solve, solve.solver.levels[index], state)
+    figures = uniform = _uniform_figures(solve, solve.solver.levels[index], state)
     stage, result = None, None
     while stage is None or len(stage.solver.patches) < len(starts):
         depth = 0 if stage is None else len(stage.solver.patches)
@@ -398,9 +398,21 @@ def _in_stages(solve: PointSolve, index: int, state: FilmState, starts: tuple[fl
         stage, previous = refined, figures
         result = composite(solve, stage)
         figures = _figures(result)
-        if solve.settings.outlet_refinement == "auto" and not _moved(figures, previous, 1.0):
+        if solve.settings.outlet_refinement == "auto" and not (_moved(figures, previous, 1.0)
+                                                               or _estimate_above(figures, uniform, depth + 1)):
             break
     return result, "", len(stage.solver.patches), stage.provisional
+
+
+def _estimate_above(figures: dict[str, float], uniform: dict[str, float], patches: int) -> bool:
+    """The error estimate the result reports after `patches` patches (Richardson over the whole refinement from the
+    uniform grid's `uniform` figures, report._outlet_scalars) exceeds AUTO_DT_MAX_ERROR for ΔT_max or AUTO_MU_ERROR
+    for μ: a last stage that moved its figures by less than the bounds (`_moved`) may still leave that estimate above
+    them when the stages before moved them far (S2 of the default case: its second patch moved ΔT_max by 1.6 %, the
+    two by 6.6 %, an estimate of 2.1 %)."""
+    ratio = 2 ** patches
+    return any(figures[name] != 0.0 and abs(richardson_error(figures[name], uniform[name], order, ratio)) > bound
+               for name, order, bound in (("dT_max", ORDER_DT_MAX, AUTO_DT_MAX_ERROR), ("mu", ORDER_MU, AUTO_MU_ERROR)))
 
 
 def _next_certain(solve: PointSolve, previous: dict[str, float]) -> Callable[[OutletStage], bool]:
