@@ -37,7 +37,8 @@ class SolverSettings:
     # estimate of dT_max or mu misses 2 % or 1 %
     outlet_refinement: str = "auto"
     # the most nested outlet patches (1-3: half, a quarter, an eighth of the x spacing at the spike); each after the
-    # first only where the one before moved dT_max or mu by more than 2 % or 1 % (`auto`)
+    # first only where the one before moved dT_max or mu by more than 2 % or 1 %, or left the estimate reported
+    # after it above them (`auto`)
     outlet_patches: int = MAX_OUTLET_PATCHES
 
     @property
