@@ -257,6 +257,7 @@ def refine_outlet(solve: PointSolve, index: int, state: FilmState, coarse_cycles
     hottest: list[float] = []  # the largest film temperature rise of each update on the patch (K)
     relaxation, window = 1.0, 0
     certain = 0  # consecutive outer iterations at which the next stage was certain
+    below_states = (state,) if base is None else base.states  # the film states of the parts under the patch
     for _ in range(settings.max_thermal_iterations):
         if status.diverged:
             break
@@ -280,7 +281,6 @@ def refine_outlet(solve: PointSolve, index: int, state: FilmState, coarse_cycles
         # the thermal floor of solve.py's outer loop: a flicker of the hot spot below 1 % of the rise, h_c steady
         settled = status.converged or _pressure_settled(solve.history, settings)
         floor = settled and _at_thermal_floor(changes, films, THERMAL_FLOOR_FRACTION * rise)
-        below_states = (state,) if base is None else base.states
         ended = done or floor or (figures_settled(hottest, films, changes, rise)
                                   and stage_pressure_settled(solve.history, settings))
         judged = len(changes) > PROVISIONAL_MIN_ITERATIONS - PROVISIONAL_WINDOW  # the window can end by the minimum
@@ -527,7 +527,7 @@ def _friction(solve: PointSolve, stage: OutletStage) -> tuple[float, float]:
 def _stage_figures(solve: PointSolve, stage: OutletStage) -> dict[str, float]:
     """dT_max (K) and the friction coefficients mu, mu_1, mu_2 of a stage's composite, over all its parts (`composite`
     takes them from here; a candidate stage of refine_outlet needs no more)."""
-    hottest = max(float(patch_state_columns(state, own).temperature.max())
+    hottest = max(float(state.temperature[..., own].max())
                   for (_, own), state in zip(stage.solver.parts(), stage.states, strict=True) if own.any())
     mu_1, mu_2 = _friction(solve, stage)
     return {"dT_max": hottest - solve.lubricant.inlet_temperature, "mu": 0.5 * (mu_1 + mu_2), "mu_1": mu_1,
