@@ -134,7 +134,7 @@ def run(
             click.echo(f"warning: {warning}", err=True)
     target.parent.mkdir(parents=True, exist_ok=True)
     write_result(run_result, target)
-    result = read_result(target)
+    result = read_result(target, fields=False)  # the tables print what the file holds
     click.echo(summary_table(result.points.values()))
     if result.heat and "point" in result.heat:
         click.echo(heat_budget_table(result))
@@ -209,7 +209,7 @@ def sweep(
                       progress=_report_progress)
     target.parent.mkdir(parents=True, exist_ok=True)
     write_result(swept.run, target)
-    result = read_result(target)
+    result = read_result(target, fields=False)
     for warning in result.warnings:
         click.echo(f"warning: {warning}", err=True)
     csv = write_csv(result.sweep, target.with_suffix(".csv"))
@@ -334,7 +334,7 @@ Examples:
 @click.option("--json", "as_json", is_flag=True, help="Print the per-point scalars (SI) as JSON.")
 def info(result_file: str, si: bool, as_json: bool) -> None:
     """Show the per-point scalars of a result file, by theme, in engineering units."""
-    result = read_result(result_file)
+    result = read_result(result_file, fields=False)
     click.echo(json.dumps(info_json(result), indent=2) if as_json else info_text(result, si=si))
 
 

@@ -394,8 +394,11 @@ def _check_column(where: str, name: str, column: Field, allow_nan: bool = False)
 # ----------------------------------------------------------------------------------------- reading
 
 
-def read_result(path: str | Path) -> Result:
-    """Read a result file; ResultFileError if it is not a tehl result of a supported format."""
+def read_result(path: str | Path, fields: bool = True) -> Result:
+    """Read a result file; ResultFileError if it is not a tehl result of a supported format. `fields` False: the
+    points' fields (the arrays over the grid, most of the file) are not read and each point's `fields` is empty;
+    what the tables print (scalars, histories, the run's tables) is read as ever: the 41-point isothermal cycle's
+    file (80 MB) in 0.34 s, against 1.08 s with its fields."""
     import h5py
 
     path = Path(path)
@@ -432,7 +435,7 @@ def read_result(path: str | Path) -> Result:
                 warnings=tuple(json.loads(attrs["warnings"])),
                 models=json.loads(attrs["models"]),
                 overrides=json.loads(attrs["overrides"]),
-                points={name: _read_point(name, group) for name, group in h5["points"].items()},
+                points={name: _read_point(name, group, fields) for name, group in h5["points"].items()},
                 contact=_read_table(contact),
                 contact_scalars=contact_scalars,
                 contact_units=contact_units,
@@ -457,11 +460,13 @@ def _read_scalars(group: h5py.Group) -> tuple[dict[str, float | int], dict[str, 
     return {key: group.attrs[key].item() for key in units}, units
 
 
-def _read_point(name: str, group: h5py.Group) -> PointResult:
+def _read_point(name: str, group: h5py.Group, fields: bool = True) -> PointResult:
     scalars, units = _read_scalars(group)
     by_kind: dict[str, dict[str, Field]] = {"axis": {}, "field": {}, "history": {}, "scale": {}}
     for dataset_name, dataset in group.items():
-        by_kind[str(dataset.attrs["kind"])][dataset_name] = _read_field(dataset)
+        kind = str(dataset.attrs["kind"])
+        if fields or kind != "field":
+            by_kind[kind][dataset_name] = _read_field(dataset)
     return PointResult(
         name=name,
         converged=bool(group.attrs["converged"]),

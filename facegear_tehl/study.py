@@ -194,7 +194,7 @@ def _compute(client: object, todo: Sequence[Variant], folder: Path, progress: St
 
 def _read_outcome(folder: Path, variant: Variant) -> VariantOutcome:
     """The outcome of a variant skipped because its file is finished: the file's status and message."""
-    result = read_result(folder / variant.file_name)
+    result = read_result(folder / variant.file_name, fields=False)
     return VariantOutcome(variant, result.status, result.message, False, True)
 
 
@@ -220,7 +220,7 @@ def write_index(study: Study, folder: Path, outcomes: Sequence[VariantOutcome]) 
         if not outcome.has_file:
             rows.append([*lead, "", outcome.status, "", *([""] * len(COLUMNS)), "", outcome.message])
             continue
-        result = read_result(path)
+        result = read_result(path, fields=False)
         cycle = _cycle_attrs(path)
         for point in result.points.values():
             scalars = [_number(point.scalars.get(name)) for name, _ in POINT_COLUMNS]

@@ -64,6 +64,23 @@ def test_round_trip_keeps_every_value(run, tmp_path):
         assert (read.units, read.description) == (written.units, written.description)
 
 
+def test_a_read_without_fields_keeps_everything_else(run, tmp_path):
+    """read_result(fields=False), what the CLI's tables read back: the points' fields are left out, the rest is the
+    full read's."""
+    path = write_result(run, tmp_path / "r.h5")
+    full, light = read_result(path), read_result(path, fields=False)
+    assert full.points["contact"].fields and not light.points["contact"].fields
+    assert (light.status, light.message, light.case_yaml, light.models) == (full.status, full.message,
+                                                                               full.case_yaml, full.models)
+    point, whole = light.points["contact"], full.points["contact"]
+    assert (point.scalars, point.units, point.models, point.outcome) == (whole.scalars, whole.units, whole.models,
+                                                                         whole.outcome)
+    for part in ("axes", "history"):
+        assert getattr(point, part).keys() == getattr(whole, part).keys()
+        for name, read in getattr(point, part).items():
+            np.testing.assert_array_equal(read.values, getattr(whole, part)[name].values)
+
+
 def test_fields_hold_the_analytic_values(run, tmp_path):
     point = read_result(write_result(run, tmp_path / "r.h5")).points["contact"]
     x, y = point.axes["x"].values, point.axes["y"].values
