@@ -89,8 +89,8 @@ _STALLING_WRITER = textwrap.dedent(
     from facegear_tehl import results
     signal.signal(signal.SIGINT, signal.default_int_handler)
     write_point = results._write_point
-    def write_and_stall(points, solution):
-        write_point(points, solution)
+    def write_and_stall(points, solution, *rest):
+        write_point(points, solution, *rest)
         print("writing", flush=True)
         time.sleep(60)
     results._write_point = write_and_stall

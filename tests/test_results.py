@@ -81,6 +81,25 @@ def test_a_read_without_fields_keeps_everything_else(run, tmp_path):
             np.testing.assert_array_equal(read.values, getattr(whole, part)[name].values)
 
 
+def test_fields_are_stored_with_the_standard_shuffle_and_deflate_filters(run, tmp_path):
+    """The chunks deflated outside the HDF5 library (results.DEFLATE_THREADS) are what its own filters make of the
+    array: h5py inflates them to the exact values, a C-ordered and a Fortran-ordered array alike, and the file says
+    gzip and shuffle, as a dataset compressed by the library does."""
+    solution = run.points[0]
+    pressure = solution.fields["pressure"].values
+    fortran = Field(np.asfortranarray(pressure * 1.5), "Pa", "the pressure, Fortran-ordered")
+    path = write_result(_with_point(run, fields={**solution.fields, "pressure_fortran": fortran}), tmp_path / "r.h5")
+    with h5py.File(path, "r+") as h5:
+        for name, expected in (("pressure", pressure), ("pressure_fortran", fortran.values)):
+            dataset = h5[f"points/contact/{name}"]
+            assert (dataset.compression, dataset.compression_opts, dataset.shuffle) == ("gzip", 4, True)
+            assert dataset.chunks == expected.shape
+            np.testing.assert_array_equal(dataset[()], expected)
+        library = h5.create_dataset("by_the_library", data=pressure, chunks=pressure.shape, compression="gzip",
+                                    compression_opts=4, shuffle=True)
+        assert library.id.read_direct_chunk((0, 0))[1] == h5["points/contact/pressure"].id.read_direct_chunk((0, 0))[1]
+
+
 def test_fields_hold_the_analytic_values(run, tmp_path):
     point = read_result(write_result(run, tmp_path / "r.h5")).points["contact"]
     x, y = point.axes["x"].values, point.axes["y"].values
@@ -228,8 +247,8 @@ def test_failure_mid_write_keeps_the_previous_file(run, tmp_path, monkeypatch, i
     before = target.read_bytes()
     write_point = results._write_point
 
-    def write_then_fail(points, solution):
-        write_point(points, solution)
+    def write_then_fail(points, solution, *rest):
+        write_point(points, solution, *rest)
         assert len(_files(tmp_path)) == 2  # the temporary file exists next to the target
         raise interruption
 
