@@ -62,6 +62,8 @@ _RESERVED_ATTRS = ("units", "converged", "outcome", "message", "models")
 # GIL), and written as they are (h5py's write_direct_chunk): the 538 fields of the 41-point isothermal cycle (142 MB)
 # took 1.49 s through the library and 0.76 s on two threads (docs/benchmarks.md).
 DEFLATE_LEVEL = 4
+# At most this many threads (fewer if fewer CPUs are available): measured with two on a 2-core machine; more would
+# only take CPUs from the other writers or solves of a many-core machine for a file written in about a second.
 DEFLATE_THREADS = 4
 _AXES = ("x", "y")
 # Scalars and columns that count something: stored as integers (a sweep column keeps floats where it holds NaN).
