@@ -12,8 +12,9 @@
    DIR, then timings interleaved (before, after, before, ...; medians of --repeat): the point's thermal full and
    isothermal Newtonian solves (CPU time of the solve in a warm process, and their ratio), `tehl run CASE
    --jobs 2` and `tehl validate CASE` (wall time from the command line, and the CPU time of the process and its
-   workers), and with --cycle the 41-point thermal cycle (`gear.points: 41`, --jobs 2; one run each). On a machine
-   shared with other work the wall times inflate with the load, the CPU times much less.
+   workers), and with --cycle the 41-point cycle (`gear.points: 41`, --jobs 2): isothermal (`--thermal off`, the
+   case's Ree-Eyring film) interleaved like the rest, thermal full one run each. On a machine shared with other work
+   the wall times inflate with the load, the CPU times much less.
 
     python scripts/bench_coupling.py [CASE] [--point S1] [--thermal full] [--before DIR] [--repeat 3] [--cycle]
 """
@@ -211,11 +212,16 @@ def timings(trees: dict[str, Path], case: Path, point: str, repeat: int, cycle: 
                 print(label, {q: round(v[-1], 2) for (t, q), v in samples.items() if t == label}, flush=True)
         if cycle:
             cycle_case = _cycle_case(case, Path(folder))
+            run = ["-m", "facegear_tehl", "run", str(cycle_case), "--jobs", "2", "-o", str(output)]
+            for _ in range(repeat):
+                for label, tree in trees.items():
+                    _add(samples, label, f"{CYCLE_POINTS}-point cycle, isothermal (--thermal off), --jobs 2",
+                         _wall(tree, [*run, "--thermal", "off"]))
             for label, tree in trees.items():
-                _add(samples, label, f"{CYCLE_POINTS}-point cycle, thermal full, --jobs 2",
-                     _wall(tree, ["-m", "facegear_tehl", "run", str(cycle_case), "--jobs", "2", "-o", str(output)]))
+                _add(samples, label, f"{CYCLE_POINTS}-point cycle, thermal full, --jobs 2", _wall(tree, run))
     before, after = trees
-    print(f"\nMedians of {repeat} interleaved runs (the cycle: one run each); solves: CPU time of one process:\n")
+    print(f"\nMedians of {repeat} interleaved runs (the thermal cycle: one run each); solves: CPU time of one "
+          "process:\n")
     print(f"| quantity | {before} | {after} | ratio |")
     print("|---|---|---|---|")
     for quantity in dict.fromkeys(q for _, q in samples):
@@ -232,7 +238,8 @@ def main() -> None:
                         help="thermal model of the profile (the timings: thermal full)")
     parser.add_argument("--before", type=Path, help="source tree of the version to compare with")
     parser.add_argument("--repeat", type=int, default=3, help="interleaved runs per timing (medians)")
-    parser.add_argument("--cycle", action="store_true", help="also time the 41-point thermal cycle (minutes)")
+    parser.add_argument("--cycle", action="store_true",
+                        help="also time the 41-point cycle, isothermal and thermal full (minutes)")
     args = parser.parse_args()
     case = Path(args.case).resolve()
     trees = {"before": args.before.resolve(), "after": HERE} if args.before else {"this tree": HERE}
