@@ -218,6 +218,7 @@ def refine_outlet(solve: PointSolve, index: int, state: FilmState, coarse_cycles
     restored and None returned with the status."""
     from facegear_tehl.ehl.solve import (
         ANDERSON_DEPTH,
+        ENERGY_FORCING,
         MIN_RELAXATION_SCALE,
         MIN_RISE,
         THERMAL_FLOOR_FRACTION,
@@ -225,7 +226,6 @@ def refine_outlet(solve: PointSolve, index: int, state: FilmState, coarse_cycles
         _next_film_state,
         _pressure_settled,
         _stalled,
-        energy_forcing,
     )
 
     before, settings, scaling = solve.solver, solve.settings, solve.scaling
@@ -261,7 +261,7 @@ def refine_outlet(solve: PointSolve, index: int, state: FilmState, coarse_cycles
     for _ in range(settings.max_thermal_iterations):
         if status.diverged:
             break
-        forcing = energy_forcing(changes) * last_change if last_change is not None else np.inf
+        forcing = ENERGY_FORCING * last_change if last_change is not None else np.inf
         pressure, film = _with_inflow(solver, start, *solve.settled_pressure(top))
         temperature[..., :GHOST] = inflow
         update = model.update(pressure * scaling.p_h, film * scaling.film_scale, temperature, forcing,
