@@ -7,8 +7,8 @@
    one before, for the map as solved, with parts of the film state held at the reference (the surfaces' Jaeger
    temperatures, the velocities across the film, the dissipation), and with more sweeps per update.
 2. With --forcing F [F ...]: the case's points solved in turn in one process (one BLAS thread) with
-   `solve.ENERGY_FORCING` (the energy sweeps' tolerance as a share of the outer loop's last change) set to each F:
-   outer iterations and CPU time of the solves.
+   `solve.ENERGY_FORCING` (the largest share of `solve.energy_forcing`, the energy sweeps' adaptive tolerance) set
+   to each F: outer iterations and CPU time of the solves.
 
     python scripts/film_state_map.py [CASE] [--point S1] [--perturbation 2] [--forcing 0.3 0.15]
 

@@ -182,6 +182,34 @@ def test_thermal_floor_is_a_stalled_small_change_with_a_steady_film():
     assert _at_thermal_floor(flicker, alternating, bound=0.01 * 98.0, h_c_error=1.7e-3)
 
 
+def test_the_tolerance_stop_needs_a_steady_film():
+    """solve._h_c_steady, which the outer loop's tolerance stop asks over its last STEADY_UPDATES updates: the spread of
+    h_c within 5e-4 of the last value, or half its error estimate if larger. By hand: the 513^2 S1 updates that ended
+    early (1.20504, 1.20419, 1.20482 um: spread 8.5e-4 / 1.20482 = 7.1e-4) are not steady at an error of 1e-3, are at
+    2e-3 (half: 1e-3); the settled ones (1.20558, 1.20564, 1.20560 um: 5.0e-5) are."""
+    from facegear_tehl.ehl.solve import STEADY_UPDATES, _h_c_steady
+
+    assert STEADY_UPDATES >= 2  # one update has no spread to judge
+    moving, settled = [1.20504, 1.20419, 1.20482], [1.20558, 1.20564, 1.20560]
+    assert not _h_c_steady(moving) and not _h_c_steady(moving, h_c_error=1.0e-3)
+    assert _h_c_steady(moving, h_c_error=2.0e-3)
+    assert _h_c_steady(settled)
+    assert not _h_c_steady([])
+
+
+def test_energy_sweeps_are_forced_loosely_in_a_transient_and_tighter_as_the_loop_converges():
+    """solve.energy_forcing is Eisenstat & Walker's (1996) choice 2, gamma (c_k/c_k-1)^2 with gamma 0.3, kept within
+    [0.1, 0.3]: by hand, a loop whose changes stay (the temperature continuation's 35 K steps) or grow keeps 0.3, one
+    falling by 0.8 per update gets 0.3 x 0.64 = 0.192, one halving its change the floor 0.1 (0.075 by the formula)."""
+    from facegear_tehl.ehl.solve import energy_forcing
+
+    assert energy_forcing([]) == energy_forcing([2.3]) == 0.3
+    assert energy_forcing([35.0, 35.0]) == energy_forcing([0.5, 0.9]) == 0.3
+    assert energy_forcing([1.0, 0.8]) == pytest.approx(0.192, rel=1e-12)
+    assert energy_forcing([1.0, 0.5]) == 0.1
+    assert energy_forcing([0.0, 0.0]) == 0.3  # no change to judge a ratio by
+
+
 def test_a_flickering_pressure_feeds_the_film_state_the_mean_of_its_two_phases():
     """On a period-2 flicker of the pressure (the change per cycle stalled below 10x the tolerance) the outer
     loop evaluates the film state at the mean of the last two iterates and ends on it (solve.PointSolve

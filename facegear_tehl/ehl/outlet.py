@@ -218,14 +218,16 @@ def refine_outlet(solve: PointSolve, index: int, state: FilmState, coarse_cycles
     restored and None returned with the status."""
     from facegear_tehl.ehl.solve import (
         ANDERSON_DEPTH,
-        ENERGY_FORCING,
         MIN_RELAXATION_SCALE,
         MIN_RISE,
+        STEADY_UPDATES,
         THERMAL_FLOOR_FRACTION,
         _at_thermal_floor,
+        _h_c_steady,
         _next_film_state,
         _pressure_settled,
         _stalled,
+        energy_forcing,
     )
 
     before, settings, scaling = solve.solver, solve.settings, solve.scaling
@@ -261,7 +263,7 @@ def refine_outlet(solve: PointSolve, index: int, state: FilmState, coarse_cycles
     for _ in range(settings.max_thermal_iterations):
         if status.diverged:
             break
-        forcing = ENERGY_FORCING * last_change if last_change is not None else np.inf
+        forcing = energy_forcing(changes) * last_change if last_change is not None else np.inf
         pressure, film = _with_inflow(solver, start, *solve.settled_pressure(top))
         temperature[..., :GHOST] = inflow
         update = model.update(pressure * scaling.p_h, film * scaling.film_scale, temperature, forcing,
@@ -277,7 +279,8 @@ def refine_outlet(solve: PointSolve, index: int, state: FilmState, coarse_cycles
         changes.append(last_change)
         films.append(solver.summary().h_c)
         hottest.append(float(update.temperature[..., GHOST:].max()) - t_in)
-        done = status.converged and last_change < settings.thermal_tolerance * rise
+        done = (status.converged and last_change < settings.thermal_tolerance * rise
+                and len(films) >= STEADY_UPDATES and _h_c_steady(films[-STEADY_UPDATES:]))
         # the thermal floor of solve.py's outer loop: a flicker of the hot spot below 1 % of the rise, h_c steady
         settled = status.converged or _pressure_settled(solve.history, settings)
         floor = settled and _at_thermal_floor(changes, films, THERMAL_FLOOR_FRACTION * rise)

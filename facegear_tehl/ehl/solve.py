@@ -82,6 +82,18 @@ EYRING_NEWTONIAN_SHARE = 0.01
 # for 99 outer iterations instead of 92 (S3, S4 40 % fewer sweeps; S1, S5 2-3 more iterations), 8 % less CPU, and
 # the thermal hard cases the same outer iterations.
 ENERGY_FORCING = 0.3
+# ... that share while the loop's changes do not fall, less as they fall (`energy_forcing`): once the sweeps solved only
+# the columns next to one that moved (energy.ACTIVE_SHARE) a tighter share cost little near the fixed point, and a
+# sweep's change under-reports the error of the slow modes it leaves (the inlet's recirculation, the side rows: with
+# the pressure frozen, 8 sweeps per update contract the film state by 0.83 per update, 16 by 0.68, 32 by 0.5;
+# docs/benchmarks.md). A fixed share took S1-S5 of the default case 138 / 121 / 114 / 119 outer iterations at
+# 0.3 / 0.1 / 0.15 / 0.2 (0.05: 117, at more CPU than 0.1), but at 0.15 and 0.12 (and 0.2) the envelope's heated
+# a/b = 30, 1.5 GPa, 10 m/s, SRR 2 contact (rises of 150-390 K, every step at the temperature continuation's limit)
+# ran away on its last attempt, which converges at 0.3: the tight share is for the loop's approach to its fixed
+# point, not for its transient. With the ratio squared (Eisenstat & Walker's alpha = 2) between 0.1 and 0.3,
+# S1-S5 took 117 outer iterations and that contact converges.
+ENERGY_FORCING_EXPONENT = 2.0
+MIN_ENERGY_FORCING = 0.1
 # V-cycles of the `full` finest grid on the interpolated film state before its outer loop: the film state changes
 # next, so converging the pressure first (6 cycles at S1) was wasted; 2 saved 4 cycles at S1 with the same outer
 # iterations. (The isothermal pressure before the coarse stage's loop keeps its max_cycles: with 4 cycles the
@@ -155,6 +167,12 @@ THERMAL_FLOOR_STALL = 0.5  # stalled: the smallest change of the window's last h
 THERMAL_FLOOR_FRACTION = 0.01  # largest stalled change accepted, as a fraction of the temperature rise
 THERMAL_FLOOR_H_C = 5e-4  # largest relative spread of h_c over the window (its grid error: 1e-3 to 6e-3)
 THERMAL_FLOOR_ERROR_SHARE = 0.5  # or this share of h_c's own error estimate, if larger
+# The loop's tolerance stop (the last change of the film state below the tolerance, the pressure converged) also
+# needs h_c steady (as the floor does) over this many updates: a change below tolerance says the film state moved
+# little in the last update, not that h_c has settled. With tighter energy sweeps (energy_forcing) the square
+# 513^2 S1 of the default case stopped on its 0.079 K tolerance while h_c went 1.20656 ... 1.20419 ... 1.20482 um
+# over its last updates, 6.8e-4 below the value it settles at.
+STEADY_UPDATES = 3
 # An outer loop whose change stopped falling above its floor bound (a limit cycle of the hot spot, e.g. 3 K per
 # iteration on a 136 K rise for an a/b = 30 ellipse at 0.8 GPa, 10 m/s, SRR 0.5 on 257 x 65), or that stalled below
 # it without reaching its floor (h_c unsteady or the pressure unsettled: S3 of the default case on its lengthened
@@ -303,11 +321,14 @@ def _at_thermal_floor(changes: list[float], h_c: list[float], bound: float, h_c_
     n = THERMAL_FLOOR_WINDOW
     if not _stalled(changes):
         return False
-    recent, films = changes[-n:], h_c[-n:]
-    small = max(recent) < bound
+    return max(changes[-n:]) < bound and _h_c_steady(h_c[-n:], h_c_error)
+
+
+def _h_c_steady(h_c: list[float], h_c_error: float = 0.0) -> bool:
+    """The values of h_c `h_c` span at most THERMAL_FLOOR_H_C of the last one (relative), or
+    THERMAL_FLOOR_ERROR_SHARE of its estimated discretisation error `h_c_error` (relative), if larger."""
     spread = max(THERMAL_FLOOR_H_C, THERMAL_FLOOR_ERROR_SHARE * h_c_error)
-    steady = (max(films) - min(films)) <= spread * abs(films[-1])
-    return small and steady
+    return len(h_c) > 0 and (max(h_c) - min(h_c)) <= spread * abs(h_c[-1])
 
 
 def _stalled(changes: list[float]) -> bool:
@@ -358,6 +379,17 @@ def _next_film_state(accelerator: Anderson, temperature: np.ndarray, factor: np.
                          np.concatenate([step_t.ravel(), step_f.ravel()]), weight)
     return (x[:size].reshape(temperature.shape), np.exp(x[size:]).reshape(temperature.shape),
             float(np.abs(step_t).max()), viscosity_change)
+
+
+def energy_forcing(changes: list[float]) -> float:
+    """The share of an outer loop's last change its next update's energy sweeps stop below (ENERGY_FORCING): the
+    forcing term of Eisenstat & Walker's (1996, SIAM J. Sci. Comput. 17:16-32) choice 2, ENERGY_FORCING (c_k/c_k-1)^
+    ENERGY_FORCING_EXPONENT over the loop's last two changes `changes` (K), within [MIN_ENERGY_FORCING,
+    ENERGY_FORCING]: loose while the loop is far from its fixed point, tighter as it converges."""
+    if len(changes) < 2 or not changes[-2] > 0.0:
+        return ENERGY_FORCING
+    ratio = min(changes[-1] / changes[-2], 1.0)
+    return max(ENERGY_FORCING * ratio**ENERGY_FORCING_EXPONENT, MIN_ENERGY_FORCING)
 
 
 class PointSolve:
@@ -706,9 +738,10 @@ class PointSolve:
         status = CONVERGED
         accelerator = Anderson(ANDERSON_DEPTH)
         last_change = None  # the largest change of the last plain step (K, or of ln(eta*/eta))
+        own_changes: list[float] = []  # this loop's (energy_forcing)
         cycled_out = False  # the pressure was cycled to its tolerance on a converged film state (below)
         for outer in range(settings.max_thermal_iterations):
-            forcing = ENERGY_FORCING * last_change if last_change is not None else math.inf
+            forcing = energy_forcing(own_changes) * last_change if last_change is not None else math.inf
             pressure, film = self.settled_pressure(index)
             update = model.update(pressure * scaling.p_h, film * scaling.film_scale, temperature, forcing,
                                   wall_fluxes=False)
@@ -716,6 +749,7 @@ class PointSolve:
             temperature, factor, thermal_change, viscosity_change = _next_film_state(
                 accelerator, temperature, factor, update, relaxation, rise if model.solve_energy else None)
             last_change = thermal_change if model.solve_energy else viscosity_change
+            own_changes.append(last_change)
             if not (np.isfinite(temperature).all() and np.isfinite(factor).all()):
                 status = Status(Outcome.DIVERGED, f"diverged in the film temperature at outer iteration {outer + 1}")
                 break
@@ -758,10 +792,12 @@ class PointSolve:
                     return model.completed(state), Status(Outcome.NOT_CONVERGED, (
                         f"coarse stage stopped at outer iteration {outer + 1}: film state within {tolerance:.2e} of "
                         f"its last two updates, pressure stalled at {history.changes[-1]:.2e} per cycle"))
-            if outer > 0 and status.converged and changes[-1] < tolerance:
+            coarse_error = _h_c_error(history.thermal_h_c[-1], coarse_h_c * scaling.film_scale)
+            steady = seeding or (len(history.thermal_h_c) - first >= STEADY_UPDATES and _h_c_steady(
+                history.thermal_h_c[-STEADY_UPDATES:], coarse_error))  # a seed needs no settled h_c
+            if outer > 0 and status.converged and changes[-1] < tolerance and steady:
                 self.settle(index)
                 return model.completed(state), CONVERGED
-            coarse_error = _h_c_error(history.thermal_h_c[-1], coarse_h_c * scaling.film_scale)
             if ((status.converged or _pressure_settled(history, settings))
                     and _at_thermal_floor(changes[first:], history.thermal_h_c[first:], floor_bound, coarse_error)):
                 if model.solve_energy:
