@@ -6,14 +6,21 @@ quantity on three consecutive grids:
 
     relative change      c   = (f_h - f_2h) / |f_h|
     observed order       p   = log2(|f_2h - f_4h| / |f_h - f_2h|)
-    extrapolated value   f*  = f_h + (f_h - f_2h) / (2^p - 1)                      (Richardson)
-    uncertainty          U   = F_s |f_h - f_2h| / (2^p - 1),  F_s = 1.25
+    extrapolated value   f*  = f_h + (f_h - f_2h) / (2^q - 1)                      (Richardson)
+    uncertainty          U   = F_s |f_h - f_2h| / (2^q - 1)
 
-U is Roache's (1994) grid convergence index of the fine grid, in the units of f, with the safety factor
-1.25 of a three-grid study. p is not defined when a difference is zero (f* = f_h, U = 0 when the last
-one is); f* and U are not given when p < 0.5: the grids are then not in the asymptotic range (Eça &
-Hoekstra 2014 use the same bound), and the correction, more than 2.4 times the last change, would amplify
-noise (p <= 0: the values do not converge). The error of each grid is taken against
+U is Roache's (1994) grid convergence index of the fine grid, in the units of f. Up to MAX_ORDER
+(2.05, just above the scheme's formal order 2) q = p and F_s = 1.25, the safety factor of a three-grid
+study. An observed order above that is not a faster convergence the scheme can have but a sign that the
+triplet is not yet asymptotic, or that the finest change sits at the solver's iteration floor (a change of
+h_c near 5e-4 of it); p taken as it is would shrink U (by 7x at p = 3 against p = 2). There q is the
+formal order 2 and F_s = 3, so U = |f_h - f_2h|: Roache's reversion to the theoretical order with
+F_s = 3 when the observed one is not credible (Roache 2011, J. Fluids Eng. 133:115501), and the
+theoretical order Eça & Hoekstra (2014, J. Comput. Phys. 262:104-130) take for p >= 2.05. The table keeps
+the observed p. p is not defined when a difference is zero (f* = f_h, U = 0 when the last one is); f* and
+U are not given when p < 0.5: the grids are then not in the asymptotic range (Eça & Hoekstra 2014 use the
+same bound), and the correction, more than 2.4 times the last change, would amplify noise (p <= 0: the
+values do not converge). The error of each grid is taken against
 f* of the three finest grids: e = (f - f*)/|f*|. A grid whose solve did not converge gives no value: it
 enters no change, order or extrapolation (the errors are then against the three finest grids that
 converged). A quantity is converged to a tolerance from the first grid whose change to the next grid, and
@@ -37,6 +44,7 @@ import numpy as np
 from facegear_tehl.case import THERMAL_MODELS, Case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.domain import solution_domain
+from facegear_tehl.ehl.report import ORDER
 from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
 from facegear_tehl.points import contact_analysis, select_points
@@ -50,6 +58,10 @@ from facegear_tehl.units import PERCENT, display
 
 SAFETY_FACTOR = 1.25  # Roache (1994), grid convergence index of a three-grid study
 MIN_ORDER = 0.5  # below this observed order no extrapolation is given (Eça & Hoekstra 2014)
+# Above this observed order f* and U take the formal order ORDER and HIGH_ORDER_SAFETY_FACTOR (module docstring):
+# Eça & Hoekstra's (2014) bound for a nominally second-order scheme, and Roache's (2011) factor of safety 3
+MAX_ORDER = 2.05
+HIGH_ORDER_SAFETY_FACTOR = 3.0
 QUANTITIES = ("p_max", "h_c", "h_min", "dT_max", "mu")
 """Point scalars the sweep tabulates, when the solver gives them (dT_max and mu: thermal solver)."""
 
@@ -97,8 +109,9 @@ def convergence(name: str, units: str, grids: Sequence[int], values: Sequence[fl
             continue
         order[i] = math.log2(abs(coarse) / abs(fine))
         if order[i] >= MIN_ORDER:
-            extrapolated[i] = f[i] + fine / (2.0 ** order[i] - 1.0)
-            uncertainty[i] = SAFETY_FACTOR * abs(fine) / (2.0 ** order[i] - 1.0)
+            taken, factor = (order[i], SAFETY_FACTOR) if order[i] <= MAX_ORDER else (ORDER, HIGH_ORDER_SAFETY_FACTOR)
+            extrapolated[i] = f[i] + fine / (2.0**taken - 1.0)
+            uncertainty[i] = factor * abs(fine) / (2.0**taken - 1.0)
     solved = np.flatnonzero(np.isfinite(f))
     reference = extrapolated[solved[-1]] if solved.size else math.nan  # f* of the three finest solved grids
     error = (f - reference) / abs(reference)
@@ -278,16 +291,19 @@ def sweep_table(
         table[f"{q.name}_change"] = Field(q.change, "1", "relative change from the previous grid, (f_h - f_2h)/|f_h|")
         table[f"{q.name}_order"] = Field(q.order, "1", "observed order, log2(|f_2h - f_4h| / |f_h - f_2h|)")
         table[f"{q.name}_extrapolated"] = Field(q.extrapolated, q.units,
-                                                "Richardson value f_h + (f_h - f_2h)/(2^p - 1)")
-        table[f"{q.name}_uncertainty"] = Field(q.uncertainty, q.units,
-                                               f"GCI (Roache 1994), {SAFETY_FACTOR} |f_h - f_2h|/(2^p - 1)")
+                                                f"Richardson value f_h + (f_h - f_2h)/(2^p - 1); p above {MAX_ORDER}: "
+                                                f"the formal order {ORDER}")
+        table[f"{q.name}_uncertainty"] = Field(
+            q.uncertainty, q.units, f"GCI (Roache 1994), {SAFETY_FACTOR} |f_h - f_2h|/(2^p - 1); p above {MAX_ORDER}: "
+                                    f"{HIGH_ORDER_SAFETY_FACTOR:g} |f_h - f_2h|/(2^{ORDER} - 1)")
         table[f"{q.name}_error"] = Field(q.error, "1", "relative error against the extrapolated value of the "
                                                        "three finest grids")
     return table
 
 
 def _sweep_scalars(tolerance: float, quantities: Sequence[Convergence]) -> dict[str, tuple[float, str]]:
-    scalars = {"tolerance": (tolerance, "1"), "safety_factor": (SAFETY_FACTOR, "1")}
+    scalars = {"tolerance": (tolerance, "1"), "safety_factor": (SAFETY_FACTOR, "1"),
+               "high_order_safety_factor": (HIGH_ORDER_SAFETY_FACTOR, "1"), "max_order": (MAX_ORDER, "1")}
     for q in quantities:
         if q.converged_grid is not None:
             scalars[f"{q.name}_converged_grid"] = (float(q.converged_grid), "1")
@@ -348,8 +364,10 @@ def _summary_lines(table: Mapping[str, Field], scalars: Mapping[str, float]) -> 
             extrapolated = f"no extrapolated value from the three finest grids ({reason})"
         else:
             spec = f".{unit.decimals + 1}f"
+            taken = (f"; above {MAX_ORDER}: order {ORDER}, safety factor {HIGH_ORDER_SAFETY_FACTOR:g}"
+                     if order > MAX_ORDER else "")
             extrapolated = (f"extrapolated {unit(best):{spec}} ± {unit(spread):{spec}} {unit.label} "
-                            f"(order {cell(order, '.2f') or 'not defined'})")
+                            f"(order {cell(order, '.2f') or 'not defined'}{taken})")
         lines.append(f"{name}: {within}; {extrapolated}")
     return lines
 

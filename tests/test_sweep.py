@@ -21,6 +21,7 @@ from facegear_tehl.results import NonFiniteError, RunResult, read_result, write_
 from facegear_tehl.schema import CaseError
 from facegear_tehl.solution import Field
 from facegear_tehl.sweep import (
+    MAX_ORDER,
     SAFETY_FACTOR,
     check_grids,
     convergence,
@@ -57,12 +58,37 @@ def test_second_order_sequence_gives_order_2_and_the_exact_limit():
 
 
 @given(limit=st.floats(0.1, 10.0), coefficient=st.floats(1.0, 100.0), sign=st.sampled_from([-1.0, 1.0]),
-       order=st.floats(0.6, 3.0))
+       order=st.floats(0.6, MAX_ORDER))
 def test_any_power_law_gives_its_order_and_limit(limit, coefficient, sign, order):
     grids = GRIDS[:4]  # differences well above round-off
     q = convergence("f", "1", grids, _sequence(limit, sign * coefficient, order, grids), tolerance=0.01)
     np.testing.assert_allclose(q.order[2:], order, rtol=1e-6)
     np.testing.assert_allclose(q.extrapolated[2:], limit, rtol=1e-8)
+
+
+@given(limit=st.floats(0.1, 10.0), coefficient=st.floats(1.0, 100.0), sign=st.sampled_from([-1.0, 1.0]),
+       order=st.floats(2.1, 3.5))
+def test_an_order_above_the_formal_one_is_not_trusted_but_its_band_holds_the_limit(limit, coefficient, sign, order):
+    """Observed p above 2.05: f* and U with the formal order 2 and F_s = 3 (Roache 2011; Eça & Hoekstra 2014), so
+    U = |f_h - f_2h| by hand. For a true power law of that order the limit lies inside f* +- U: f* - limit =
+    d (1/3 - 1/(2^p - 1)), below |d| = U for every p > 2. The observed order is still reported."""
+    grids = GRIDS[:4]
+    values = _sequence(limit, sign * coefficient, order, grids)
+    q = convergence("f", "1", grids, values, tolerance=0.01)
+    fine = np.diff(values)[1:]
+    np.testing.assert_allclose(q.order[2:], order, rtol=1e-6)
+    np.testing.assert_allclose(q.uncertainty[2:], np.abs(fine), rtol=1e-9)
+    np.testing.assert_allclose(q.extrapolated[2:], np.array(values[2:]) + fine / 3.0, rtol=1e-12)
+    assert (np.abs(q.extrapolated[2:] - limit) < q.uncertainty[2:]).all()
+
+
+def test_the_order_bound_is_just_above_the_formal_order():
+    """At p = 2.05 the triplet keeps its own order and F_s = 1.25; just above it the formal order with F_s = 3: U
+    jumps from 1.25 |d|/(2^2.05 - 1) = 0.402 |d| to |d|, the price of not trusting an order the scheme cannot have."""
+    below = convergence("f", "1", (33, 65, 129), [1.0, 1.0 + 2.0**2.05, 1.0 + 2.0**2.05 + 1.0], tolerance=0.01)
+    assert below.order[2] == pytest.approx(2.05) and below.uncertainty[2] == pytest.approx(1.25 / (2.0**2.05 - 1.0))
+    above = convergence("f", "1", (33, 65, 129), [1.0, 1.0 + 2.0**2.1, 1.0 + 2.0**2.1 + 1.0], tolerance=0.01)
+    assert above.uncertainty[2] == pytest.approx(1.0) and above.extrapolated[2] == pytest.approx(2.0 + 2.0**2.1 + 1 / 3)
 
 
 def test_first_order_sequence_and_the_grid_within_tolerance():
