@@ -44,7 +44,7 @@ import numpy as np
 from facegear_tehl.case import THERMAL_MODELS, Case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.domain import solution_domain
-from facegear_tehl.ehl.report import ORDER
+from facegear_tehl.ehl.richardson import ORDER
 from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
 from facegear_tehl.points import contact_analysis, select_points

@@ -222,6 +222,16 @@ def test_validate_prints_one_ok_line():
     assert "p_hertz 450 MPa" in lines[0] and "grid 257x257" in lines[0] and "viscosity roelands" in lines[0]
 
 
+def test_the_command_line_loads_no_solver_kernels():
+    """`tehl validate` starts in ~0.3 s because the command line imports none of the solver's Numba kernels (loading
+    them costs ~0.5 s): a light module imported at the top of cli.py (as `tehl sweep`'s tables once imported the
+    error-estimate module with the formal order) would triple it. numba, the kernel modules and h5py stay unloaded."""
+    probe = ("import sys, facegear_tehl.cli; print(sorted(m for m in sys.modules if m in ('numba', 'h5py', "
+             "'matplotlib') or m.startswith('facegear_tehl.ehl.')))")
+    loaded = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True).stdout
+    assert loaded.strip() == "['facegear_tehl.ehl.domain', 'facegear_tehl.ehl.richardson', 'facegear_tehl.ehl.scaling']"
+
+
 # ---------------------------------------------------------------------------- runs (synthetic solver)
 
 def test_run_writes_the_result_and_a_summary(tmp_path, monkeypatch, fake_solver):

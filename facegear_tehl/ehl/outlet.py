@@ -27,7 +27,8 @@ from facegear_tehl.ehl.anderson import Anderson
 from facegear_tehl.ehl.friction import friction_coefficients
 from facegear_tehl.ehl.multigrid import Level, MultigridSolver
 from facegear_tehl.ehl.patch import COARSE_CYCLES, PatchedSolver
-from facegear_tehl.ehl.report import ORDER_DT_MAX, ORDER_MU, cell_area, richardson_error
+from facegear_tehl.ehl.report import ORDER_DT_MAX, ORDER_MU, cell_area
+from facegear_tehl.ehl.richardson import richardson_error
 from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.solution import CONVERGED, Outcome, Status

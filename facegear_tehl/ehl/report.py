@@ -15,6 +15,7 @@ from facegear_tehl.ehl.energy import dissipated_power, energy_budget
 from facegear_tehl.ehl.friction import friction_coefficients
 from facegear_tehl.ehl.layers import simpson_weights
 from facegear_tehl.ehl.multigrid import Level
+from facegear_tehl.ehl.richardson import ORDER, richardson_error
 from facegear_tehl.ehl.scaling import Scaling
 from facegear_tehl.ehl.thermal import FilmState, thermal_loading
 from facegear_tehl.solution import Field, PointSolution, Status
@@ -22,7 +23,6 @@ from facegear_tehl.solution import Field, PointSolution, Status
 if TYPE_CHECKING:
     from facegear_tehl.ehl.solve import PointSolve
 
-ORDER = 2  # formal order of the discretisation, for the Richardson-scaled error estimate
 ORDER_DT_MAX = 1  # observed order of the largest temperature rise (at the outlet pressure spike; docs/accuracy.md)
 # Observed order of mu along x (its y-dependence is below 0.01 %): on the default face gear case, from the coarse
 # stage (257 x 65), the default grid (513 x 65) and 1025 x 513, 1.7 at S1, 1.0 at S2 and 0.7 at S4; the second-order
@@ -61,12 +61,6 @@ def with_film_state(summary: LevelSummary, level: Level, state: FilmState, scali
 def cell_area(level: Level, scaling: Scaling) -> float:
     """Area of one grid cell, m^2."""
     return level.hx * scaling.b * level.hy * scaling.a
-
-
-def richardson_error(fine: float, coarse: float, order: int, ratio: int = 2) -> float:
-    """Relative discretisation error of `fine` from the same figure on a grid `ratio` times coarser, Richardson-scaled
-    for `order`: (f_h - f_rh)/((r^order - 1) f_h)."""
-    return (fine - coarse) / (ratio**order - 1) / fine
 
 
 def estimate(summaries: list[LevelSummary], level: Level, fine: float, name: str, order: int) -> float:

@@ -40,7 +40,8 @@ from facegear_tehl.ehl.domain import (
 )
 from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem, Relaxation, at_load_fraction
 from facegear_tehl.ehl.outlet import Composite, needs_outlet_patch, outlet_stages
-from facegear_tehl.ehl.report import ORDER, LevelSummary, point_solution, richardson_error, summarise, with_film_state
+from facegear_tehl.ehl.report import LevelSummary, point_solution, summarise, with_film_state
+from facegear_tehl.ehl.richardson import ORDER, richardson_error
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
 from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel, thermal_choice
 from facegear_tehl.lubricant import Lubricant
