@@ -364,8 +364,9 @@ def _summary_lines(table: Mapping[str, Field], scalars: Mapping[str, float]) -> 
             extrapolated = f"no extrapolated value from the three finest grids ({reason})"
         else:
             spec = f".{unit.decimals + 1}f"
-            taken = (f"; above {MAX_ORDER}: order {ORDER}, safety factor {HIGH_ORDER_SAFETY_FACTOR:g}"
-                     if order > MAX_ORDER else "")
+            bound = scalars.get("max_order", math.inf)  # a file written before the bound: p was taken as observed
+            taken = (f"; above {bound:g}: order {ORDER}, safety factor {scalars['high_order_safety_factor']:g}"
+                     if order > bound else "")
             extrapolated = (f"extrapolated {unit(best):{spec}} ± {unit(spread):{spec}} {unit.label} "
                             f"(order {cell(order, '.2f') or 'not defined'}{taken})")
         lines.append(f"{name}: {within}; {extrapolated}")

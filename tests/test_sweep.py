@@ -30,6 +30,7 @@ from facegear_tehl.sweep import (
     tabulated,
     time_to_reach,
 )
+from facegear_tehl.sweep import _summary_lines as report_lines
 
 import synthetic
 from test_parallel import assert_same_file
@@ -114,6 +115,19 @@ def test_undefined_entries():
     assert slow.order[2] == pytest.approx(math.log2(0.1 / 0.09)) and np.isnan(slow.extrapolated[2])
     restarting = convergence("f", "1", (33, 65, 129), [1.0, 1.0, 1.3], tolerance=0.01)
     assert np.isnan(restarting.order[2]) and np.isnan(restarting.extrapolated[2])
+
+
+def test_the_summary_line_says_when_the_observed_order_was_not_taken():
+    """The summary of h_c from the 513 x 129 S1 triplet (docs/accuracy.md: 1.19985, 1.20459, 1.20552 um, observed
+    order 2.35) names the formal order it took; a /sweep table written before the bound (no max_order) does not."""
+    values = [1.19985e-6, 1.20459e-6, 1.20552e-6]
+    q = convergence("h_c", "m", (129, 257, 513), values, tolerance=0.01)
+    table = {"h_c": Field(q.values, "m", ""), "h_c_order": Field(q.order, "1", ""),
+             "h_c_extrapolated": Field(q.extrapolated, "m", ""), "h_c_uncertainty": Field(q.uncertainty, "m", "")}
+    line = report_lines(table, {"tolerance": 0.01, "max_order": MAX_ORDER, "high_order_safety_factor": 3.0})[0]
+    assert q.order[2] == pytest.approx(math.log2(474 / 93)) and q.uncertainty[2] == pytest.approx(0.00093e-6)
+    assert "(order 2.35; above 2.05: order 2, safety factor 3)" in line and "± 0.00093 µm" in line, line
+    assert "above" not in report_lines(table, {"tolerance": 0.01})[0]
 
 
 def test_time_to_reach_interpolates_on_the_log_log_curve():
