@@ -59,7 +59,7 @@ def test_second_order_sequence_gives_order_2_and_the_exact_limit():
 
 
 @given(limit=st.floats(0.1, 10.0), coefficient=st.floats(1.0, 100.0), sign=st.sampled_from([-1.0, 1.0]),
-       order=st.floats(0.6, MAX_ORDER))
+       order=st.floats(0.6, MAX_ORDER - 0.01))  # at the bound itself round-off decides the side
 def test_any_power_law_gives_its_order_and_limit(limit, coefficient, sign, order):
     grids = GRIDS[:4]  # differences well above round-off
     q = convergence("f", "1", grids, _sequence(limit, sign * coefficient, order, grids), tolerance=0.01)
@@ -84,10 +84,10 @@ def test_an_order_above_the_formal_one_is_not_trusted_but_its_band_holds_the_lim
 
 
 def test_the_order_bound_is_just_above_the_formal_order():
-    """At p = 2.05 the triplet keeps its own order and F_s = 1.25; just above it the formal order with F_s = 3: U
-    jumps from 1.25 |d|/(2^2.05 - 1) = 0.402 |d| to |d|, the price of not trusting an order the scheme cannot have."""
-    below = convergence("f", "1", (33, 65, 129), [1.0, 1.0 + 2.0**2.05, 1.0 + 2.0**2.05 + 1.0], tolerance=0.01)
-    assert below.order[2] == pytest.approx(2.05) and below.uncertainty[2] == pytest.approx(1.25 / (2.0**2.05 - 1.0))
+    """Just below p = 2.05 the triplet keeps its own order and F_s = 1.25; just above it the formal order with F_s = 3:
+    U jumps from 1.25 |d|/(2^2.04 - 1) = 0.405 |d| to |d|, the price of not trusting an order the scheme cannot have."""
+    below = convergence("f", "1", (33, 65, 129), [1.0, 1.0 + 2.0**2.04, 1.0 + 2.0**2.04 + 1.0], tolerance=0.01)
+    assert below.order[2] == pytest.approx(2.04) and below.uncertainty[2] == pytest.approx(1.25 / (2.0**2.04 - 1.0))
     above = convergence("f", "1", (33, 65, 129), [1.0, 1.0 + 2.0**2.1, 1.0 + 2.0**2.1 + 1.0], tolerance=0.01)
     assert above.uncertainty[2] == pytest.approx(1.0) and above.extrapolated[2] == pytest.approx(2.0 + 2.0**2.1 + 1 / 3)
 
