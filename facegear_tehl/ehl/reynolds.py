@@ -56,28 +56,35 @@ def _coefficients(eps, j, i, rhx2, rhy2k):
     return xe, xw, xn, xs
 
 
+@njit(cache=True)
+def upwind_table(s: int, n: int) -> np.ndarray:
+    """`_upwind` of every index 0..n-1 of an axis (rows (c_+1, c_0, c_-1, c_-2)), taken once per sweep."""
+    table = np.zeros((n, 4))
+    for i in range(n):
+        table[i, 0], table[i, 1], table[i, 2], table[i, 3] = _upwind(i, s, n)
+    return table
+
+
 @njit(cache=True, inline="always")
-def _wedge(qx, qy, j, i, sx, sy, rhx, rhy):
-    """Upwind divergence of the Couette mass flux: sx d(qx)/dX + sy d(qy)/dY (qx, qy signed by sx, sy)."""
+def _clamp(i: int, n: int) -> int:
+    return min(max(i, 0), n - 1)
+
+
+@njit(cache=True, inline="always")
+def _wedge(qx, qy, j, i, sx, sy, rhx, rhy, tx, ty):
+    """Upwind divergence of the Couette mass flux: sx d(qx)/dX + sy d(qy)/dY (qx, qy signed by sx, sy), with the
+    coefficients of `upwind_table` (tx along X, ty along Y). A term whose coefficient is zero is read at a clamped
+    index and selected away (a branch per term here made the residual 5x slower)."""
     ny, nx = qx.shape
-    w = 0.0
-    if sx != 0:
-        cp, c0, c1, c2 = _upwind(i, sx, nx)
-        wx = c0 * qx[j, i] + c1 * qx[j, i - sx]
-        if cp != 0.0:
-            wx += cp * qx[j, i + sx]
-        if c2 != 0.0:
-            wx += c2 * qx[j, i - 2 * sx]
-        w += rhx * wx
-    if sy != 0:
-        cp, c0, c1, c2 = _upwind(j, sy, ny)
-        wy = c0 * qy[j, i] + c1 * qy[j - sy, i]
-        if cp != 0.0:
-            wy += cp * qy[j + sy, i]
-        if c2 != 0.0:
-            wy += c2 * qy[j - 2 * sy, i]
-        w += rhy * wy
-    return w
+    cp, c0, c1, c2 = tx[i, 0], tx[i, 1], tx[i, 2], tx[i, 3]
+    wx = c0 * qx[j, i] + c1 * qx[j, _clamp(i - sx, nx)]
+    wx += cp * qx[j, _clamp(i + sx, nx)] if cp != 0.0 else 0.0
+    wx += c2 * qx[j, _clamp(i - 2 * sx, nx)] if c2 != 0.0 else 0.0
+    cp, c0, c1, c2 = ty[j, 0], ty[j, 1], ty[j, 2], ty[j, 3]
+    wy = c0 * qy[j, i] + c1 * qy[_clamp(j - sy, ny), i]
+    wy += cp * qy[_clamp(j + sy, ny), i] if cp != 0.0 else 0.0
+    wy += c2 * qy[_clamp(j - 2 * sy, ny), i] if c2 != 0.0 else 0.0
+    return rhx * wx + rhy * wy
 
 
 @njit(cache=True, inline="always")
@@ -87,9 +94,9 @@ def _poiseuille(p, j, i, xe, xw, xn, xs, xsum):
 
 
 @njit(cache=True, inline="always")
-def _operator(p, qx, qy, eps, j, i, rhx, rhy, rhx2, rhy2k, sx, sy):
+def _operator(p, qx, qy, eps, j, i, rhx, rhy, rhx2, rhy2k, sx, sy, tx, ty):
     xe, xw, xn, xs = _coefficients(eps, j, i, rhx2, rhy2k)
-    return _poiseuille(p, j, i, xe, xw, xn, xs, xe + xw + xn + xs) - _wedge(qx, qy, j, i, sx, sy, rhx, rhy)
+    return _poiseuille(p, j, i, xe, xw, xn, xs, xe + xw + xn + xs) - _wedge(qx, qy, j, i, sx, sy, rhx, rhy, tx, ty)
 
 
 @njit(cache=True)
@@ -99,10 +106,11 @@ def apply_operator(p, qx, qy, eps, hx, hy, px, py, sx, sy, out):
     ny, nx = p.shape
     rhx, rhy = 1.0 / hx, 1.0 / hy
     rhx2, rhy2k = px * rhx * rhx, py * rhy * rhy
+    tx, ty = upwind_table(sx, nx), upwind_table(sy, ny)
     out[:, :] = 0.0
     for j in range(1, ny - 1):
         for i in range(1, nx - 1):
-            out[j, i] = _operator(p, qx, qy, eps, j, i, rhx, rhy, rhx2, rhy2k, sx, sy)
+            out[j, i] = _operator(p, qx, qy, eps, j, i, rhx, rhy, rhx2, rhy2k, sx, sy, tx, ty)
 
 
 @njit(cache=True)
@@ -111,11 +119,12 @@ def residual(p, qx, qy, eps, f, hx, hy, px, py, sx, sy, out):
     ny, nx = p.shape
     rhx, rhy = 1.0 / hx, 1.0 / hy
     rhx2, rhy2k = px * rhx * rhx, py * rhy * rhy
+    tx, ty = upwind_table(sx, nx), upwind_table(sy, ny)
     out[:, :] = 0.0
     for j in range(1, ny - 1):
         for i in range(1, nx - 1):
             if p[j, i] > 0.0:
-                out[j, i] = f[j, i] - _operator(p, qx, qy, eps, j, i, rhx, rhy, rhx2, rhy2k, sx, sy)
+                out[j, i] = f[j, i] - _operator(p, qx, qy, eps, j, i, rhx, rhy, rhx2, rhy2k, sx, sy, tx, ty)
 
 
 def pattern_kernels(k: np.ndarray, deflection_coefficient: float, wx: float, wy: float):
@@ -140,49 +149,50 @@ def pattern_kernels(k: np.ndarray, deflection_coefficient: float, wx: float, wy:
 
 
 @njit(cache=True)
-def _solve_band(a, rhs, x, n, ml, mu):
-    """Solve a banded system in place by Gaussian elimination with partial pivoting.
+def _solve_band(a, rhs, x, n):
+    """Solve a banded system of n rows in place by Gaussian elimination with partial pivoting.
 
-    Row r holds A[r, c] at a[r, c - r + ml] for c - r in [-ml, mu + ml] (the upper band is widened by ml
-    for the fill-in of row interchanges).
+    Row r holds A[r, c] at a[r, c - r + BAND] for c - r in [-BAND, 2 BAND] (the upper band of half-width BAND is
+    widened by BAND for the fill-in of row interchanges). The loops run over the whole band of a row, whose entries
+    beyond the last column are zero (the same numbers as loops cut at n, 0.3 ms less per sweep on 513 x 65).
     """
-    width = 2 * ml + mu + 1
+    lo = BAND
+    span = 3 * BAND + 1
     for i in range(n):
-        # pivot among rows i..i+ml in column i
+        # pivot among rows i..i+BAND in column i
         piv = i
-        best = abs(a[i, ml])
-        for r in range(i + 1, min(i + ml + 1, n)):
-            v = abs(a[r, i - r + ml])
+        best = abs(a[i, lo])
+        last = min(i + lo, n - 1)
+        for r in range(i + 1, last + 1):
+            v = abs(a[r, i - r + lo])
             if v > best:
                 best = v
                 piv = r
         if piv != i:
-            for c in range(i, min(i + ml + mu + 1, n)):
-                ci = c - i + ml
-                cp = c - piv + ml
+            shift = piv - i
+            for ci in range(lo, span):
                 t = a[i, ci]
-                a[i, ci] = a[piv, cp]
-                a[piv, cp] = t
+                a[i, ci] = a[piv, ci - shift]
+                a[piv, ci - shift] = t
             t = rhs[i]
             rhs[i] = rhs[piv]
             rhs[piv] = t
-        d = a[i, ml]
+        d = a[i, lo]
         if d == 0.0:
             d = 1e-300
-            a[i, ml] = d
-        for r in range(i + 1, min(i + ml + 1, n)):
-            factor = a[r, i - r + ml] / d
+            a[i, lo] = d
+        for r in range(i + 1, last + 1):
+            shift = r - i
+            factor = a[r, lo - shift] / d
             if factor != 0.0:
-                for c in range(i, min(i + ml + mu + 1, n)):
-                    cr = c - r + ml
-                    if cr < width:
-                        a[r, cr] -= factor * a[i, c - i + ml]
+                for ci in range(lo, span):
+                    a[r, ci - shift] -= factor * a[i, ci]
                 rhs[r] -= factor * rhs[i]
     for i in range(n - 1, -1, -1):
         s = rhs[i]
-        for c in range(i + 1, min(i + ml + mu + 1, n)):
-            s -= a[i, c - i + ml] * x[c]
-        x[i] = s / a[i, ml]
+        for c in range(i + 1, min(i + 2 * BAND + 1, n)):
+            s -= a[i, c - i + lo] * x[c]
+        x[i] = s / a[i, lo]
 
 
 @njit(cache=True)
@@ -206,6 +216,7 @@ def relax_lines(p, qx, qy, fx, fy, eps, f, hx, hy, px, py, sx, sy, e_gs, e_jd, w
     x = np.zeros(n)
     pj = p.copy()
     patterns = np.stack((e_gs, e_jd))
+    tx, ty = upwind_table(sx, nx), upwind_table(sy, ny)
     gs = np.zeros((ny, nx), dtype=np.bool_)
     for j in range(1, ny - 1):
         for i in range(1, nx - 1):
@@ -224,40 +235,34 @@ def relax_lines(p, qx, qy, fx, fy, eps, f, hx, hy, px, py, sx, sy, e_gs, e_jd, w
                 poiseuille = _poiseuille(pj, j, i, xe, xw, xn, xs, xsum)
             else:
                 poiseuille = _poiseuille(p, j, i, xe, xw, xn, xs, xsum)
-            rhs[r] = f[j, i] - (poiseuille - _wedge(qx, qy, j, i, sx, sy, rhx, rhy))
+            rhs[r] = f[j, i] - (poiseuille - _wedge(qx, qy, j, i, sx, sy, rhx, rhy, tx, ty))
             # Does the node couple to its line neighbours? (not across a cavitation boundary)
             coupled = pj[j, i] > 0.0
             for m in range(-2, 3):
                 ii = i + m
                 if ii >= 0 and ii <= nx - 1 and pj[j, ii] <= 0.0 and m != 0 and ii >= 1 and ii <= nx - 2:
                     coupled = False
-            cxp, cx0, cx1, cx2 = _upwind(i, sx, nx)
-            cyp, cy0, cy1, cy2 = _upwind(j, sy, ny)
+            # The wedge's coefficients times the Couette factors of the nodes they read (zero where the upwind
+            # difference has no such term, read at a clamped index).
+            ax_p = tx[i, 0] * fx[j, _clamp(i + sx, nx)]
+            ax_0 = tx[i, 1] * fx[j, i]
+            ax_1 = tx[i, 2] * fx[j, _clamp(i - sx, nx)]
+            ax_2 = tx[i, 3] * fx[j, _clamp(i - 2 * sx, nx)]
+            ay_p = ty[j, 0] * fy[_clamp(j + sy, ny), i]
+            ay_0 = ty[j, 1] * fy[j, i]
+            ay_1 = ty[j, 2] * fy[_clamp(j - sy, ny), i]
+            ay_2 = ty[j, 3] * fy[_clamp(j - 2 * sy, ny), i]
             for m in range(-ml, mu + 1):
                 k = i + m
-                if k < 1 or k > nx - 2:
-                    continue
-                if m != 0 and not coupled:
+                if k < 1 or k > nx - 2 or (m != 0 and not coupled):
                     continue
                 q = 0 if gs[j, k] else 1  # the pattern of column k: patterns[q] (an index, not an array)
+                d = reach - m  # patterns[q, e, d + o]: the effect on H at offset o from node i of column k
                 # elastic part: -d(wedge)/d(delta_k)
-                el = 0.0
-                if sx != 0:
-                    if cxp != 0.0:
-                        el += cxp * fx[j, i + sx] * patterns[q, 0, i + sx - k + reach]
-                    el += cx0 * fx[j, i] * patterns[q, 0, i - k + reach]
-                    el += cx1 * fx[j, i - sx] * patterns[q, 0, i - sx - k + reach]
-                    if cx2 != 0.0:
-                        el += cx2 * fx[j, i - 2 * sx] * patterns[q, 0, i - 2 * sx - k + reach]
-                    el *= rhx
-                if sy != 0:
-                    ey = (cy0 * fy[j, i] * patterns[q, 0, i - k + reach]
-                          + cy1 * fy[j - sy, i] * patterns[q, 1, i - k + reach])
-                    if cyp != 0.0:
-                        ey += cyp * fy[j + sy, i] * patterns[q, 1, i - k + reach]
-                    if cy2 != 0.0:
-                        ey += cy2 * fy[j - 2 * sy, i] * patterns[q, 2, i - k + reach]
-                    el += rhy * ey
+                el = (ax_p * patterns[q, 0, d + sx] + ax_0 * patterns[q, 0, d] + ax_1 * patterns[q, 0, d - sx]
+                      + ax_2 * patterns[q, 0, d - 2 * sx]) * rhx
+                el += rhy * (ay_0 * patterns[q, 0, d] + ay_1 * patterns[q, 1, d] + ay_p * patterns[q, 1, d]
+                             + ay_2 * patterns[q, 2, d])
                 # Poiseuille part, for the pattern of column k
                 po = 0.0
                 if gs[j, k]:
@@ -279,7 +284,7 @@ def relax_lines(p, qx, qy, fx, fy, eps, f, hx, hy, px, py, sx, sy, e_gs, e_jd, w
                     elif m == -2:
                         po = -wx * xw
                 a[r, m + ml] = po - el
-        _solve_band(a, rhs, x, n, ml, mu)
+        _solve_band(a, rhs, x, n)
         for i in range(1, nx - 1):
             delta = x[i - 1]
             old = pj[j, i]
