@@ -50,6 +50,5 @@ def cumulative_step(g: np.ndarray, k: int, dz: float) -> float:
     """\\int over [zeta_k-1, zeta_k] of g given on equally spaced nodes (spacing dz; `cumulative_stencil`)."""
     first, w0, w1, w2, w3 = cumulative_stencil(k, g.size)
     total = w0 * g[first] + w1 * g[first + 1] + w2 * g[first + 2]
-    if w3 != 0.0:
-        total += w3 * g[first + 3]
+    total += w3 * g[min(first + 3, g.size - 1)] if w3 != 0.0 else 0.0
     return dz * total
