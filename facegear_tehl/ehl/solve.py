@@ -374,10 +374,8 @@ def _next_film_state(accelerator: Anderson, temperature: np.ndarray, factor: np.
         return temperature, np.exp(accelerator.step(log_factor, step_f)), 0.0, viscosity_change
     step_t = scale * THERMAL_RELAXATION * (update.temperature - temperature)
     size = temperature.size
-    weight = np.empty(2 * size)
-    weight[:size], weight[size:] = 1.0 / rise, 1.0
     x = accelerator.step(np.concatenate([temperature.ravel(), log_factor.ravel()]),
-                         np.concatenate([step_t.ravel(), step_f.ravel()]), weight)
+                         np.concatenate([step_t.ravel(), step_f.ravel()]), (1.0 / rise, 1.0))
     return (x[:size].reshape(temperature.shape), np.exp(x[size:]).reshape(temperature.shape),
             float(np.abs(step_t).max()), viscosity_change)
 
