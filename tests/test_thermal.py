@@ -363,39 +363,3 @@ def test_deferred_wall_fluxes_are_the_updates_own_and_close_its_energy_budget():
     deferred = fresh.completed(fresh.update(pressure, film, entry, wall_fluxes=False))
     assert np.array_equal(deferred.heat_flux_1, whole.heat_flux_1)
     assert np.array_equal(deferred.heat_flux_2, whole.heat_flux_2)
-
-
-def test_an_update_at_the_temperature_continuations_limit_is_taken_plain_and_leaves_no_history():
-    """solve._next_film_state: an update whose temperatures moved by thermal.MAX_TEMPERATURE_STEP somewhere is the
-    limit's step, not the map's: it is taken as the plain relaxed step, whatever the accelerator's history, and the
-    next update starts a new history (its step plain too); below the limit the accelerator combines the steps."""
-    from dataclasses import replace
-
-    from facegear_tehl.ehl.anderson import Anderson
-    from facegear_tehl.ehl.solve import THERMAL_RELAXATION, _next_film_state
-    from facegear_tehl.ehl.thermal import MAX_TEMPERATURE_STEP, FilmState
-
-    shape = (3, 2, 4)
-    base = FilmState(temperature=np.full(shape, 300.0), viscosity_factor=np.ones(shape), dissipation=np.zeros(shape),
-                     velocity_x=None, velocity_y=None, stress_1=np.zeros((2, 2, 4)), stress_2=np.zeros((2, 2, 4)),
-                     heat_flux_1=None, heat_flux_2=None, compression=None, change=0.0)
-    rng = np.random.default_rng(4)
-
-    def run(moves):
-        accelerator, temperature, factor, out = Anderson(3), np.full(shape, 300.0), np.ones(shape), []
-        for move in moves:
-            share = rng.uniform(0.2, 1.0, shape)
-            share[0, 0, 0] = 1.0  # the largest change is `move`
-            update = replace(base, temperature=temperature + move * share,
-                             viscosity_factor=factor * np.exp(-0.01 * rng.random(shape)))
-            plain = temperature + THERMAL_RELAXATION * (update.temperature - temperature)
-            temperature, factor, _, _ = _next_film_state(accelerator, temperature, factor, update, 1.0, 40.0)
-            out.append(np.allclose(temperature, plain, rtol=0.0, atol=1e-12))
-        return out
-
-    limit = MAX_TEMPERATURE_STEP
-    # (falling changes: no restart of the accelerator for a growing step)
-    # the first update reaches the limit: the second is plain too (no history), the third accelerated
-    assert run([limit, 0.6 * limit, 0.4 * limit, 0.3 * limit]) == [True, True, False, False]
-    # below the limit the second is already accelerated
-    assert run([0.9 * limit, 0.6 * limit, 0.4 * limit, 0.3 * limit]) == [True, False, False, False]

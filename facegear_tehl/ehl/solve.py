@@ -43,7 +43,7 @@ from facegear_tehl.ehl.outlet import Composite, needs_outlet_patch, outlet_stage
 from facegear_tehl.ehl.report import LevelSummary, point_solution, summarise, with_film_state
 from facegear_tehl.ehl.richardson import ORDER, richardson_error
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
-from facegear_tehl.ehl.thermal import MAX_TEMPERATURE_STEP, FilmState, FilmThermalModel, thermal_choice
+from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel, thermal_choice
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.settings import SolverSettings
 from facegear_tehl.solution import CONVERGED, Outcome, PointSolution, Status
@@ -62,8 +62,8 @@ VISCOSITY_RELAXATION = 0.4
 # 65) took 20 outer iterations and 42 V-cycles with 0.4 and two cycles, 15 and 24 with 0.6 and one (0.8 and one: 18
 # and 27; 0.6 and two: 18 and 38); h_c and h_min within 3e-4 of their values. With the Anderson depth below, the
 # 41-point cycle of the default case (513 x 65 per point) took 612 outer iterations at 0.6 and depth 3, 576 at 0.8
-# and 3, 549 at 0.8 and 5 (546 at 0.8 and 8, 557 at 1.0 and 5, 597 at 0.8 and 2); h_c and h_min within 0.16 and 0.6
-# of their error estimates of each other.
+# and 3, 549 at 0.8 and 5 (546 at 0.8 and 8, 557 at 1.0 and 5, 597 at 0.8 and 2), the variants' h_c and h_min within
+# 0.16 and 0.6 of their error estimates of one another (docs/benchmarks.md).
 EYRING_RELAXATION = 0.8
 CYCLES_PER_EYRING_UPDATE = 1
 EYRING_ANDERSON_DEPTH = 5
@@ -73,13 +73,6 @@ EYRING_ANDERSON_DEPTH = 5
 # s CPU (side by side), h_c and h_min within 0.27 and 0.46 of their error estimates; the Ree-Eyring hard cases with
 # thermal: off 107 -> 103 outer iterations, h_min and p_max as before.
 EYRING_START_CYCLES = 1
-# A thermal update whose temperatures moved by the continuation's limit somewhere (thermal.MAX_TEMPERATURE_STEP; this
-# share of it, for rounding) is taken plain and leaves no history to the accelerator: its step is the limit's, not the
-# map's, and a secant through limited steps extrapolates the limit. The envelope's heated a/b = 30, 1.5 GPa, 10 m/s,
-# SRR 2 contact takes its first 8-16 updates at the limit: accelerated, it converged on the fourth and last attempt
-# with one Anderson step and on none with another that differs from it in round-off alone (h_c dipping to 0.35 um and
-# recovering, or to 0.10 um and running away: a lottery of the accelerated transient); with this, on the third.
-CONTINUATION_LIMIT = 0.999
 # Anderson acceleration of the outer loop (anderson.py): the film-state map contracts by ~0.6 per update on the face
 # gear points even with the pressure frozen (the shear state follows the temperature), so the relaxed loop needs
 # 7-9 updates per grid at S1. Depth 3 took S1 (257 x 65) from 24 to 20 outer iterations; 5 and 10 were no better.
@@ -381,8 +374,7 @@ def _next_film_state(accelerator: Anderson, temperature: np.ndarray, factor: np.
     is under-relaxed (THERMAL_RELAXATION and VISCOSITY_RELAXATION times `scale`, EYRING_RELAXATION without the
     energy equation; eta*/eta in log space) and
     Anderson-accelerated (anderson.py), the temperatures weighted by 1/rise (K) against ln(eta*/eta): the outer
-    loop's tolerances, a share of the rise and a change of ln(eta*/eta), weigh alike; an update at the temperature
-    continuation's limit is taken plain and leaves no history (CONTINUATION_LIMIT). rise None: no energy
+    loop's tolerances, a share of the rise and a change of ln(eta*/eta), weigh alike. rise None: no energy
     equation (the temperatures stay)."""
     log_factor = np.log(factor)
     step_f = scale * VISCOSITY_RELAXATION * (np.log(update.viscosity_factor) - log_factor)
@@ -392,13 +384,10 @@ def _next_film_state(accelerator: Anderson, temperature: np.ndarray, factor: np.
         return temperature, np.exp(accelerator.step(log_factor, step_f)), 0.0, viscosity_change
     step_t = scale * THERMAL_RELAXATION * (update.temperature - temperature)
     size = temperature.size
-    limited = float(np.abs(update.temperature - temperature).max()) >= CONTINUATION_LIMIT * MAX_TEMPERATURE_STEP
-    if limited:
-        accelerator.reset()
+    weight = np.empty(2 * size)
+    weight[:size], weight[size:] = 1.0 / rise, 1.0
     x = accelerator.step(np.concatenate([temperature.ravel(), log_factor.ravel()]),
-                         np.concatenate([step_t.ravel(), step_f.ravel()]), (1.0 / rise, 1.0))
-    if limited:
-        accelerator.reset()
+                         np.concatenate([step_t.ravel(), step_f.ravel()]), weight)
     return (x[:size].reshape(temperature.shape), np.exp(x[size:]).reshape(temperature.shape),
             float(np.abs(step_t).max()), viscosity_change)
 
