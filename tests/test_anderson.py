@@ -2,6 +2,7 @@
 
 import numpy as np
 
+from facegear_tehl.ehl import anderson
 from facegear_tehl.ehl.anderson import Anderson
 
 
@@ -12,6 +13,22 @@ def _linear_map(n: int, rate: float, seed: int = 3) -> tuple[np.ndarray, np.ndar
     a *= rate / np.abs(np.linalg.eigvals(a)).max()
     b = rng.random(n)
     return a, b
+
+
+def _formed_anew(xs, fs, x, f, weight, depth):
+    """Anderson's next iterate with the normal equations formed from the whole history at once (Walker & Ni 2011,
+    eq. 1.3): the reference for the kept and restricted ones."""
+    dx = [b - a for a, b in zip(xs, xs[1:] + [x])][-depth:]
+    df = [b - a for a, b in zip(fs, fs[1:] + [f])][-depth:]
+    weighted = [column * weight for column in df]
+    gram = np.array([[float(np.vdot(a, b)) for b in weighted] for a in weighted])
+    rhs = np.array([float(np.vdot(column, f * weight)) for column in weighted])
+    gamma = np.linalg.lstsq(gram, rhs, rcond=1e-10)[0]
+    result = x + f
+    for g, a, b in zip(gamma, dx, df):
+        result -= g * (a + b)
+    return result
+
 
 
 def test_anderson_solves_a_linear_fixed_point_where_the_plain_iteration_crawls():
@@ -61,18 +78,6 @@ def test_anderson_keeps_the_normal_equations_of_its_history_as_formed_anew():
     # The weighted columns and their inner products are kept between steps while the weight stays; each step must
     # equal the normal equations formed from the whole history at once (Walker & Ni 2011, eq. 1.3), also when the
     # weight changes (the thermal loop's 1/rise).
-    def reference(xs, fs, x, f, weight, depth):
-        dx = [b - a for a, b in zip(xs, xs[1:] + [x])][-depth:]
-        df = [b - a for a, b in zip(fs, fs[1:] + [f])][-depth:]
-        weighted = [column * weight for column in df]
-        gram = np.array([[float(np.vdot(a, b)) for b in weighted] for a in weighted])
-        rhs = np.array([float(np.vdot(column, f * weight)) for column in weighted])
-        gamma = np.linalg.lstsq(gram, rhs, rcond=1e-10)[0]
-        result = x + f
-        for g, a, b in zip(gamma, dx, df):
-            result -= g * (a + b)
-        return result
-
     a, b = _linear_map(40, 0.9, seed=7)
     rng = np.random.default_rng(8)
     weights = [np.ones(40), np.ones(40), rng.uniform(0.5, 2.0, 40)]
@@ -80,7 +85,39 @@ def test_anderson_keeps_the_normal_equations_of_its_history_as_formed_anew():
     for k in range(10):
         weight = weights[min(k // 4, 2)]
         f = 0.5 * (a @ x + b - x)
-        expected = x + f if not xs else reference(xs, fs, x, f, weight, 3)
+        expected = x + f if not xs else _formed_anew(xs, fs, x, f, weight, 3)
         got = anderson.step(x, f, weight)
         assert np.allclose(got, expected, rtol=1e-12, atol=1e-14)
         xs, fs, x = xs + [x], fs + [f], got
+
+
+def test_anderson_leaves_out_components_that_stayed_zero_and_grows_its_support(monkeypatch):
+    # An isothermal Ree-Eyring film's Newtonian columns keep ln(eta*/eta) = 0 and a zero step: the history is kept on
+    # the other components only. The iterates must be those of the history kept whole (the normal equations formed
+    # anew above), to summation order, the zero components exactly zero, also
+    # as components join (the support grows) and once more than SUPPORT_SHARE of them are active (taken whole).
+    n = 60
+    a, b = _linear_map(n, 0.9, seed=11)
+    order = np.random.default_rng(12).permutation(n)  # components join in this order, between the kept ones
+
+    monkeypatch.setattr(anderson, "GROWTH", np.inf)  # no restarts: the history is kept as components join
+
+    def run(joined):
+        x, restricted, whole = np.zeros((3, n // 3)), Anderson(3), Anderson(3)
+        for k in range(12):
+            active = order < joined[min(k // 4, 2)]
+            flat = x.ravel()
+            f = np.where(active, 0.5 * (a @ np.where(active, flat, 0.0) + b - flat), 0.0).reshape(x.shape)
+            with monkeypatch.context() as patch:
+                patch.setattr(anderson, "SUPPORT_SHARE", -1.0)  # every support taken whole
+                expected = whole.step(x, f)
+            got = restricted.step(x, f)
+            assert np.allclose(got, expected, rtol=1e-10, atol=1e-12)  # the normal equations' round-off, amplified
+            assert not got.ravel()[~active].any()
+            if k in (4, 8):  # components joined with the history kept
+                assert len(restricted._dx) == len(whole._dx) > 0
+            x = got
+        return restricted
+
+    assert run((10, 20, 25))._support is not None  # 25 of 60 stay under SUPPORT_SHARE
+    assert run((10, 25, 45))._support is None
