@@ -16,7 +16,7 @@ import math
 import numpy as np
 import pytest
 
-from facegear_tehl.ehl import grid
+from facegear_tehl.ehl import flow, grid
 from facegear_tehl.ehl.multigrid import MultigridSolver
 from facegear_tehl.ehl.scaling import contact_from_moes, scaling_for
 from facegear_tehl.ehl.solve import problem_for
@@ -140,8 +140,11 @@ def test_a_film_state_with_one_temperature_per_column_takes_the_column_form():
     temperature = np.full(factor.shape, solver.problem.inlet_temperature)
     solver.set_film_state(top, temperature, factor)
     assert all(lv.column_shapes is not None for lv in solver.levels)
+    assert level.temperature.shape[0] == 1  # the column form keeps one layer of temperature
     column = [a.copy() for a in (level.eps, level.flux_x, level.flux_y)]
-    level.column_shapes = None
+    # the layered form of the same state, every layer given
+    level.column_shapes, level.temperature = None, temperature
+    level.temperature_factor = flow.temperature_factors(temperature, solver.problem.law)
     solver.freeze(level, level.pressure)
     solver.update_film(level)
     for a, b in zip(column, (level.eps, level.flux_x, level.flux_y)):

@@ -363,3 +363,31 @@ def test_deferred_wall_fluxes_are_the_updates_own_and_close_its_energy_budget():
     deferred = fresh.completed(fresh.update(pressure, film, entry, wall_fluxes=False))
     assert np.array_equal(deferred.heat_flux_1, whole.heat_flux_1)
     assert np.array_equal(deferred.heat_flux_2, whole.heat_flux_2)
+
+
+def test_an_isothermal_films_deferred_wall_fluxes_are_those_of_its_temperatures():
+    # Without the energy equation an update's wall fluxes are the conduction of the temperatures it was given
+    # (energy.wall_heat_flux); deferred, `completed` gives the same numbers. A temperature linear across the film
+    # conducts k dT/dh through either wall (the one-sided differences are exact for it).
+    point, lub, _ = plain(SLIDING)
+    a, b = point.hertz.a, point.hertz.b
+    x, y = np.linspace(-3.0 * b, 1.5 * b, 33), np.linspace(-2.0 * a, 2.0 * a, 17)
+    xx, yy = np.meshgrid(x, y)
+    pressure = point.hertz.p_max * np.sqrt(np.maximum(1.0 - (xx / b) ** 2 - (yy / a) ** 2, 0.0))
+    film = 1e-7 + xx**2 / (2.0 * point.hertz.radius_x) + yy**2 / (2.0 * point.hertz.radius_y)
+    nz, rise = 9, 4.0  # K from surface 1 to surface 2
+    temperature = lub.inlet_temperature + rise * np.linspace(0.0, 1.0, nz)[:, None, None] * np.ones(film.shape)
+
+    def model():
+        return FilmThermalModel(x, y, nz, lub, point, solve_energy=False)
+
+    whole = model().update(pressure, film, temperature)
+    deferring = model()
+    state = deferring.update(pressure, film, temperature, wall_fluxes=False)
+    assert state.heat_flux_1 is None and state.heat_flux_2 is None
+    state = deferring.completed(state)
+    assert np.array_equal(state.heat_flux_1, whole.heat_flux_1)
+    assert np.array_equal(state.heat_flux_2, whole.heat_flux_2)
+    conducted = lub.conductivity_at(pressure) * rise / film
+    assert np.allclose(state.heat_flux_1, conducted, rtol=1e-9)
+    assert np.allclose(state.heat_flux_2, -conducted, rtol=1e-9)

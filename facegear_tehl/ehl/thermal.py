@@ -150,7 +150,8 @@ class FilmThermalModel:
         self.matrix = jaeger.influence_matrix(x.size, self.dx)
         self._stress = None  # surface-1 shear stress of the last update: the warm start of the next
         # the inputs of the wall heat fluxes of the last DEFERRED_UPDATES updates made without them (`completed`):
-        # (the update's dissipation, its temperatures, the energy kernels' arguments)
+        # (the update's dissipation, its temperatures, the energy kernels' arguments; without the energy equation
+        # the film and the conductivity)
         self._deferred: list[tuple[np.ndarray, np.ndarray, tuple]] = []
         half_width = point.hertz.b
         self.effusivity = tuple(self._effusivity(body, float(v[0]), half_width)
@@ -239,8 +240,11 @@ class FilmThermalModel:
                 q1 = q2 = None
                 self._deferred = self._deferred[1 - DEFERRED_UPDATES:] + [(dissipation, temperature, kernel_args)]
             compression = compression_coefficient * temperature
-        else:  # no energy equation: the flux of the temperatures as they are
+        elif wall_fluxes:  # no energy equation: the flux of the temperatures as they are
             q1, q2 = energy.wall_heat_flux(temperature, film, conductivity)
+        else:
+            q1 = q2 = None
+            self._deferred = self._deferred[1 - DEFERRED_UPDATES:] + [(dissipation, temperature, (film, conductivity))]
         self._stress = stress_1
         return FilmState(
             temperature=temperature,
@@ -265,6 +269,9 @@ class FilmThermalModel:
             return state
         for dissipation, temperature, kernel_args in self._deferred:
             if dissipation is state.dissipation:
+                if not self.solve_energy:  # (film, conductivity)
+                    q1, q2 = energy.wall_heat_flux(temperature, *kernel_args)
+                    return replace(state, heat_flux_1=q1, heat_flux_2=q2)
                 q1, q2 = np.empty(dissipation.shape[1:]), np.empty(dissipation.shape[1:])
                 energy.wall_fluxes(temperature, *kernel_args, q1, q2)
                 return replace(state, heat_flux_1=q1, heat_flux_2=q2)
