@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from facegear_tehl.contact import ContactPoint
-from facegear_tehl.ehl import solve
+from facegear_tehl.ehl import rheology, solve
 from facegear_tehl.ehl.friction import friction_coefficients
 from facegear_tehl.ehl.report import cell_area
 from facegear_tehl.lubricant import Lubricant
@@ -41,3 +41,20 @@ def test_newtonian_columns_of_a_converged_eyring_film(monkeypatch):
     mu = [friction_coefficients(state, level.pressure, cell_area(level, solver.scaling), point.load)[0]
           for state in states]
     assert mu[0] == pytest.approx(mu[1], rel=1e-6)
+
+
+def test_log_factor_change_is_the_logarithms_and_skips_newtonian_entries():
+    # ln(eta*/eta) and its change toward an update, against NumPy's logarithms; entries at 1 in both give exact zeros
+    rng = np.random.default_rng(21)
+    factor = np.exp(-rng.uniform(0.0, 5.0, (9, 13, 31)))
+    updated = np.exp(-rng.uniform(0.0, 5.0, factor.shape))
+    newtonian = rng.random(factor.shape[1:]) < 0.8
+    factor[:, newtonian] = updated[:, newtonian] = 1.0
+    updated[4, 0, 0], factor[2, 1, 1] = 1.0, 1.0  # at 1 in one of the two only: a logarithm taken
+    log_factor, change = np.full(factor.shape, np.nan), np.full(factor.shape, np.nan)
+    largest = rheology.log_factor_change(factor, updated, log_factor, change)
+    expected = np.log(updated) - np.log(factor)
+    assert np.allclose(log_factor, np.log(factor), rtol=1e-15, atol=0.0)
+    assert np.allclose(change, expected, rtol=1e-14, atol=1e-15)
+    assert not log_factor[:, newtonian].any() and not change[:, newtonian].any()
+    assert largest == pytest.approx(float(np.abs(expected).max()), rel=1e-15)

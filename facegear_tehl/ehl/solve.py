@@ -29,7 +29,7 @@ import time
 import numpy as np
 
 from facegear_tehl.contact import ContactPoint
-from facegear_tehl.ehl import grid
+from facegear_tehl.ehl import grid, rheology
 from facegear_tehl.ehl.anderson import Anderson
 from facegear_tehl.ehl.domain import (
     MAX_INLET_DOUBLINGS,
@@ -376,12 +376,15 @@ def _next_film_state(accelerator: Anderson, temperature: np.ndarray, factor: np.
     Anderson-accelerated (anderson.py), the temperatures weighted by 1/rise (K) against ln(eta*/eta): the outer
     loop's tolerances, a share of the rise and a change of ln(eta*/eta), weigh alike. rise None: no energy
     equation (the temperatures stay)."""
+    if rise is None:  # the change judged stays VISCOSITY_RELAXATION times the residual: the tolerance keeps its meaning
+        log_factor, residual = np.empty(factor.shape), np.empty(factor.shape)
+        largest = rheology.log_factor_change(factor, update.viscosity_factor, log_factor, residual)
+        step_f = residual * (scale * EYRING_RELAXATION)
+        return (temperature, np.exp(accelerator.step(log_factor, step_f)), 0.0,
+                scale * VISCOSITY_RELAXATION * largest)
     log_factor = np.log(factor)
     step_f = scale * VISCOSITY_RELAXATION * (np.log(update.viscosity_factor) - log_factor)
     viscosity_change = float(np.abs(step_f).max())
-    if rise is None:  # the change judged stays VISCOSITY_RELAXATION times the residual: the tolerance keeps its meaning
-        step_f *= EYRING_RELAXATION / VISCOSITY_RELAXATION
-        return temperature, np.exp(accelerator.step(log_factor, step_f)), 0.0, viscosity_change
     step_t = scale * THERMAL_RELAXATION * (update.temperature - temperature)
     size = temperature.size
     weight = np.empty(2 * size)
