@@ -11,9 +11,11 @@ import pytest
 from facegear_tehl.case import load_case
 from facegear_tehl.cli import summary_table, tehl
 from facegear_tehl.contact import ContactPoint
+from facegear_tehl.ehl import solve
+from facegear_tehl.ehl.anderson import Anderson
 from facegear_tehl.ehl.energy import energy_budget
 from facegear_tehl.ehl.solve import solve_point
-from facegear_tehl.ehl.thermal import FilmThermalModel, gupta_reduction, thermal_choice
+from facegear_tehl.ehl.thermal import MAX_TEMPERATURE_STEP, FilmState, FilmThermalModel, gupta_reduction, thermal_choice
 from facegear_tehl.results import read_result
 from facegear_tehl.solution import Outcome
 
@@ -391,3 +393,38 @@ def test_an_isothermal_films_deferred_wall_fluxes_are_those_of_its_temperatures(
     conducted = lub.conductivity_at(pressure) * rise / film
     assert np.allclose(state.heat_flux_1, conducted, rtol=1e-9)
     assert np.allclose(state.heat_flux_2, -conducted, rtol=1e-9)
+
+
+def test_accelerated_temperatures_move_by_at_most_the_continuation_step():
+    # A hot film's updates held at the continuation limit give nearly equal steps, which Anderson's secant
+    # extrapolates far beyond the limit; the outer loop takes no more than the limit per update.
+    shape = (3, 4, 5)
+    t_in = 313.0
+
+    def update(temperature: np.ndarray, rise: float) -> FilmState:
+        ones = np.ones(shape)
+        return FilmState(temperature=temperature + rise, viscosity_factor=ones, dissipation=ones, velocity_x=None,
+                         velocity_y=None, stress_1=ones[:2], stress_2=ones[:2], heat_flux_1=None, heat_flux_2=None,
+                         compression=None, change=rise)
+
+    def steps(limited: bool) -> list[float]:
+        accelerator, temperature, factor, jumps = Anderson(3), np.full(shape, t_in), np.ones(shape), []
+        for held in (MAX_TEMPERATURE_STEP, 0.99 * MAX_TEMPERATURE_STEP):  # the updates, each at (or by) the limit
+            if limited:
+                new, _, _, _ = solve._next_film_state(accelerator, temperature, factor, update(temperature, held), 1.0,
+                                                      max(float(temperature.max()) - t_in, 1.0))
+            else:  # the accelerator alone, as _next_film_state weighs it
+                rise = max(float(temperature.max()) - t_in, 1.0)
+                x = accelerator.step(np.concatenate([temperature.ravel(), np.zeros(temperature.size)]),
+                                     np.concatenate([np.full(temperature.size, solve.THERMAL_RELAXATION * held),
+                                                     np.zeros(temperature.size)]),
+                                     np.concatenate([np.full(temperature.size, 1.0 / rise), np.ones(temperature.size)]))
+                new = x[:temperature.size].reshape(shape)
+            jumps.append(float(np.abs(new - temperature).max()))
+            temperature = new
+        return jumps
+
+    free, limited = steps(False), steps(True)
+    assert free[0] == limited[0] == pytest.approx(solve.THERMAL_RELAXATION * MAX_TEMPERATURE_STEP)  # no history yet
+    assert free[1] > 10.0 * MAX_TEMPERATURE_STEP  # the secant through two nearly equal steps
+    assert limited[1] == pytest.approx(solve.ACCELERATED_STEP_LIMIT)

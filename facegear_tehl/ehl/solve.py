@@ -43,7 +43,7 @@ from facegear_tehl.ehl.outlet import Composite, needs_outlet_patch, outlet_stage
 from facegear_tehl.ehl.report import LevelSummary, point_solution, summarise, with_film_state
 from facegear_tehl.ehl.richardson import ORDER, richardson_error
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
-from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel, thermal_choice
+from facegear_tehl.ehl.thermal import MAX_TEMPERATURE_STEP, FilmState, FilmThermalModel, thermal_choice
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.settings import SolverSettings
 from facegear_tehl.solution import CONVERGED, Outcome, PointSolution, Status
@@ -73,6 +73,15 @@ EYRING_ANDERSON_DEPTH = 5
 # s CPU (side by side), h_c and h_min within 0.27 and 0.46 of their error estimates; the Ree-Eyring hard cases with
 # thermal: off 107 -> 103 outer iterations, h_min and p_max as before.
 EYRING_START_CYCLES = 1
+# The accelerated temperatures move by at most the temperature continuation's step (thermal.MAX_TEMPERATURE_STEP) per
+# update, as the plain update does. While a hot film's updates are all held at that limit, their steps (35 K, relaxed)
+# barely change and the accelerator's secant extrapolates them: the envelope's heated a/b = 30, 1.5 GPa, 10 m/s, SRR 2
+# contact jumped 200-290 K in one update (plain steps 35 K) and ran away on its 129 x 65 coarse stage at attempts 3 and
+# 4; whether its last attempt's 257 x 65 loop then converged depended on round-off (with one BLAS thread it did, with
+# two it did not). Limited, it converged at attempt 3 either way, 5.9 -> 2.5 s. Anderson's columns are the iterates
+# taken, so the next secant sees the limited step. A loop whose accelerated steps stay below the limit (every face
+# gear point of the default case) is unchanged, bit for bit.
+ACCELERATED_STEP_LIMIT = MAX_TEMPERATURE_STEP
 # Anderson acceleration of the outer loop (anderson.py): the film-state map contracts by ~0.6 per update on the face
 # gear points even with the pressure frozen (the shear state follows the temperature), so the relaxed loop needs
 # 7-9 updates per grid at S1. Depth 3 took S1 (257 x 65) from 24 to 20 outer iterations; 5 and 10 were no better.
@@ -374,7 +383,8 @@ def _next_film_state(accelerator: Anderson, temperature: np.ndarray, factor: np.
     is under-relaxed (THERMAL_RELAXATION and VISCOSITY_RELAXATION times `scale`, EYRING_RELAXATION without the
     energy equation; eta*/eta in log space) and
     Anderson-accelerated (anderson.py), the temperatures weighted by 1/rise (K) against ln(eta*/eta): the outer
-    loop's tolerances, a share of the rise and a change of ln(eta*/eta), weigh alike. rise None: no energy
+    loop's tolerances, a share of the rise and a change of ln(eta*/eta), weigh alike; the accelerated temperatures
+    move by at most the update's own MAX_TEMPERATURE_STEP (`ACCELERATED_STEP_LIMIT`). rise None: no energy
     equation (the temperatures stay)."""
     if rise is None:  # the change judged stays VISCOSITY_RELAXATION times the residual: the tolerance keeps its meaning
         log_factor, residual = np.empty(factor.shape), np.empty(factor.shape)
@@ -391,7 +401,9 @@ def _next_film_state(accelerator: Anderson, temperature: np.ndarray, factor: np.
     weight[:size], weight[size:] = 1.0 / rise, 1.0
     x = accelerator.step(np.concatenate([temperature.ravel(), log_factor.ravel()]),
                          np.concatenate([step_t.ravel(), step_f.ravel()]), weight)
-    return (x[:size].reshape(temperature.shape), np.exp(x[size:]).reshape(temperature.shape),
+    accelerated = x[:size].reshape(temperature.shape)
+    np.clip(accelerated, temperature - ACCELERATED_STEP_LIMIT, temperature + ACCELERATED_STEP_LIMIT, out=accelerated)
+    return (accelerated, np.exp(x[size:]).reshape(temperature.shape),
             float(np.abs(step_t).max()), viscosity_change)
 
 
