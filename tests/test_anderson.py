@@ -1,6 +1,7 @@
 """Anderson acceleration (ehl/anderson.py) against exact fixed points."""
 
 import numpy as np
+import pytest
 
 from facegear_tehl.ehl import anderson
 from facegear_tehl.ehl.anderson import Anderson
@@ -75,20 +76,24 @@ def test_anderson_restarts_when_the_step_grows_and_takes_the_plain_step_on_non_f
 
 
 def test_anderson_keeps_the_normal_equations_of_its_history_as_formed_anew():
-    # The weighted columns and their inner products are kept between steps while the weight stays; each step must
-    # equal the normal equations formed from the whole history at once (Walker & Ni 2011, eq. 1.3), also when the
-    # weight changes (the thermal loop's 1/rise).
+    # The history's inner products are kept per block of components, unweighted, each formed once; each step must
+    # equal the normal equations formed from the whole history at once (Walker & Ni 2011, eq. 1.3) with the blocks'
+    # scales as the diagonal weight, also as the scales move at every step (the thermal loop's 1/rise on its
+    # temperatures, 1 on ln(eta*/eta)) and with one scale per component (40 blocks of one).
     a, b = _linear_map(40, 0.9, seed=7)
     rng = np.random.default_rng(8)
-    weights = [np.ones(40), np.ones(40), rng.uniform(0.5, 2.0, 40)]
-    x, anderson, xs, fs = np.zeros(40), Anderson(3), [], []
-    for k in range(10):
-        weight = weights[min(k // 4, 2)]
-        f = 0.5 * (a @ x + b - x)
-        expected = x + f if not xs else _formed_anew(xs, fs, x, f, weight, 3)
-        got = anderson.step(x, f, weight)
-        assert np.allclose(got, expected, rtol=1e-12, atol=1e-14)
-        xs, fs, x = xs + [x], fs + [f], got
+    for run in range(3):
+        x, anderson, xs, fs = np.zeros(40), Anderson(3), [], []
+        for k in range(10):
+            scales = ((1.0,), (1.0 / (5.0 + 3.0 * k), 1.0), tuple(rng.uniform(0.5, 2.0, 40)))[run]
+            weight = np.repeat(scales, 40 // len(scales))
+            f = 0.5 * (a @ x + b - x)
+            expected = x + f if not xs else _formed_anew(xs, fs, x, f, weight, 3)
+            got = anderson.step(x, f, scales)
+            assert np.allclose(got, expected, rtol=1e-12, atol=1e-14)
+            xs, fs, x = xs + [x], fs + [f], got
+    with pytest.raises(ValueError):
+        Anderson(3).step(np.zeros(40), np.ones(40), (1.0, 2.0, 3.0))  # 40 components in 3 equal blocks
 
 
 def test_anderson_leaves_out_components_that_stayed_zero_and_grows_its_support(monkeypatch):
@@ -110,8 +115,8 @@ def test_anderson_leaves_out_components_that_stayed_zero_and_grows_its_support(m
             f = np.where(active, 0.5 * (a @ np.where(active, flat, 0.0) + b - flat), 0.0).reshape(x.shape)
             with monkeypatch.context() as patch:
                 patch.setattr(anderson, "SUPPORT_SHARE", -1.0)  # every support taken whole
-                expected = whole.step(x, f)
-            got = restricted.step(x, f)
+                expected = whole.step(x, f, (1.0, 0.5))
+            got = restricted.step(x, f, (1.0, 0.5))  # two blocks: their bounds on the support
             assert np.allclose(got, expected, rtol=1e-10, atol=1e-12)  # the normal equations' round-off, amplified
             assert not got.ravel()[~active].any()
             if k in (4, 8):  # components joined with the history kept

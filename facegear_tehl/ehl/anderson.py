@@ -7,9 +7,11 @@ Numer. Anal. 49:1715-1735, eqs. 1.2-1.3 in their difference form, mixing paramet
     gamma = argmin || W (f_k - dF gamma) ||_2,   x_k+1 = x_k + f_k - (dX + dF) gamma,
 
 with dX, dF the columns x_i+1 - x_i, f_i+1 - f_i of the last m pairs and W a diagonal weight that makes the
-components comparable. For a linear map Anderson's iterates are those of GMRES on it (Walker & Ni 2011,
-theorem 2.2). The history restarts when a step grows (GROWTH). The m x m least-squares problem is solved
-through its normal equations (m <= 5 here: the vectors are long, the system tiny), dropping directions whose
+components comparable: one scale per block of components (the thermal loop's temperatures and ln(eta*/eta)), so that
+the inner products are kept per block and unweighted, each formed once, when its column enters, however the scales
+move (the thermal loop's 1/rise moves at every update). For a linear map Anderson's iterates are those of GMRES on it
+(Walker & Ni 2011, theorem 2.2). The history restarts when a step grows (GROWTH). The m x m least-squares problem is
+solved through its normal equations (m <= 5 here: the vectors are long, the system tiny), dropping directions whose
 singular value is below GRAM_CUTOFF of the largest.
 
 Components that were zero in every x and f so far take no part: x + f and every column of dX and dF are zero
@@ -19,6 +21,9 @@ an isothermal Ree-Eyring film (eta*/eta = 1, rheology.shear_state) are 82-87 % o
 """
 
 from __future__ import annotations
+
+from collections.abc import Sequence
+import math
 
 import numpy as np
 
@@ -41,13 +46,12 @@ class Anderson:
     def __init__(self, depth: int):
         """`depth`: m, the number of earlier pairs (x_i, f_i) combined."""
         self.depth = depth
-        self._last: tuple[np.ndarray, np.ndarray] | None = None  # (x, f) of the last step
+        self._last: tuple[np.ndarray, np.ndarray] | None = None  # (x, f) of the last step, on the support
         self._dx: list[np.ndarray] = []
         self._df: list[np.ndarray] = []
-        self._weighted: list[np.ndarray] = []  # the columns of dF times the weight
-        self._gram: dict[tuple[int, int], float] = {}  # their inner products, by the columns' serial numbers
+        self._products: dict[tuple[int, int], np.ndarray] = {}  # per block <dF_a, dF_b>, by serial numbers a <= b
         self._serial = 0  # serial number of the next column
-        self._weight: np.ndarray | float = 1.0  # the weight of the columns in _weighted
+        self._blocks = 0  # the blocks the products are kept by
         self._norm = 0.0
         # the flat indices of the history's components (sorted; None: none yet, or all once `_whole`), their mask
         self._support: np.ndarray | None = None
@@ -61,7 +65,7 @@ class Anderson:
 
     def _forget(self) -> None:
         """Forget the history, keeping its support (the arrays of the step under way are on it)."""
-        self._last, self._dx, self._df, self._weighted, self._gram = None, [], [], [], {}
+        self._last, self._dx, self._df, self._products = None, [], [], {}
 
     def _gather(self, x: np.ndarray, f: np.ndarray) -> None:
         """Extend the support by the components where x or f is non-zero (the history is zero at the new ones) or
@@ -80,65 +84,66 @@ class Anderson:
             places = old if whole else np.searchsorted(support, old)
 
             def moved(column: np.ndarray) -> np.ndarray:
-                out = np.zeros(x.shape if whole else support.size)
-                out.reshape(-1)[places] = column
+                out = np.zeros(x.size if whole else support.size)
+                out[places] = column
                 return out
 
             self._dx = [moved(column) for column in self._dx]
             self._df = [moved(column) for column in self._df]
-            self._weighted = [moved(column) for column in self._weighted]
             if self._last is not None:
                 self._last = (moved(self._last[0]), moved(self._last[1]))
         self._whole = whole
         self._support, self._mask = (None, None) if whole else (support, active)
 
-    def step(self, x: np.ndarray, f: np.ndarray, weight: np.ndarray | float = 1.0) -> np.ndarray:
-        """The next iterate from the current one `x` and its plain step `f`, the least squares weighted by
-        `weight` (a scalar or one per component, applied to the whole history); the plain x + f while there is
-        no history. Each column of the history is weighted and multiplied with the others once, when it enters, while
-        the weight stays (the same numbers as forming the normal equations anew: on 513 x 65 x 9 layer nodes 10 -> 5 ms
-        per step)."""
+    def step(self, x: np.ndarray, f: np.ndarray, scales: Sequence[float] | float = 1.0) -> np.ndarray:
+        """The next iterate from the current one `x` and its plain step `f` (arrays of one shape), the least squares
+        weighted by `scales`: one scale for all components, or one per block of as many equal consecutive blocks of
+        the flat components; the plain x + f while there is no history."""
+        squares = np.atleast_1d(np.asarray(scales, dtype=float)) ** 2
+        if x.size % squares.size:
+            raise ValueError(f"{x.size} components do not split into {squares.size} equal blocks")
+        if squares.size != self._blocks:
+            self._forget()
+            self._blocks = squares.size
+        bounds = np.arange(squares.size + 1) * (x.size // squares.size)  # the blocks' bounds in the flat components
         self._gather(x, f)
         support = self._support
         if support is None:
-            return self._step(x, f, weight, weight)
-        kept = weight if np.ndim(weight) == 0 else np.broadcast_to(weight, x.shape).ravel()[support]
+            return self._step(x.reshape(-1), f.reshape(-1), squares, bounds).reshape(x.shape)
         result = np.zeros(x.shape)
-        result.reshape(-1)[support] = self._step(x.ravel()[support], f.ravel()[support], kept, weight)
+        result.reshape(-1)[support] = self._step(x.ravel()[support], f.ravel()[support], squares,
+                                                 np.searchsorted(support, bounds))
         return result
 
-    def _step(self, x: np.ndarray, f: np.ndarray, weight: np.ndarray | float,
-              whole_weight: np.ndarray | float) -> np.ndarray:
-        """`step` on the support: x, f and weight its components, whole_weight the weight as given (compared)."""
-        if not np.array_equal(whole_weight, self._weight):  # a new weight (thermal: the rise moved) weighs the history
-            self._weighted, self._gram = [column * weight for column in self._df], {}
-            self._weight = np.array(whole_weight, copy=True)
-        weighted_f = f * weight
-        norm = float(np.linalg.norm(weighted_f))
+    def _step(self, x: np.ndarray, f: np.ndarray, squares: np.ndarray, bounds: np.ndarray) -> np.ndarray:
+        """`step` on the support: x and f its components (flat), `squares` the blocks' squared scales, `bounds` their
+        bounds in x and f."""
+        blocks = [slice(start, end) for start, end in zip(bounds[:-1], bounds[1:])]
+
+        def products(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+            return np.array([np.dot(a[block], b[block]) for block in blocks])
+
+        norm = math.sqrt(float(squares @ products(f, f)))
         if self._last is not None and norm > GROWTH * self._norm:
             self._forget()
         self._norm = norm
         if self._last is not None:
             self._dx.append(x - self._last[0])
             self._df.append(f - self._last[1])
-            self._weighted.append(self._df[-1] * weight)
-            self._serial += 1
+            serial, self._serial = self._serial, self._serial + 1
             if len(self._dx) > self.depth:
-                del self._dx[0], self._df[0], self._weighted[0]
+                del self._dx[0], self._df[0]
+            first = serial - len(self._df) + 1  # serial number of the oldest column kept
+            self._products = {pair: value for pair, value in self._products.items() if pair[0] >= first}
+            for other, column in enumerate(self._df, start=first):
+                self._products[other, serial] = products(column, self._df[-1])
         self._last = (x.copy(), f.copy())
         result = x + f
         if not self._dx:
             return result
-        weighted = self._weighted
-        m = len(weighted)
-        serials = range(self._serial - m, self._serial)
-        self._gram = {(a, b): self._gram[a, b] if (a, b) in self._gram else float(np.vdot(weighted[i], weighted[j]))
-                      for i, a in enumerate(serials) for j, b in enumerate(serials) if j >= i}
-        gram = np.empty((m, m))
-        for i, a in enumerate(serials):
-            for j, b in enumerate(serials):
-                gram[i, j] = self._gram[min(a, b), max(a, b)]
-        rhs = np.array([float(np.vdot(column, weighted_f)) for column in weighted])
+        serials = range(self._serial - len(self._df), self._serial)
+        gram = np.array([[squares @ self._products[min(a, b), max(a, b)] for b in serials] for a in serials])
+        rhs = np.array([squares @ products(column, f) for column in self._df])
         if not (np.isfinite(gram).all() and np.isfinite(rhs).all()):  # a runaway iterate: the plain step shows it
             self._forget()
             return result

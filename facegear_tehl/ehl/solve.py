@@ -397,10 +397,8 @@ def _next_film_state(accelerator: Anderson, temperature: np.ndarray, factor: np.
     viscosity_change = float(np.abs(step_f).max())
     step_t = scale * THERMAL_RELAXATION * (update.temperature - temperature)
     size = temperature.size
-    weight = np.empty(2 * size)
-    weight[:size], weight[size:] = 1.0 / rise, 1.0
     x = accelerator.step(np.concatenate([temperature.ravel(), log_factor.ravel()]),
-                         np.concatenate([step_t.ravel(), step_f.ravel()]), weight)
+                         np.concatenate([step_t.ravel(), step_f.ravel()]), (1.0 / rise, 1.0))
     accelerated = x[:size].reshape(temperature.shape)
     np.clip(accelerated, temperature - ACCELERATED_STEP_LIMIT, temperature + ACCELERATED_STEP_LIMIT, out=accelerated)
     return (accelerated, np.exp(x[size:]).reshape(temperature.shape),
