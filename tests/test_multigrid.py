@@ -152,6 +152,12 @@ def test_a_film_state_with_one_temperature_per_column_takes_the_column_form():
     temperature[nz // 2] += 5.0
     solver.set_film_state(top, temperature, factor)
     assert all(lv.column_shapes is None and lv.frozen is not None for lv in solver.levels)
+    # a coarser grid's frozen shapes are the finest's, injected: those of its own state at its injected pressure
+    for lv in solver.levels[:-1]:
+        sx, sy = (level.nx - 1) // (lv.nx - 1), (level.ny - 1) // (lv.ny - 1)
+        injected = lv.frozen.copy()
+        solver.freeze(lv, level.pressure[::sy, ::sx])
+        assert np.array_equal(injected, lv.frozen)
 
 
 def test_the_truncated_correction_skips_the_nodes_next_to_cavitation_only():
