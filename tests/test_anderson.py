@@ -99,8 +99,8 @@ def test_anderson_keeps_the_normal_equations_of_its_history_as_formed_anew():
 def test_anderson_leaves_out_components_that_stayed_zero_and_grows_its_support(monkeypatch):
     # An isothermal Ree-Eyring film's Newtonian columns keep ln(eta*/eta) = 0 and a zero step: the history is kept on
     # the other components only. The iterates must be those of the history kept whole (the normal equations formed
-    # anew above), to summation order, the zero components exactly zero, also
-    # as components join (the support grows) and once more than SUPPORT_SHARE of them are active (taken whole).
+    # anew above), to summation order, the zero components exactly zero, also as components join (the support grows)
+    # and once more than SUPPORT_SHARE of them are active (the support taken whole).
     n = 60
     a, b = _linear_map(n, 0.9, seed=11)
     order = np.random.default_rng(12).permutation(n)  # components join in this order, between the kept ones

@@ -418,7 +418,7 @@ def test_accelerated_temperatures_move_by_at_most_the_continuation_step():
                 x = accelerator.step(np.concatenate([temperature.ravel(), np.zeros(temperature.size)]),
                                      np.concatenate([np.full(temperature.size, solve.THERMAL_RELAXATION * held),
                                                      np.zeros(temperature.size)]),
-                                     np.concatenate([np.full(temperature.size, 1.0 / rise), np.ones(temperature.size)]))
+                                     (1.0 / rise, 1.0))
                 new = x[:temperature.size].reshape(shape)
             jumps.append(float(np.abs(new - temperature).max()))
             temperature = new

@@ -79,8 +79,8 @@ EYRING_START_CYCLES = 1
 # contact jumped 200-290 K in one update (plain steps 35 K) and ran away on its 129 x 65 coarse stage at attempts 3 and
 # 4; whether its last attempt's 257 x 65 loop then converged depended on round-off (with one BLAS thread it did, with
 # two it did not). Limited, it converged at attempt 3 either way, 5.9 -> 2.5 s. Anderson's columns are the iterates
-# taken, so the next secant sees the limited step. A loop whose accelerated steps stay below the limit (every face
-# gear point of the default case) is unchanged, bit for bit.
+# taken, so the next secant sees the limited step. A loop whose accelerated steps stay below the limit (S1-S5 of the
+# default case) is unchanged, bit for bit.
 ACCELERATED_STEP_LIMIT = MAX_TEMPERATURE_STEP
 # Anderson acceleration of the outer loop (anderson.py): the film-state map contracts by ~0.6 per update on the face
 # gear points even with the pressure frozen (the shear state follows the temperature), so the relaxed loop needs
