@@ -324,16 +324,23 @@ def test_the_outlet_hot_spot_is_the_adiabatic_compression_through_the_pressure_s
     assert 1.0 < (temperature[-1] - temperature[0]) / adiabatic < 1.25
 
 
-def test_deferred_wall_fluxes_are_the_updates_own_and_close_its_energy_budget():
-    # An outer loop's updates leave out their wall heat fluxes (they cost a sweep) and `completed` adds them for the
-    # state the loop ends on: the fluxes an update computes itself, and with them its discrete energy budget closes
-    # (energy.energy_budget: generated + mass defect = conducted + convected, to the sweeps' tolerance).
+def _hertzian_film():
+    """The sliding contact's point and lubricant, a 33 x 17 grid (x, y in m) around its Hertz ellipse, the Hertz
+    pressure (Pa) and a 100 nm film plus the gap of its radii (m): a film state's inputs for the update's own tests."""
     point, lub, _ = plain(SLIDING)
     a, b = point.hertz.a, point.hertz.b
     x, y = np.linspace(-3.0 * b, 1.5 * b, 33), np.linspace(-2.0 * a, 2.0 * a, 17)
     xx, yy = np.meshgrid(x, y)
     pressure = point.hertz.p_max * np.sqrt(np.maximum(1.0 - (xx / b) ** 2 - (yy / a) ** 2, 0.0))
     film = 1e-7 + xx**2 / (2.0 * point.hertz.radius_x) + yy**2 / (2.0 * point.hertz.radius_y)
+    return point, lub, x, y, pressure, film
+
+
+def test_deferred_wall_fluxes_are_the_updates_own_and_close_its_energy_budget():
+    # An outer loop's updates leave out their wall heat fluxes (they cost a sweep) and `completed` adds them for the
+    # state the loop ends on: the fluxes an update computes itself, and with them its discrete energy budget closes
+    # (energy.energy_budget: generated + mass defect = conducted + convected, to the sweeps' tolerance).
+    point, lub, x, y, pressure, film = _hertzian_film()
 
     def model():
         return FilmThermalModel(x, y, 7, lub, point, solve_energy=True)
@@ -371,12 +378,7 @@ def test_an_isothermal_films_deferred_wall_fluxes_are_those_of_its_temperatures(
     # Without the energy equation an update's wall fluxes are the conduction of the temperatures it was given
     # (energy.wall_heat_flux); deferred, `completed` gives the same numbers. A temperature linear across the film
     # conducts k dT/dh through either wall (the one-sided differences are exact for it).
-    point, lub, _ = plain(SLIDING)
-    a, b = point.hertz.a, point.hertz.b
-    x, y = np.linspace(-3.0 * b, 1.5 * b, 33), np.linspace(-2.0 * a, 2.0 * a, 17)
-    xx, yy = np.meshgrid(x, y)
-    pressure = point.hertz.p_max * np.sqrt(np.maximum(1.0 - (xx / b) ** 2 - (yy / a) ** 2, 0.0))
-    film = 1e-7 + xx**2 / (2.0 * point.hertz.radius_x) + yy**2 / (2.0 * point.hertz.radius_y)
+    point, lub, x, y, pressure, film = _hertzian_film()
     nz, rise = 9, 4.0  # K from surface 1 to surface 2
     temperature = lub.inlet_temperature + rise * np.linspace(0.0, 1.0, nz)[:, None, None] * np.ones(film.shape)
 
