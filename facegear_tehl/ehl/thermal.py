@@ -31,7 +31,7 @@ from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import energy, jaeger, rheology
 from facegear_tehl.lubricant import ROELANDS, Lubricant
 from facegear_tehl.lubricant_laws import (
-    density_ratio,
+    density_ratio_at,
     roelands_pressure_factor_at,
     roelands_ratio,
     roelands_temperature_coefficient,
@@ -104,6 +104,34 @@ def layer_viscosity(pressure, temperature, law, coefficient):
                     if coefficient:
                         beta[k, j, i] = viscosity_temperature_coefficient_at(p, t, law)
     return ratio, beta
+
+
+@njit(cache=True)
+def heat_coefficients(pressure, temperature, velocity_x, velocity_y, grad_x, grad_y, dissipation, beta, thinning, law,
+                      expansion, t_inlet, density, specific_heat):
+    """The energy equation's coefficients at every layer node (nz, ny, nx) of the temperatures (K) over the pressures
+    and their gradients (ny, nx; Pa, Pa/m), in one pass:
+    - the compression coefficient beta_T (u . grad p), W/(m^3 K), with the expansivity beta_T = eps_T/(1 - eps_T (T -
+      T_in)) of the density's linear temperature factor (`expansion` eps_T, 1/K; u the layer velocity, m/s);
+    - rho c (J/(m^3 K)) with rho = `density` rho_0 times lubricant_laws.density_ratio_at and c = `specific_heat`;
+    - the sensitivity -d(dissipation)/dT at fixed shear rate, dissipation beta thinning (W/(m^3 K); beta = -d ln(eta)/dT,
+      thinning = d ln(dissipation)/d ln(eta), rheology.shear_state).
+    The same operations as their NumPy expressions (bit-identical), one pass instead of ~15 (7 -> 2 ms on 513 x 65 x 9).
+    """
+    nz, ny, nx = temperature.shape
+    compression = np.empty((nz, ny, nx))
+    rho_c = np.empty((nz, ny, nx))
+    sensitivity = np.empty((nz, ny, nx))
+    for k in range(nz):
+        for j in range(ny):
+            for i in range(nx):
+                t = temperature[k, j, i]
+                expansivity = expansion / (1.0 - expansion * (t - t_inlet))
+                compression[k, j, i] = expansivity * (velocity_x[k, j, i] * grad_x[j, i]
+                                                      + velocity_y[k, j, i] * grad_y[j, i])
+                rho_c[k, j, i] = density * density_ratio_at(pressure[j, i], t, law) * specific_heat
+                sensitivity[k, j, i] = dissipation[k, j, i] * beta[k, j, i] * thinning[k, j, i]
+    return compression, rho_c, sensitivity
 
 
 @dataclass(frozen=True)
@@ -214,11 +242,9 @@ class FilmThermalModel:
                              velocity_x, velocity_y, stress_1, stress_2, thinning, self.newtonian_below)
         compression = None
         if self.solve_energy:
-            expansivity = lub.thermal_expansion / (1.0 - lub.thermal_expansion * (temperature - self.t_inlet))
-            compression_coefficient = expansivity * (velocity_x * grad_x + velocity_y * grad_y)
-            p_layers = np.ascontiguousarray(np.broadcast_to(p, shape))
-            rho_c = lub.density * density_ratio(p_layers, temperature, self.law).reshape(shape) * lub.specific_heat
-            sensitivity = dissipation * beta * thinning  # -d(dissipation)/dT at fixed shear rate
+            compression_coefficient, rho_c, sensitivity = heat_coefficients(
+                p, temperature, velocity_x, velocity_y, grad_x, grad_y, dissipation, beta, thinning, self.law,
+                lub.thermal_expansion, self.t_inlet, lub.density, lub.specific_heat)
             fluxes = energy.transport_fluxes(velocity_x, velocity_y, rho_c, film, self.dx, self.dy)[:3]
             fixed = energy.fixed_parts(fluxes[2], dissipation, sensitivity, temperature.copy(),
                                        compression_coefficient, conductivity, film)
