@@ -120,7 +120,7 @@ def test_anderson_leaves_out_components_that_stayed_zero_and_grows_its_support(m
             assert np.allclose(got, expected, rtol=1e-10, atol=1e-12)  # the normal equations' round-off, amplified
             assert not got.ravel()[~active].any()
             if k in (4, 8):  # components joined with the history kept
-                assert len(restricted._dx) == len(whole._dx) > 0
+                assert len(restricted._df) == len(whole._df) > 0
             x = got
         return restricted
 

@@ -47,7 +47,7 @@ class Anderson:
         """`depth`: m, the number of earlier pairs (x_i, f_i) combined."""
         self.depth = depth
         self._last: tuple[np.ndarray, np.ndarray] | None = None  # (x, f) of the last step, on the support
-        self._dx: list[np.ndarray] = []
+        self._dg: list[np.ndarray] = []  # the columns of dX + dF: the step's correction is their combination
         self._df: list[np.ndarray] = []
         self._products: dict[tuple[int, int], np.ndarray] = {}  # per block <dF_a, dF_b>, by serial numbers a <= b
         self._serial = 0  # serial number of the next column
@@ -65,7 +65,7 @@ class Anderson:
 
     def _forget(self) -> None:
         """Forget the history, keeping its support (the arrays of the step under way are on it)."""
-        self._last, self._dx, self._df, self._products = None, [], [], {}
+        self._last, self._dg, self._df, self._products = None, [], [], {}
 
     def _gather(self, x: np.ndarray, f: np.ndarray) -> None:
         """Extend the support by the components where x or f is non-zero (the history is zero at the new ones) or
@@ -88,7 +88,7 @@ class Anderson:
                 out[places] = column
                 return out
 
-            self._dx = [moved(column) for column in self._dx]
+            self._dg = [moved(column) for column in self._dg]
             self._df = [moved(column) for column in self._df]
             if self._last is not None:
                 self._last = (moved(self._last[0]), moved(self._last[1]))
@@ -128,18 +128,19 @@ class Anderson:
             self._forget()
         self._norm = norm
         if self._last is not None:
-            self._dx.append(x - self._last[0])
-            self._df.append(f - self._last[1])
+            df = f - self._last[1]
+            self._dg.append((x - self._last[0]) + df)
+            self._df.append(df)
             serial, self._serial = self._serial, self._serial + 1
-            if len(self._dx) > self.depth:
-                del self._dx[0], self._df[0]
+            if len(self._df) > self.depth:
+                del self._dg[0], self._df[0]
             first = serial - len(self._df) + 1  # serial number of the oldest column kept
             self._products = {pair: value for pair, value in self._products.items() if pair[0] >= first}
             for other, column in enumerate(self._df, start=first):
                 self._products[other, serial] = products(column, self._df[-1])
         self._last = (x.copy(), f.copy())
         result = x + f
-        if not self._dx:
+        if not self._df:
             return result
         serials = range(self._serial - len(self._df), self._serial)
         gram = np.array([[squares @ self._products[min(a, b), max(a, b)] for b in serials] for a in serials])
@@ -148,6 +149,7 @@ class Anderson:
             self._forget()
             return result
         gamma = np.linalg.lstsq(gram, rhs, rcond=GRAM_CUTOFF)[0]
-        for g, dx, df in zip(gamma, self._dx, self._df):
-            result -= g * (dx + df)
+        term = np.empty_like(result)
+        for g, dg in zip(gamma, self._dg):
+            result -= np.multiply(g, dg, out=term)
         return result
