@@ -111,6 +111,19 @@ def eyring_column(newtonian_below, speed=0.05, gradient=2e9, eta0=0.05, h=2e-6, 
     return factor, dissipation, stress_1, thinning
 
 
+def test_the_thinning_of_a_sheared_poiseuille_column_is_tanh_r_over_r_in_every_layer():
+    # With a pressure gradient the stress varies across the film, tau_k = tau_s + z_k grad p: the thinning of each
+    # layer (rheology.shear_state forms it from the shear rate's Jacobian, without tanh) is tanh(r_k)/r_k at
+    # r_k = |tau_k|/tau_0: here 10 at both walls and 1e-4 at mid-film, where tau_k changes sign.
+    speed, gradient, eta0, h, tau0 = 2.0, 2e14, 0.5, 1e-6, 1e7
+    factor, _, stress_1, thinning = eyring_column(0.0, speed=speed, gradient=gradient, eta0=eta0, h=h, tau0=tau0)
+    r = np.abs(stress_1[0, 0, 0] + gradient * h * np.linspace(0.0, 1.0, 9)) / tau0
+    assert r.max() > 9.0 and r.min() < 1e-3
+    expected = np.where(r > 0.0, np.tanh(r) / np.where(r > 0.0, r, 1.0), 1.0)
+    assert np.allclose(thinning[:, 0, 0], expected, rtol=1e-12, atol=0)
+    assert np.allclose(factor[:, 0, 0], np.where(r > 0.0, r / np.sinh(np.where(r > 0.0, r, 1.0)), 1.0), rtol=1e-9)
+
+
 def test_a_column_below_the_newtonian_bound_takes_the_newtonian_state():
     # Couette and Poiseuille with eta = const: the Newtonian surface stress is eta u_s/h - h grad p/2 (from
     # \int (tau_s + z grad p)/eta dz = u_s), and the Eyring film departs from it by |ln(eta*/eta)| <= r^2/6 with r the

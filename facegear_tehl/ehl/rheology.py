@@ -59,12 +59,12 @@ def _shear_rate(tx, ty, eta, inverse_eta, tau0, inverse_tau0):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, warm, speed, rate_x, rate_y,
+def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, warm, speed, rate_x, rate_y, trace,
                    inverse_eta, inverse_tau0, newtonian_below=0.0):
     """Stress (tau_x, tau_y) at surface 1 such that \\int gamma_dot dz = (dux, duy); eta per layer (Pa s); returns
     (tau_x, tau_y, rated, newtonian): `rated` True when rate_x, rate_y (per layer, in place) hold the shear rate at the
-    stress returned (the residual evaluation that ended Newton's method), else they are to be evaluated; `newtonian`
-    True when the column is taken as Newtonian (below).
+    stress returned (the residual evaluation that ended Newton's method) and `trace` the trace of its Jacobian
+    d gamma_dot/d tau, else they are to be evaluated; `newtonian` True when the column is taken as Newtonian (below).
 
     Ree-Eyring: Newton's method from (guess_x, guess_y) if `warm`, else from the Couette estimate, to a velocity
     residual of 1e-10 `speed` (m/s, the scale of the surface speeds). A column whose Newtonian wall stresses are both
@@ -112,6 +112,7 @@ def surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, guess_x, guess_y, 
             gx, gy, a, b, c = _shear_rate(tx + z * gpx, ty + z * gpy, eta[k], inverse_eta[k], tau0, inverse_tau0)
             rate_x[k] = gx
             rate_y[k] = gy
+            trace[k] = a + c
             w = weights[k] * h
             fx += w * gx
             fy += w * gy
@@ -147,7 +148,8 @@ def shear_state(pressure, film, grad_x, grad_y, eta_newtonian, u1, u2, tau0, war
     newtonian_below: a column whose Newtonian wall stresses are below this multiple of tau_0 takes the Newtonian state
     (eta*/eta = 1, error in ln(eta*/eta) at most newtonian_below^2/6; surface_stress); 0: every column is solved.
     thinning: tanh(r)/r with r = |tau|/tau_0 (1 for a Newtonian film): d ln(dissipation)/d ln(eta) at fixed
-    shear rate, for the implicit treatment of viscous heating in energy.py; an empty array: not evaluated (a film
+    shear rate (as |gamma_dot|/|tau| over d|gamma_dot|/d|tau|, the latter the trace of the shear rate's Jacobian less
+    the former: no tanh), for the implicit treatment of viscous heating in energy.py; an empty array: not evaluated (a film
     without the energy equation: its tanh took 28 % of the kernel, the velocities another 20 %: 35 -> 20 ms without
     both on 513 x 65 x 9).
 
@@ -165,6 +167,7 @@ def shear_state(pressure, film, grad_x, grad_y, eta_newtonian, u1, u2, tau0, war
     eta = np.empty(nz)
     rate_x = np.empty(nz)
     rate_y = np.empty(nz)
+    trace = np.empty(nz)
     inverse_eta = np.empty(nz)
     inverse_tau0 = 1.0 / tau0
     heating = thinning.size > 0
@@ -178,8 +181,8 @@ def shear_state(pressure, film, grad_x, grad_y, eta_newtonian, u1, u2, tau0, war
             gpx = grad_x[j, i]
             gpy = grad_y[j, i]
             tx, ty, rated, newtonian = surface_stress(eta, h, gpx, gpy, dux, duy, tau0, weights, stress_1[0, j, i],
-                                                      stress_1[1, j, i], warm, speed, rate_x, rate_y, inverse_eta,
-                                                      inverse_tau0, newtonian_below)
+                                                      stress_1[1, j, i], warm, speed, rate_x, rate_y, trace,
+                                                      inverse_eta, inverse_tau0, newtonian_below)
             for k in range(nz):
                 z = h * k / (nz - 1)
                 sx = tx + z * gpx
@@ -196,15 +199,17 @@ def shear_state(pressure, film, grad_x, grad_y, eta_newtonian, u1, u2, tau0, war
                 if rated:  # Newton's last residual evaluated these (the same stress, the same operations)
                     gx, gy = rate_x[k], rate_y[k]
                 else:
-                    gx, gy, _, _, _ = _shear_rate(sx, sy, eta[k], inverse_eta[k], tau0, inverse_tau0)
+                    gx, gy, a, _, c = _shear_rate(sx, sy, eta[k], inverse_eta[k], tau0, inverse_tau0)
                     rate_x[k] = gx
                     rate_y[k] = gy
+                    trace[k] = a + c
                 te = math.sqrt(sx * sx + sy * sy)
                 ge = math.sqrt(gx * gx + gy * gy)
                 viscosity_factor[k, j, i] = max(te / (ge * eta[k]), MIN_VISCOSITY_FACTOR) if ge > 0.0 else 1.0
                 if heating:
-                    r = te * inverse_tau0 if math.isfinite(tau0) else 0.0
-                    thinning[k, j, i] = math.tanh(r) / r if r > 1e-8 else 1.0
+                    # tanh(r)/r = (|gamma_dot|/|tau|)/(d|gamma_dot|/d|tau|); the Jacobian's trace is their sum
+                    ratio = ge / te if te > 0.0 else 0.0
+                    thinning[k, j, i] = ratio / (trace[k] - ratio) if ratio > 0.0 and math.isfinite(tau0) else 1.0
                 dissipation[k, j, i] = sx * gx + sy * gy
             if moving:
                 ux = u1[0]
