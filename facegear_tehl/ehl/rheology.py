@@ -148,10 +148,9 @@ def shear_state(pressure, film, grad_x, grad_y, eta_newtonian, u1, u2, tau0, war
     newtonian_below: a column whose Newtonian wall stresses are below this multiple of tau_0 takes the Newtonian state
     (eta*/eta = 1, error in ln(eta*/eta) at most newtonian_below^2/6; surface_stress); 0: every column is solved.
     thinning: tanh(r)/r with r = |tau|/tau_0 (1 for a Newtonian film): d ln(dissipation)/d ln(eta) at fixed
-    shear rate (as |gamma_dot|/|tau| over d|gamma_dot|/d|tau|, the latter the trace of the shear rate's Jacobian less
-    the former: no tanh), for the implicit treatment of viscous heating in energy.py; an empty array: not evaluated (a film
-    without the energy equation: its tanh took 28 % of the kernel, the velocities another 20 %: 35 -> 20 ms without
-    both on 513 x 65 x 9).
+    shear rate, for the implicit treatment of viscous heating in energy.py, formed as |gamma_dot|/|tau| over
+    d|gamma_dot|/d|tau| (the trace of the shear rate's Jacobian less the former: no tanh); an empty array: not
+    evaluated (a film without the energy equation, as its velocities: 35 -> 20 ms without both on 513 x 65 x 9).
 
     pressure (Pa), film (m), grad_x/grad_y (Pa/m), eta_newtonian (Pa s, per layer): inputs.
     Outputs: viscosity_factor eta*/eta, dissipation tau . gamma_dot (W/m^3), velocity_x/velocity_y (m/s; empty
