@@ -14,8 +14,17 @@ from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import solve
 from facegear_tehl.ehl.anderson import Anderson
 from facegear_tehl.ehl.energy import energy_budget
+from facegear_tehl.ehl.flow import temperature_factors
 from facegear_tehl.ehl.solve import solve_point
-from facegear_tehl.ehl.thermal import MAX_TEMPERATURE_STEP, FilmState, FilmThermalModel, gupta_reduction, thermal_choice
+from facegear_tehl.ehl.thermal import (
+    MAX_TEMPERATURE_STEP,
+    FilmState,
+    FilmThermalModel,
+    gupta_reduction,
+    layer_viscosity,
+    thermal_choice,
+)
+from facegear_tehl.lubricant_laws import viscosity_ratio_at, viscosity_temperature_coefficient_at
 from facegear_tehl.results import read_result
 from facegear_tehl.solution import Outcome
 
@@ -430,3 +439,24 @@ def test_accelerated_temperatures_move_by_at_most_the_continuation_step():
     assert free[0] == limited[0] == pytest.approx(solve.THERMAL_RELAXATION * MAX_TEMPERATURE_STEP)  # no history yet
     assert free[1] > 10.0 * MAX_TEMPERATURE_STEP  # the secant through two nearly equal steps
     assert limited[1] == pytest.approx(solve.ACCELERATED_STEP_LIMIT)
+
+
+@pytest.mark.parametrize("law", ["roelands", "barus"])
+def test_layer_viscosity_is_the_node_by_node_law_with_or_without_the_temperature_factors_given(law):
+    # thermal.layer_viscosity factors the Roelands pressure term once per column and takes the temperature factors
+    # the film state's pressure cycles evaluated (flow.temperature_factors) when given: every node equals
+    # lubricant_laws.viscosity_ratio_at and viscosity_temperature_coefficient_at; Barus takes no factors.
+    lubricant = dataclasses.replace(load_case(SLIDING).lubricant, viscosity_model=law)
+    parameters = lubricant.law_parameters()
+    rng = np.random.default_rng(5)
+    pressure = rng.uniform(-1e7, 1.5e9, (4, 6))
+    temperature = rng.uniform(300.0, 420.0, (5, 4, 6))
+    temperature[2] = temperature[1]  # a layer at the temperature of the one below it
+    expected_ratio = np.empty_like(temperature)
+    expected_beta = np.empty_like(temperature)
+    for (k, j, i), t in np.ndenumerate(temperature):
+        expected_ratio[k, j, i] = viscosity_ratio_at(pressure[j, i], t, parameters)
+        expected_beta[k, j, i] = viscosity_temperature_coefficient_at(pressure[j, i], t, parameters)
+    for given in (np.empty((0, 0, 0)), temperature_factors(temperature, parameters)):
+        ratio, beta = layer_viscosity(pressure, temperature, parameters, True, given)
+        assert np.array_equal(ratio, expected_ratio) and np.array_equal(beta, expected_beta)

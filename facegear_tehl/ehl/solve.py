@@ -765,12 +765,13 @@ class PointSolve:
         accelerator = Anderson(ANDERSON_DEPTH if model.solve_energy else EYRING_ANDERSON_DEPTH)
         last_change = None  # the largest change of the last plain step (K, or of ln(eta*/eta))
         own_changes: list[float] = []  # this loop's (energy_forcing)
+        factors = None  # the temperature factors set_film_state evaluated for `temperature`, for its update
         cycled_out = False  # the pressure was cycled to its tolerance on a converged film state (below)
         for outer in range(settings.max_thermal_iterations):
             forcing = energy_forcing(own_changes) * last_change if last_change is not None else math.inf
             pressure, film = self.settled_pressure(index)
             update = model.update(pressure * scaling.p_h, film * scaling.film_scale, temperature, forcing,
-                                  wall_fluxes=False)
+                                  wall_fluxes=False, temperature_factor=factors)
             rise = max(float(temperature.max() - self.lubricant.inlet_temperature), MIN_RISE)
             temperature, factor, thermal_change, viscosity_change = _next_film_state(
                 accelerator, temperature, factor, update, relaxation, rise if model.solve_energy else None)
@@ -781,6 +782,7 @@ class PointSolve:
                 break
             state = replace(update, temperature=temperature, viscosity_factor=factor)
             solver.set_film_state(index, state.temperature, state.viscosity_factor)
+            factors = level.temperature_factor
             status = self.cycle(index, CYCLES_PER_THERMAL_UPDATE if model.solve_energy else CYCLES_PER_EYRING_UPDATE)
             history.outer += 1
             if model.solve_energy:
