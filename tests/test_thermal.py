@@ -22,6 +22,7 @@ from facegear_tehl.ehl.thermal import (
     FilmThermalModel,
     gupta_reduction,
     layer_viscosity,
+    relaxed_steps,
     thermal_choice,
 )
 from facegear_tehl.lubricant_laws import viscosity_ratio_at, viscosity_temperature_coefficient_at
@@ -460,3 +461,26 @@ def test_layer_viscosity_is_the_node_by_node_law_with_or_without_the_temperature
     for given in (np.empty((0, 0, 0)), temperature_factors(temperature, parameters)):
         ratio, beta = layer_viscosity(pressure, temperature, parameters, True, given)
         assert np.array_equal(ratio, expected_ratio) and np.array_equal(beta, expected_beta)
+
+
+def test_relaxed_steps_are_the_numpy_expressions_of_the_outer_loop_step():
+    # thermal.relaxed_steps forms the outer loop's iterate (T, ln(eta*/eta)) and its relaxed plain step in one pass:
+    # the same numbers as the NumPy expressions, the largest |step| of each half, NaN when one of its steps is.
+    rng = np.random.default_rng(11)
+    shape = (3, 4, 5)
+    temperature, updated = rng.uniform(310.0, 400.0, shape), rng.uniform(310.0, 400.0, shape)
+    factor, updated_factor = rng.uniform(0.1, 1.0, shape), rng.uniform(0.1, 1.0, shape)
+    size = temperature.size
+    x, f = np.empty(2 * size), np.empty(2 * size)
+    np.log(factor.ravel(), out=x[size:])
+    np.log(updated_factor.ravel(), out=f[size:])
+    largest_t, largest_f = relaxed_steps(temperature, updated, 0.7, 0.4, x, f)
+    step_t = 0.7 * (updated - temperature)
+    step_f = 0.4 * (np.log(updated_factor) - np.log(factor))
+    assert np.array_equal(x, np.concatenate([temperature.ravel(), np.log(factor).ravel()]))
+    assert np.array_equal(f, np.concatenate([step_t.ravel(), step_f.ravel()]))
+    assert (largest_t, largest_f) == (np.abs(step_t).max(), np.abs(step_f).max())
+    updated[1, 2, 3] = np.nan
+    np.log(updated_factor.ravel(), out=f[size:])
+    largest_t, largest_f = relaxed_steps(temperature, updated, 0.7, 0.4, x, f)
+    assert math.isnan(largest_t) and largest_f == np.abs(step_f).max()

@@ -43,7 +43,7 @@ from facegear_tehl.ehl.outlet import Composite, needs_outlet_patch, outlet_stage
 from facegear_tehl.ehl.report import LevelSummary, point_solution, summarise, with_film_state
 from facegear_tehl.ehl.richardson import ORDER, richardson_error
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
-from facegear_tehl.ehl.thermal import MAX_TEMPERATURE_STEP, FilmState, FilmThermalModel, thermal_choice
+from facegear_tehl.ehl.thermal import MAX_TEMPERATURE_STEP, FilmState, FilmThermalModel, relaxed_steps, thermal_choice
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.settings import SolverSettings
 from facegear_tehl.solution import CONVERGED, Outcome, PointSolution, Status
@@ -392,17 +392,16 @@ def _next_film_state(accelerator: Anderson, temperature: np.ndarray, factor: np.
         step_f = residual * (scale * EYRING_RELAXATION)
         return (temperature, np.exp(accelerator.step(log_factor, step_f)), 0.0,
                 scale * VISCOSITY_RELAXATION * largest)
-    log_factor = np.log(factor)
-    step_f = scale * VISCOSITY_RELAXATION * (np.log(update.viscosity_factor) - log_factor)
-    viscosity_change = float(np.abs(step_f).max())
-    step_t = scale * THERMAL_RELAXATION * (update.temperature - temperature)
     size = temperature.size
-    x = accelerator.step(np.concatenate([temperature.ravel(), log_factor.ravel()]),
-                         np.concatenate([step_t.ravel(), step_f.ravel()]), (1.0 / rise, 1.0))
+    x, f = np.empty(2 * size), np.empty(2 * size)
+    np.log(factor.ravel(), out=x[size:])
+    np.log(update.viscosity_factor.ravel(), out=f[size:])
+    thermal_change, viscosity_change = relaxed_steps(temperature, update.temperature, scale * THERMAL_RELAXATION,
+                                                     scale * VISCOSITY_RELAXATION, x, f)
+    x = accelerator.step(x, f, (1.0 / rise, 1.0))
     accelerated = x[:size].reshape(temperature.shape)
     np.clip(accelerated, temperature - ACCELERATED_STEP_LIMIT, temperature + ACCELERATED_STEP_LIMIT, out=accelerated)
-    return (accelerated, np.exp(x[size:]).reshape(temperature.shape),
-            float(np.abs(step_t).max()), viscosity_change)
+    return accelerated, np.exp(x[size:]).reshape(temperature.shape), thermal_change, viscosity_change
 
 
 def energy_forcing(changes: list[float]) -> float:

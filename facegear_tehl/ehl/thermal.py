@@ -139,6 +139,30 @@ def heat_coefficients(pressure, temperature, velocity_x, velocity_y, grad_x, gra
     return compression, rho_c, sensitivity
 
 
+@njit(cache=True)
+def relaxed_steps(temperature, updated, thermal_weight, viscosity_weight, x, f):
+    """The outer loop's iterate and plain step (solve._next_film_state) in one pass, flat (2 n,) arrays x and f in
+    place: x = (T, ln(eta*/eta)), f = (thermal_weight (T_u - T), viscosity_weight (ln(eta*/eta)_u - ln(eta*/eta))),
+    with the temperatures (K, n entries) and their update `updated` given, and the logarithms of eta*/eta and of its
+    update already in x[n:] and f[n:] (NumPy's, in place). Returns the largest |step| of each half (NaN if one of
+    its steps is): the numbers of the NumPy expressions in one pass instead of about twelve."""
+    size = temperature.size
+    t, u = temperature.ravel(), updated.ravel()
+    largest_t = largest_f = 0.0
+    for n in range(size):
+        x[n] = t[n]
+        step = thermal_weight * (u[n] - t[n])
+        f[n] = step
+        if not abs(step) <= largest_t and largest_t == largest_t:  # a NaN step stays NaN, as NumPy's max
+            largest_t = abs(step)
+    for n in range(size, 2 * size):
+        step = viscosity_weight * (f[n] - x[n])
+        f[n] = step
+        if not abs(step) <= largest_f and largest_f == largest_f:
+            largest_f = abs(step)
+    return largest_t, largest_f
+
+
 @dataclass(frozen=True)
 class FilmState:
     """Across-film state after one update; layer fields shaped (nz, ny, nx)."""
