@@ -34,19 +34,23 @@ def _face_gear(name: str):
 
 
 def _auto(x_hot: int, spike: int, x0: float = -1.0, coarse_rise: float | None = None, choice: str = "auto",
-          angle: float = 0.0) -> bool:
+          angle: float = 0.0, runner_up: tuple[int, float] | None = None) -> bool:
     """needs_outlet_patch (auto) for a film whose hottest node (10 K above the inlet) is column x_hot and whose
     pressure peaks at column `spike` on the same row (X from x0 in steps of 0.1); `coarse_rise`: ΔT_max of the coarse
-    thermal stage (None: no coarse stage), its μ the fine film's (zero traction: μ = 0)."""
+    thermal stage (None: no coarse stage), its μ the fine film's (zero traction: μ = 0); `runner_up`: (column, K
+    below the hottest) of a second hot node on the same row (the thermal tolerance 1e-3 of the 10 K rise: 0.01 K)."""
     nx, ny, nz = 21, 5, 3
     pressure = np.zeros((ny, nx))
     pressure[2, spike] = 1.0
     temperature = np.full((nz, ny, nx), 300.0)
     temperature[1, 2, x_hot] = 310.0
+    if runner_up is not None:
+        temperature[1, 2, runner_up[0]] = 310.0 - runner_up[1]
     stress = np.zeros((2, ny, nx))
     level = SimpleNamespace(x=x0 + 0.1 * np.arange(nx), pressure=pressure, hx=0.1, hy=0.1)
     summaries = [] if coarse_rise is None else [SimpleNamespace(dT_max=coarse_rise, mu=0.0), None]
-    fake = SimpleNamespace(settings=SimpleNamespace(outlet_refinement=choice), solver=SimpleNamespace(levels=[level]),
+    fake = SimpleNamespace(settings=SimpleNamespace(outlet_refinement=choice, thermal_tolerance=1e-3),
+                           solver=SimpleNamespace(levels=[level]),
                            summaries=summaries, lubricant=SimpleNamespace(inlet_temperature=300.0),
                            scaling=SimpleNamespace(a=1e-3, b=1e-4),
                            point=SimpleNamespace(load=1e3, entrainment_angle=angle))
@@ -59,6 +63,15 @@ def test_auto_refines_where_the_hot_spot_is_on_the_spike_flank():
     assert not _auto(13, 16)  # three nodes: not on the flank
     assert not _auto(5, 6)  # upstream of the centre (S3's hot spot)
     assert not _auto(17, 16)  # downstream of the spike
+
+
+def test_a_flank_node_within_the_thermal_tolerance_of_the_hottest_counts_as_the_hottest():
+    # The outer loop knows the temperatures to thermal_tolerance times the rise: a hottest node on the spike itself
+    # with a flank node 0.005 K below it (tolerance 0.01 K) is a hot flank; 0.05 K below it is not (S1's flank lies
+    # 0.7 K below its hottest node, 0.7 % of its rise).
+    assert _auto(16, 16, runner_up=(15, 0.005)) and _auto(16, 16, runner_up=(14, 0.005))
+    assert not _auto(16, 16, runner_up=(15, 0.05))
+    assert not _auto(16, 16, runner_up=(13, 0.005))  # three nodes upstream: not on the flank
 
 
 def test_auto_refines_only_where_the_estimates_miss_their_targets():
