@@ -135,8 +135,12 @@ MIN_COARSE_THERMAL_GRID = 65  # the coupled problem is solved one grid coarser f
 # converged value, seven times the difference the estimate is formed from: the estimate read 4.9e-4 against 4.2e-3
 # for a converged reference (the same solve at a thermal tolerance of 3e-5). At 5x S1-S5 take 121 instead of 120
 # outer iterations and every estimate of h_c, h_min, dT_max and mu is within 15 % of the reference's (at 3x: 130;
-# docs/benchmarks.md). (`reduced` keeps its coarse stage's tolerance: its coarse temperatures are its result.)
+# docs/benchmarks.md). It never stops looser than COARSE_STAGE_LIMIT of the rise: its iteration error is measured
+# against the grid difference, which a looser thermal tolerance does not change (at `thermal_tolerance: 2e-3`, 10x
+# would take S1's coarse stage back to 1e-2 of the rise and its mu estimate to 7.7e-5). (`reduced` keeps its coarse
+# stage's tolerance: its coarse temperatures are its result.)
 COARSE_STAGE_TOLERANCE = 5.0
+COARSE_STAGE_LIMIT = 5e-3
 # SEED_STOP: a coarse stage whose film state has settled within that tolerance (two updates) while its pressure cannot
 # hold on its grid (max_cycles V-cycles on the settled state leave it unconverged, the change per cycle stalled: the
 # smallest of the last four cycles above half the smallest of the four before, _stalled) stops there and seeds the
@@ -806,7 +810,8 @@ class PointSolve:
                 tolerance, floor_bound = settings.thermal_tolerance * rise, THERMAL_FLOOR_FRACTION * rise
             else:
                 tolerance, floor_bound = settings.thermal_tolerance, FLOOR_BAND * settings.thermal_tolerance
-            tolerance *= COARSE_STAGE_TOLERANCE if seeding else 1.0
+            if seeding:
+                tolerance = min(COARSE_STAGE_TOLERANCE * tolerance, COARSE_STAGE_LIMIT * rise)
             if outer > 0 and not status.converged and not cycled_out and max(changes[-2:]) < tolerance:
                 # the film state has converged and the pressure has not: a limit cycle of the V-cycle that two
                 # cycles per update never leave (the phase mean of `cycle` needs three on one film state). On the
