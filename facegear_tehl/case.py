@@ -274,6 +274,7 @@ def _solver(block: Block) -> SolverSettings:
         thermal_layers=block.integer("thermal_layers", d["thermal_layers"], low=3, high=41),
         max_thermal_iterations=block.integer("max_thermal_iterations", d["max_thermal_iterations"], low=1, high=500),
         thermal_tolerance=block.number("thermal_tolerance", d["thermal_tolerance"], positive=True, high=0.1),
+        eyring_tolerance=block.number("eyring_tolerance", d["eyring_tolerance"], positive=True, high=0.1),
         grid_y=grid_y,
         outlet_refinement=block.choice("outlet_refinement", OUTLET_REFINEMENTS, d["outlet_refinement"]),
         outlet_patches=block.integer("outlet_patches", d["outlet_patches"], low=1, high=MAX_OUTLET_PATCHES),

@@ -28,7 +28,7 @@ def test_newtonian_columns_of_a_converged_eyring_film(monkeypatch):
     level = solver.solver.levels[-1]
     pressure, film = level.pressure * solver.scaling.p_h, level.film * solver.scaling.film_scale
     bounded = solver._film_model(level)
-    bound = math.sqrt(6.0 * solve.EYRING_NEWTONIAN_SHARE * solver.settings.thermal_tolerance)
+    bound = math.sqrt(6.0 * solve.EYRING_NEWTONIAN_SHARE * solver.settings.eyring_tolerance)
     assert bounded.newtonian_below == pytest.approx(bound, rel=1e-12)
     monkeypatch.setattr(solve, "EYRING_NEWTONIAN_SHARE", 0.0)
     full = solver._film_model(level)

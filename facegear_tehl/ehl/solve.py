@@ -88,10 +88,10 @@ ACCELERATED_STEP_LIMIT = MAX_TEMPERATURE_STEP
 ANDERSON_DEPTH = 3
 # The columns of an isothermal Ree-Eyring film whose Newtonian wall stresses stay below r_N tau_0 take the Newtonian
 # state, eta*/eta = 1 (rheology.shear_state): ln(r/sinh r) >= -r^2/6 for every r, so their viscosity is off by at
-# most r_N^2/6, set to this share of the loop's tolerance on ln(eta*/eta): r_N = sqrt(6 share tolerance) = 7.7e-3
-# at the default 1e-3. In the inlet of the lengthened domain the film is Newtonian to that bound: at P01, P20 and
-# P41 of the default case's 41-point cycle (513 x 65) 81, 87 and 78 % of the columns, whose largest |ln(eta*/eta)|
-# solved in full was 9.88e-6 (the bound: 9.9e-6).
+# most r_N^2/6, set to this share of the loop's tolerance on ln(eta*/eta) (`eyring_tolerance`): r_N = sqrt(6 share
+# tolerance) = 7.7e-3 at the default 1e-3. In the inlet of the lengthened domain the film is Newtonian to that bound:
+# at P01, P20 and P41 of the default case's 41-point cycle (513 x 65) 81, 87 and 78 % of the columns, whose largest
+# |ln(eta*/eta)| solved in full was 9.88e-6 (the bound: 9.9e-6).
 EYRING_NEWTONIAN_SHARE = 0.01
 # Energy-equation sweeps per update (thermal.py: at least ENERGY_MIN_SWEEPS, at most ENERGY_SWEEPS) until a sweep
 # changes the temperatures by less than this share of the last outer change: an inexact inner solve whose
@@ -131,14 +131,13 @@ MIN_COARSE_THERMAL_GRID = 65  # the coupled problem is solved one grid coarser f
 # first update on 513 x 65 changes the temperatures by 2.9 % of the rise at S1 of the default case, by 60 % of it at
 # S3 in the outlet's expansion cooling), and its dT_max and mu are the coarse values of the finest grid's error
 # estimates (report.py): its iteration error must stay small against their grid difference. It stops at this
-# multiple of the thermal tolerance (5e-3 of the rise by default). At 10x, S1's coarse mu was 0.36 % off its
-# converged value, seven times the difference the estimate is formed from: the estimate read 4.9e-4 against 4.2e-3
-# for a converged reference (the same solve at a thermal tolerance of 3e-5). At 5x S1-S5 take 121 instead of 120
-# outer iterations and every estimate of h_c, h_min, dT_max and mu is within 15 % of the reference's (at 3x: 130;
-# docs/benchmarks.md). It never stops looser than COARSE_STAGE_LIMIT of the rise: its iteration error is measured
-# against the grid difference, which a looser thermal tolerance does not change (at `thermal_tolerance: 2e-3`, 10x
-# would take S1's coarse stage back to 1e-2 of the rise and its mu estimate to 7.7e-5). (`reduced` keeps its coarse
-# stage's tolerance: its coarse temperatures are its result.)
+# multiple of the thermal tolerance, and never looser than COARSE_STAGE_LIMIT of the rise, which a looser thermal
+# tolerance does not change (5e-3 of the rise at the default 2e-3). At 1e-2 of the rise, S1's coarse mu was 0.36 % off
+# its converged value, seven times the difference the estimate is formed from: the estimate read 4.9e-4 (7.7e-5 at a
+# thermal tolerance of 2e-3) against 4.2e-3 for a converged reference (the same solve at 3e-5). At 5e-3 every
+# estimate of h_c, h_min, dT_max and mu at S1-S5 is within 15 % of the reference's, for 121 instead of 120 outer
+# iterations at a thermal tolerance of 1e-3 (at 3e-3 of the rise: 130; docs/benchmarks.md). (`reduced` keeps its
+# coarse stage's tolerance: its coarse temperatures are its result.)
 COARSE_STAGE_TOLERANCE = 5.0
 COARSE_STAGE_LIMIT = 5e-3
 # SEED_STOP: a coarse stage whose film state has settled within that tolerance (two updates) while its pressure cannot
@@ -809,7 +808,7 @@ class PointSolve:
             if model.solve_energy:
                 tolerance, floor_bound = settings.thermal_tolerance * rise, THERMAL_FLOOR_FRACTION * rise
             else:
-                tolerance, floor_bound = settings.thermal_tolerance, FLOOR_BAND * settings.thermal_tolerance
+                tolerance, floor_bound = settings.eyring_tolerance, FLOOR_BAND * settings.eyring_tolerance
             if seeding:
                 tolerance = min(COARSE_STAGE_TOLERANCE * tolerance, COARSE_STAGE_LIMIT * rise)
             if outer > 0 and not status.converged and not cycled_out and max(changes[-2:]) < tolerance:
@@ -856,7 +855,8 @@ class PointSolve:
                 "Ree-Eyring loop not converged after {} outer iterations: largest change of ln(eta*/eta) {:.2e} "
                 "(tolerance {:.0e})")
         return model.completed(state), Status(Outcome.NOT_CONVERGED, (
-            what.format(settings.max_thermal_iterations, changes[-1], settings.thermal_tolerance)
+            what.format(settings.max_thermal_iterations, changes[-1],
+                        settings.thermal_tolerance if model.solve_energy else settings.eyring_tolerance)
             + f", last pressure change {history.changes[-1]:.2e}"))
 
     def _flickering(self, index: int) -> bool:
@@ -928,7 +928,7 @@ class PointSolve:
         if self.mode != "off":
             return FilmThermalModel(level.x * self.scaling.b, level.y * self.scaling.a, self.settings.thermal_layers,
                                     self.lubricant, self.point, solve_energy=True)
-        newtonian_below = math.sqrt(6.0 * EYRING_NEWTONIAN_SHARE * self.settings.thermal_tolerance)
+        newtonian_below = math.sqrt(6.0 * EYRING_NEWTONIAN_SHARE * self.settings.eyring_tolerance)
         return FilmThermalModel(level.x * self.scaling.b, level.y * self.scaling.a, EYRING_LAYERS, self.lubricant,
                                 self.point, solve_energy=False, newtonian_below=newtonian_below)
 

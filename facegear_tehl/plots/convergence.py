@@ -101,8 +101,8 @@ def _tolerances(ax: Axes, points: Sequence[PointResult], key: str, solver: Solve
         ax.axhline(solver.load_tolerance, color="black", linestyle="--", linewidth=1.0,
                    label=f"tolerance {solver.load_tolerance:.0e}")
     elif key == "viscosity_change_history":
-        ax.axhline(solver.thermal_tolerance, color="black", linestyle="--", linewidth=1.0,
-                   label=f"tolerance {solver.thermal_tolerance:.0e}")
+        ax.axhline(solver.eyring_tolerance, color="black", linestyle="--", linewidth=1.0,
+                   label=f"tolerance {solver.eyring_tolerance:.0e}")
     elif key == "thermal_change_history":
         for line, p in zip(ax.get_lines(), [p for p in points if key in p.history]):
             if "dT_max" in p.scalars:
