@@ -32,7 +32,7 @@ class SolverSettings:
     max_thermal_iterations: int = 40  # outer iterations of film state and pressure
     # largest temperature change per outer iteration of the thermal loop, relative to the rise: against converged
     # references the loop's iteration error stays within a quarter of the grid error at 2e-3 as at 1e-3 (the face
-    # gear case's S1-S5 and 41-point cycle, docs/benchmarks.md); S1 15 % faster, the cycle 7 % fewer iterations
+    # gear case's S1-S5 and 41-point cycle, docs/benchmarks.md); S1 20 % less CPU, the cycle 7 % fewer iterations
     thermal_tolerance: float = 2e-3
     # largest change of ln(eta*/eta) per outer iteration of an isothermal Ree-Eyring film's loop: at 2e-3 an h_c of
     # the 41-point cycle moved by 0.66 of its error estimate against a converged reference (0.23 at 1e-3)
