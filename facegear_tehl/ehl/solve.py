@@ -776,6 +776,8 @@ class PointSolve:
         own_changes: list[float] = []  # this loop's (energy_forcing)
         factors = None  # the temperature factors set_film_state evaluated for `temperature`, for its update
         cycled_out = False  # the pressure was cycled to its tolerance on a converged film state (below)
+        # this loop's tolerance: on the temperatures (relative to the rise) or on ln(eta*/eta)
+        loop_tolerance = settings.thermal_tolerance if model.solve_energy else settings.eyring_tolerance
         for outer in range(settings.max_thermal_iterations):
             forcing = energy_forcing(own_changes) * last_change if last_change is not None else math.inf
             pressure, film = self.settled_pressure(index)
@@ -806,9 +808,9 @@ class PointSolve:
             history.thermal_h_c.append(grid.bilinear_at(film, level.x, level.y, 0.0, 0.0) * scaling.film_scale)
             last_finite = (solver.snapshot(index), state)
             if model.solve_energy:
-                tolerance, floor_bound = settings.thermal_tolerance * rise, THERMAL_FLOOR_FRACTION * rise
+                tolerance, floor_bound = loop_tolerance * rise, THERMAL_FLOOR_FRACTION * rise
             else:
-                tolerance, floor_bound = settings.eyring_tolerance, FLOOR_BAND * settings.eyring_tolerance
+                tolerance, floor_bound = loop_tolerance, FLOOR_BAND * loop_tolerance
             if seeding:
                 tolerance = min(COARSE_STAGE_TOLERANCE * tolerance, COARSE_STAGE_LIMIT * rise)
             if outer > 0 and not status.converged and not cycled_out and max(changes[-2:]) < tolerance:
@@ -855,8 +857,7 @@ class PointSolve:
                 "Ree-Eyring loop not converged after {} outer iterations: largest change of ln(eta*/eta) {:.2e} "
                 "(tolerance {:.0e})")
         return model.completed(state), Status(Outcome.NOT_CONVERGED, (
-            what.format(settings.max_thermal_iterations, changes[-1],
-                        settings.thermal_tolerance if model.solve_energy else settings.eyring_tolerance)
+            what.format(settings.max_thermal_iterations, changes[-1], loop_tolerance)
             + f", last pressure change {history.changes[-1]:.2e}"))
 
     def _flickering(self, index: int) -> bool:
