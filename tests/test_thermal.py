@@ -294,6 +294,62 @@ def test_error_estimates_hold_against_a_converged_reference():
             assert abs(solved.scalar(name) / reference.scalar(name) - 1.0) < 0.25 * abs(converged), (tolerance, name)
 
 
+def test_the_coarse_stage_seeded_two_grids_down_reaches_the_same_film(monkeypatch):
+    """S1 of the default case (513 x 65): the coupled problem is solved first on 129 x 65 to solve.SEED_STAGE_LIMIT
+    of the rise and the coarse stage (257 x 65) starts from its interpolated state instead of the inlet temperature.
+    The loop's fixed point does not depend on where it starts: h_c, h_min, dT_max and mu within a quarter of their
+    error estimates of the solve whose coarse stage starts from the inlet temperature, at a fraction of the coarse
+    stage's updates. A seed stage that runs away is dropped and the coarse stage begun again from the coarsest grid:
+    the solve is then the unseeded one."""
+    from facegear_tehl.points import contact_analysis
+    from facegear_tehl.solution import Status
+
+    case = load_case("cases/facegear_110.yaml")
+    point = next(p for p in contact_analysis(case).points if p.name == "S1")
+    couple, seed_stage = solve.PointSolve.couple, solve.PointSolve._seed_stage
+    per_grid = {}  # outer iterations per grid of the last solve
+
+    def counted(self, index, *args, **kwargs):
+        before = self.history.outer
+        out = couple(self, index, *args, **kwargs)
+        per_grid[self.solver.levels[index].nx] = self.history.outer - before
+        return out
+
+    monkeypatch.setattr(solve.PointSolve, "couple", counted)
+    seeded = solve_point(point, case.lubricant, case.solver)
+    seeded_grids = dict(per_grid)
+    per_grid.clear()
+    with monkeypatch.context() as m:
+        m.setattr(solve, "MIN_SEED_STAGE_GRID", 10**6)
+        unseeded = solve_point(point, case.lubricant, case.solver)
+    unseeded_grids = dict(per_grid)
+    assert seeded.converged and unseeded.converged
+    assert set(seeded_grids) == {129, 257, 513} and set(unseeded_grids) == {257, 513}
+    assert seeded_grids[257] < unseeded_grids[257]
+    for name in ("h_c", "h_min", "dT_max", "mu"):
+        estimate = abs(unseeded.scalar(f"error_estimate_{name}"))
+        assert abs(seeded.scalar(name) / unseeded.scalar(name) - 1.0) < 0.25 * estimate, name
+        assert abs(seeded.scalar(f"error_estimate_{name}")) == pytest.approx(estimate, rel=0.3), name
+
+    def running_away(self, index, *args, **kwargs):
+        if index == len(self.solver.levels) - 3:  # the seed stage's grid
+            return None, Status(Outcome.DIVERGED, "a seed stage that runs away")
+        return couple(self, index, *args, **kwargs)
+
+    seeds = []
+
+    def recorded(self, index):
+        seeds.append(seed_stage(self, index))
+        return seeds[-1]
+
+    monkeypatch.setattr(solve.PointSolve, "couple", running_away)
+    monkeypatch.setattr(solve.PointSolve, "_seed_stage", recorded)
+    fallen_back = solve_point(point, case.lubricant, case.solver)
+    assert seeds == [None]
+    for name in ("h_c", "h_min", "dT_max", "mu", "thermal_iterations"):
+        assert fallen_back.scalar(name) == unseeded.scalar(name), name
+
+
 def test_coldest_film_temperature_is_reported_with_its_place(face_gear_points, facegear_file):
     """dT_min (issue 19): the coldest layer temperature relative to the inlet and where it lies. No film is
     colder than the inlet's oil without cooling, and the surfaces enter the domain at the inlet temperature, so
