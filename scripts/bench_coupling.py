@@ -2,9 +2,9 @@
 
 1. Profile (CPU time, one process, one BLAS thread as `tehl run` solves): the thermal full solve of one point of a
    gear case (default S1 of cases/facegear_110.yaml, its own grid), split by stage (the start: full multigrid and
-   the pressure cycles outside the outer loops; the coarse-grid outer loop; the finest-grid outer loop) into the
-   film state (viscosity, Ree-Eyring shear state, rheology and the glue of an update), the energy equation
-   (column sweeps, wall heat fluxes, Jaeger's surfaces), the flow coefficients of the generalised Reynolds
+   the pressure cycles outside the outer loops; the coarse grids' outer loops, the seed stage's first; the finest
+   grid's) into the film state (viscosity, Ree-Eyring shear state, rheology and the glue of an update), the energy
+   equation (column sweeps, wall heat fluxes, Jaeger's surfaces), the flow coefficients of the generalised Reynolds
    equation (every relaxation sweep recomputes them), the rest of the V-cycles and the rest of the outer loop
    (acceleration, freezing the state); with the outer iterations and V-cycles of each stage. --thermal off profiles
    the isothermal solve (with the case's Ree-Eyring lubricant: its outer loop of eta*/eta on the finest grid).
@@ -143,7 +143,8 @@ def print_profile(label: str, data: dict) -> None:
     times = collections.defaultdict(float, {(s, k): v for s, k, v in data["times"]})
     counts = collections.defaultdict(int, {(s, k): v for s, k, v in data["counts"]})
     stages = sorted({"start"} | {s for s, _, _ in data["times"]},
-                    key=lambda s: ("start", "coarse", "finest").index(s.split()[0]))
+                    key=lambda s: (("start", "coarse", "finest").index(s.split()[0]),
+                                   int(s.split()[1]) if s.startswith("coarse") else 0))  # the seed stage first
     print(f"\n{label}: {data['total']:.2f} s CPU{'' if data['converged'] else ' (not converged)'}\n")
     print("| stage | outer iterations | V-cycles | film state s | energy equation s | flow coefficients s "
           "| rest of V-cycles s | rest of outer loop s | total s | per outer iteration s |")

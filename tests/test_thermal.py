@@ -338,8 +338,8 @@ def test_the_coarse_stage_seeded_two_grids_down_reaches_the_same_film(monkeypatc
 
     seeds = []
 
-    def recorded(self, index):
-        seeds.append(seed_stage(self, index))
+    def recorded(self):
+        seeds.append(seed_stage(self))
         return seeds[-1]
 
     monkeypatch.setattr(solve.PointSolve, "couple", running_away)

@@ -525,12 +525,12 @@ class PointSolve:
         stops after the fine stage's single film-state evaluation, `full` couples again there). The isothermal
         pressure is cycled first; its tolerance is not required, the coupled loop goes on from where it got. `full`
         from a seed stage two grids below the finest (MIN_SEED_STAGE_GRID) starts from that stage's state instead."""
-        top = len(self.solver.levels) - 1
+        levels = self.solver.levels
         seed = None
-        if self.mode == "full" and top >= 2 and self.solver.levels[top - 2].nx >= MIN_SEED_STAGE_GRID:
-            seed = self._seed_stage(top - 2)
+        if self.mode == "full" and len(levels) >= 3 and levels[-3].nx >= MIN_SEED_STAGE_GRID:
+            seed = self._seed_stage()
         if seed is not None:
-            index, status = top - 1, CONVERGED
+            index, status = len(self.solver.levels) - 2, CONVERGED
         else:
             index, status = self.start(below_top=1)
         state = None
@@ -548,11 +548,12 @@ class PointSolve:
                 return self._couple_on_finest(status)
         return self.report(index, status, state)
 
-    def _seed_stage(self, index: int) -> FilmState | None:
-        """The coupled problem on level `index` (two below the finest) to SEED_STAGE_LIMIT of the rise, its solution
-        and film state interpolated to the next level and cycled FINE_START_CYCLES times there; returns the frozen
-        state there, or None (the solver begun again from the coarsest grid) when the stage ran away."""
+    def _seed_stage(self) -> FilmState | None:
+        """The coupled problem two grids below the finest to SEED_STAGE_LIMIT of the rise, its solution and film
+        state interpolated to the next grid and cycled FINE_START_CYCLES times there; returns the frozen state there,
+        or None (the solver begun again from the coarsest grid) when the stage ran away."""
         reached, status = self.start(below_top=2)
+        index = len(self.solver.levels) - 3  # (a start that began again from a finer coarsest grid has fewer levels)
         if status.converged and reached == index:
             self.cycle(index, self.settings.max_cycles)
             state, status = self.couple(index)
