@@ -37,6 +37,7 @@ from test_parallel import assert_same_file
 
 FACE_GEAR = synthetic.CASES / "facegear_110.yaml"
 GRIDS = (33, 65, 129, 257, 513)
+SWEEP_THERMAL_TOLERANCE = 3e-4  # of the rise: the loop's iteration error well below the grid changes of dT_max
 
 
 def _sequence(limit: float, coefficient: float, order: float, grids=GRIDS) -> list[float]:
@@ -336,8 +337,12 @@ def test_s1_of_the_face_gear_case_converges_and_the_default_grid_is_within_1_per
     h_c and h_min converge monotonically, h_c at order 1-2.5 within the order's uncertainty from the thermal loop's
     floor (h_min's order on 65 x 17 - 257 x 65 is 0.36 +- 0.3: 17 rows do not resolve the side lobes where it lies;
     on the finer triplet its change is within the floor), and the default grid (257 x 65) is within 1 % of the
-    extrapolated value in h_c, h_min and dT_max (issue 7)."""
+    extrapolated value in h_c, h_min and dT_max (issue 7). The thermal loop is converged to SWEEP_THERMAL_TOLERANCE:
+    dT_max changes by 0.3-0.7 K between the finer grids, and the default tolerance's iteration error (up to 2e-3 of
+    the 97 K rise per update) moved its extrapolation from -0.43 % (converged) to -1.1 % or -0.40 % depending on
+    where each grid's loop stopped (docs/accuracy.md)."""
     case = load_case(FACE_GEAR)
+    case = replace(case, solver=replace(case.solver, thermal_tolerance=SWEEP_THERMAL_TOLERANCE))
     sweep = run_sweep(case, GRIDS[1:], point="S1")
     table = sweep.run.sweep
     assert sweep.run.status == "ok"
