@@ -147,8 +147,9 @@ COARSE_STAGE_LIMIT = 5e-3
 # does the isothermal pressure cycled to tolerance before them, and from the seed (5 K off) the coarse stage took 5
 # updates. S1-S5 of the default case: 16.2 -> 14.4 s CPU for 125 instead of 118 outer iterations (6 + 5 + 5 at S1),
 # every figure within 0.45 of a converged reference's error estimates (S4's mu; elsewhere <= 0.26); at 1e-2 or 4e-2
-# of the rise 14.2 and 14.6 s. Not tried below 129 nodes: a finest grid of 257 x 65 (the envelope's) keeps its coarse
-# stage from the inlet temperature.
+# of the rise 14.2 and 14.6 s. From 65 nodes (the thermal envelope's 257 x 65 grids seeded on 65 x 65) its 33 points
+# took 874 instead of 803 outer iterations, 125 instead of 121 s: on 65 x 65 the seed is too far from the coarse
+# stage's film state to save it updates.
 SEED_STAGE_LIMIT = 2e-2
 MIN_SEED_STAGE_GRID = 129
 # SEED_STOP: a coarse stage whose film state has settled within that tolerance (two updates) while its pressure cannot
