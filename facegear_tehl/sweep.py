@@ -64,6 +64,14 @@ MAX_ORDER = 2.05
 HIGH_ORDER_SAFETY_FACTOR = 3.0
 QUANTITIES = ("p_max", "h_c", "h_min", "dT_max", "mu")
 """Point scalars the sweep tabulates, when the solver gives them (dT_max and mu: thermal solver)."""
+# dT_max's change between the two finest grids must exceed this multiple of the thermal loop's tolerance (K: the
+# case's thermal_tolerance times the rise) for its order and extrapolation to measure the grid, else the sweep warns:
+# the loop stops once an update moves the temperatures by less than that, and at its contraction of ~0.6 per update
+# (docs/benchmarks.md) each grid keeps up to 1.5 times as much iteration error, two grids up to 3 times apart. S1 of
+# the default face gear case (129, 257, 513): dT_max changes by 0.39 K at a tolerance of 0.20 K, and the default
+# grid's error read -1.1 % and -0.40 % at two versions of the loop, -0.43 % converged to 3e-4 of the rise (0.27 K
+# against 0.03 K; docs/accuracy.md).
+ITERATION_MARGIN = 5.0
 
 
 @dataclass(frozen=True)
@@ -224,7 +232,8 @@ def run_sweep(
         contact_scalars=analysis.scalars,
         sweep=sweep_table(grids, solutions, quantities),
         sweep_scalars=_sweep_scalars(tolerance, quantities),
-        warnings=analysis.warnings + _model_warnings(case, solutions),
+        warnings=analysis.warnings + _model_warnings(case, solutions)
+        + iteration_warnings(quantities, case.solver.thermal_tolerance),
         overrides=overrides,
     )
     return Sweep(point=target.name, grids=grids, tolerance=tolerance, quantities=quantities, run=run)
@@ -252,6 +261,22 @@ def _quantities(grids: Sequence[int], solutions: Sequence[PointSolution], tolera
             values = [s.scalar(name) if s.converged else math.nan for s in solutions]
             table.append(convergence(name, units, grids, values, tolerance))
     return tuple(table)
+
+
+def iteration_warnings(quantities: Sequence[Convergence], thermal_tolerance: float) -> tuple[str, ...]:
+    """A warning when dT_max changes between the two finest grids that converged by less than ITERATION_MARGIN
+    times the thermal loop's tolerance, thermal_tolerance (of the rise) times the finest grid's dT_max (K)."""
+    rise = next((q for q in quantities if q.name == "dT_max"), None)
+    solved = [] if rise is None else [v for v in rise.values if math.isfinite(v)]
+    if len(solved) < 2:
+        return ()
+    change, loop = abs(solved[-1] - solved[-2]), thermal_tolerance * abs(solved[-1])
+    if change >= ITERATION_MARGIN * loop:
+        return ()
+    return (f"dT_max changes by {change:.3g} K between the two finest grids, less than {ITERATION_MARGIN:g}x the "
+            f"thermal loop's tolerance ({thermal_tolerance:.0e} of the {abs(solved[-1]):.3g} K rise = {loop:.3g} K): "
+            f"its order and extrapolation measure the loop's iteration error as much as the grid; sweep with "
+            f"solver.thermal_tolerance below {change / (ITERATION_MARGIN * abs(solved[-1])):.1e}",)
 
 
 def _model_warnings(case: Case, solutions: Sequence[PointSolution]) -> tuple[str, ...]:

@@ -25,6 +25,7 @@ from facegear_tehl.sweep import (
     SAFETY_FACTOR,
     check_grids,
     convergence,
+    iteration_warnings,
     parse_grids,
     run_sweep,
     tabulated,
@@ -283,6 +284,36 @@ def test_a_thermal_model_the_solver_did_not_run_is_reported():
                                        for n in (17, 33, 65))
     assert sweep.run.case.solver.thermal == "full" and sweep.run.overrides["thermal"] == "full"
     assert run_sweep(synthetic.ball_on_disc(), (17, 33, 65), thermal="off", jobs=1, solver=solve).run.warnings == ()
+
+
+def test_a_dt_max_change_within_the_thermal_loops_iteration_error_is_warned_of():
+    """S1 of the default case at its default thermal tolerance (2e-3 of the rise): dT_max 96.94, 97.53, 97.92 K on
+    the 129, 257 and 513 grids, a last change of 0.39 K against the loop's 0.20 K per update, whose iteration error
+    made the default grid's extrapolated error -1.1 % instead of the converged loop's -0.43 % (96.86, 97.58, 97.84 K
+    at 3e-4 of the rise: 0.27 K against 0.03 K, no warning). The warning names the tolerance that would do; a grid
+    that did not converge is skipped, a sweep without dT_max (isothermal) has none; through run_sweep it reaches
+    the run's warnings."""
+    def rises(values, tolerance):
+        return iteration_warnings([convergence("dT_max", "K", (129, 257, 513), values, 0.01)], tolerance)
+
+    (warning,) = rises([96.94, 97.53, 97.92], 2e-3)
+    assert "0.39 K" in warning and "2e-03 of the 97.9 K rise = 0.196 K" in warning and "below 8.0e-04" in warning
+    assert rises([96.86, 97.58, 97.84], 3e-4) == ()
+    assert len(rises([96.94, 97.53, math.nan], 2e-3)) == 1  # 96.94 -> 97.53: 0.59 K against 0.98 K
+    assert rises([96.94, 97.53, math.nan], 1e-3) == ()
+    assert rises([97.53, math.nan, math.nan], 2e-3) == ()
+    assert iteration_warnings([convergence("h_c", "m", (129, 257, 513), [1.0, 1.1, 1.11], 0.01)], 2e-3) == ()
+
+    def solve(point, lub, settings):
+        solved = synthetic.solution(point)
+        rise = 97.0 - 5.0 / (settings.grid - 1)  # 0.10 K between the finest two of 17, 33, 65
+        return replace(solved, scalars={**solved.scalars, "dT_max": (rise, "K")})
+
+    case = synthetic.ball_on_disc()
+    warnings = run_sweep(case, (17, 33, 65), jobs=1, solver=solve).run.warnings
+    assert [w for w in warnings if w.startswith("dT_max changes by 0.0781 K")], warnings
+    tight = replace(case, solver=replace(case.solver, thermal_tolerance=1e-4))
+    assert not [w for w in run_sweep(tight, (17, 33, 65), jobs=1, solver=solve).run.warnings if "dT_max" in w]
 
 
 def test_a_grid_that_did_not_converge_enters_no_order_or_extrapolation():
