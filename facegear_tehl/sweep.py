@@ -266,17 +266,18 @@ def _quantities(grids: Sequence[int], solutions: Sequence[PointSolution], tolera
 def iteration_warnings(quantities: Sequence[Convergence], thermal_tolerance: float) -> tuple[str, ...]:
     """A warning when dT_max changes between the two finest grids that converged by less than ITERATION_MARGIN
     times the thermal loop's tolerance, thermal_tolerance (of the rise) times the finest grid's dT_max (K)."""
-    rise = next((q for q in quantities if q.name == "dT_max"), None)
-    solved = [] if rise is None else [v for v in rise.values if math.isfinite(v)]
+    dt_max = next((q for q in quantities if q.name == "dT_max"), None)
+    solved = [] if dt_max is None else [v for v in dt_max.values if math.isfinite(v)]
     if len(solved) < 2:
         return ()
-    change, loop = abs(solved[-1] - solved[-2]), thermal_tolerance * abs(solved[-1])
+    rise = abs(solved[-1])
+    change, loop = abs(solved[-1] - solved[-2]), thermal_tolerance * rise
     if change >= ITERATION_MARGIN * loop:
         return ()
     return (f"dT_max changes by {change:.3g} K between the two finest grids, less than {ITERATION_MARGIN:g}x the "
-            f"thermal loop's tolerance ({thermal_tolerance:.0e} of the {abs(solved[-1]):.3g} K rise = {loop:.3g} K): "
+            f"thermal loop's tolerance ({thermal_tolerance:.0e} of the {rise:.3g} K rise = {loop:.3g} K): "
             f"its order and extrapolation measure the loop's iteration error as much as the grid; sweep with "
-            f"solver.thermal_tolerance below {change / (ITERATION_MARGIN * abs(solved[-1])):.1e}",)
+            f"solver.thermal_tolerance below {change / (ITERATION_MARGIN * rise):.1e}",)
 
 
 def _model_warnings(case: Case, solutions: Sequence[PointSolution]) -> tuple[str, ...]:

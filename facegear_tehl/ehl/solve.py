@@ -527,19 +527,18 @@ class PointSolve:
         pressure is cycled first; its tolerance is not required, the coupled loop goes on from where it got. `full`
         from a seed stage two grids below the finest (MIN_SEED_STAGE_GRID) starts from that stage's state instead."""
         levels = self.solver.levels
-        seed = None
-        if self.mode == "full" and len(levels) >= 3 and levels[-3].nx >= MIN_SEED_STAGE_GRID:
-            seed = self._seed_stage()
-        if seed is not None:
-            index, status = len(self.solver.levels) - 2, CONVERGED
-        else:
+        seeded = self.mode == "full" and len(levels) >= 3 and levels[-3].nx >= MIN_SEED_STAGE_GRID
+        seed = self._seed_stage() if seeded else None
+        if seed is None:
             index, status = self.start(below_top=1)
+            if status.converged:
+                self.cycle(index, self.settings.max_cycles)
+        else:
+            index, status = len(self.solver.levels) - 2, CONVERGED
         state = None
         if status.converged:
-            if seed is None:
-                self.cycle(index, self.settings.max_cycles)
-            state, status = self.couple(index, seed, self.summaries[-1].h_c if seed is not None else math.nan)
-            if seed is not None:
+            state, status = self.couple(index, seed, math.nan if seed is None else self.summaries[-1].h_c)
+            if seed is not None:  # this level's summary, after the seed stage's (the full-multigrid start's are below)
                 self.summaries.append(summarise(self.solver.levels[index]))
             if state is not None and not status.diverged:
                 self.coarse_state = state
