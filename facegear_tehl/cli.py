@@ -27,6 +27,7 @@ from facegear_tehl.gears.analysis import analyse_gear_pair
 from facegear_tehl.gears.report import contact_table
 from facegear_tehl.parallel import worker_count
 from facegear_tehl.points import contact_analysis, select_points
+from facegear_tehl.record import record_lines, record_to_dict
 from facegear_tehl.results import PointResult, Result, ResultFileError, read_result, write_result
 from facegear_tehl.schema import CaseError
 from facegear_tehl.solution import PointSolution
@@ -385,7 +386,7 @@ def plot(result_file: str, what: str, points: str | None, output: str | None, fm
 
 def info_json(result: Result) -> dict[str, Any]:
     """{'case', 'status', 'message', 'format_version', 'points': {name: {scalar: SI value, 'converged',
-    'message'}}, 'units': {name: {scalar: unit}}}."""
+    'message'}}, 'units': {name: {scalar: unit}}, 'solve': {name: the solve record (record.record_to_dict)}}."""
     return {
         "case": result.case_name,
         "status": result.status,
@@ -395,6 +396,7 @@ def info_json(result: Result) -> dict[str, Any]:
             name: {**p.scalars, "converged": p.converged, "message": p.message} for name, p in result.points.items()
         },
         "units": {name: dict(p.units) for name, p in result.points.items()},
+        "solve": {name: record_to_dict(p.record) for name, p in result.points.items() if p.record is not None},
         **({"cycle": {**result.cycle_scalars, "units": dict(result.cycle_units),
                       "columns": {name: column.values.tolist() for name, column in result.cycle.items()}}}
            if result.cycle else {}),
@@ -438,6 +440,9 @@ def info_text(result: Result, si: bool = False) -> str:
         lines += ["", "heat budget:", heat_budget_table(result)]
     if result.cycle:
         lines += ["", "meshing cycle:", cycle_table(result), cycle_summary(result)]
+    for p in points:
+        if p.record is not None:
+            lines += ["", *record_lines(p.name, p.record)]
     if result.contact_scalars:
         contact_rows = [_scalar_row(key, result.contact_units[key], [value], abs(value), si)
                         for key, value in result.contact_scalars.items()]

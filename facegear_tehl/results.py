@@ -9,6 +9,10 @@ Layout (format 1.x; docs/cli.md describes it for readers):
                         converged | not converged | diverged | film closed | failed), message,
                         models (JSON); datasets x, y (kind 'axis'), fields (ny, nx) (kind 'field'),
                         per-cycle arrays (kind 'history')
+    /points/<name>/solve  the solve record (from 1.3; record.py): attrs plan, stages, retries, notes (JSON lists:
+                        the planned stages in words; per stage run: stage, nx, ny, cycles, outer, outcome;
+                        per retry: reason, action, attempt, detail), attempt, relaxation, iteration,
+                        stage_seconds (the wall time of each stage, s)
     /contact/           gear contact analysis, written if given: one dataset per path column (kind
                         'table'); attrs: scalar geometry (SI) and its units (JSON)
     /heat/              table over points, written if given
@@ -46,16 +50,18 @@ import numpy as np
 
 from facegear_tehl import __version__
 from facegear_tehl.case import Case
+from facegear_tehl.record import SolveRecord, record_from_dict, record_to_dict
 from facegear_tehl.solution import Field, PointSolution
 
 if TYPE_CHECKING:  # h5py is imported where a file is written or read: `tehl validate` does not need it
     import h5py
 
 FILETYPE = "facegear_tehl result"
-FORMAT_VERSION = "1.2"  # 1.1: /points/<name> attrs outcome; 1.2: dimension scales, integer counts
+FORMAT_VERSION = "1.3"  # 1.1: /points/<name> attrs outcome; 1.2: dimension scales, integer counts; 1.3: solve
 STATUSES = ("ok", "not_converged", "failed")
 # Group attributes that are not scalars.
 _RESERVED_ATTRS = ("units", "converged", "outcome", "message", "models")
+_RECORD_LISTS = ("plan", "stages", "retries", "notes")  # the solve record's attributes held as JSON
 # The 2-D numeric datasets (the points' fields, the tables' vectors) are stored with HDF5's shuffle and deflate filters
 # at this zlib level, one chunk per dataset: any HDF5 reader (h5py, xarray, HDFView) inflates them. The chunks are
 # shuffled and deflated here rather than by the HDF5 library, on up to DEFLATE_THREADS threads (zlib releases the
@@ -150,6 +156,7 @@ class PointResult:
     fields: Mapping[str, Field]
     history: Mapping[str, Field]
     models: Mapping[str, str]
+    record: SolveRecord | None = None  # the solve record (None in a file before format 1.3)
 
 
 @dataclass(frozen=True)
@@ -277,6 +284,8 @@ def _write_point(points: h5py.Group, solution: PointSolution, chunks: _Chunks) -
     for kind, entries in (("axis", solution.axes), ("field", solution.fields), ("history", solution.history)):
         for name, column in entries.items():
             _write_dataset(group, name, column, kind, chunks)
+    if solution.record is not None:
+        _write_record(group.create_group("solve"), solution.record)
     for axis in solution.axes:
         group[axis].make_scale(axis)
     for name in solution.fields:
@@ -285,6 +294,32 @@ def _write_point(points: h5py.Group, solution: PointSolution, chunks: _Chunks) -
         index, description = next(((index, text) for start, index, text in _HISTORY_INDEX if name.startswith(start)),
                                   _CYCLE_INDEX)
         _attach(group[name], _index_scale(group, index, len(column.values), f"index: {description}", name))
+
+
+def _write_record(group: h5py.Group, record: SolveRecord) -> None:
+    """The solve record as attributes: lists as JSON, numbers and words as they are; the stages' wall times apart
+    (stage_seconds), so that two runs of one case differ in their timings alone."""
+    data = record_to_dict(record)
+    group.attrs["stage_seconds"] = [stage.pop("seconds") for stage in data["stages"]]
+    for key, value in data.items():
+        group.attrs[key] = json.dumps(value) if isinstance(value, list) else value
+
+
+def name_is_record(name: str, item: h5py.Group | h5py.Dataset) -> bool:
+    """The item of a point group is its solve record (a group, not a dataset of the point)."""
+    return name == "solve" and hasattr(item, "keys")
+
+
+def _read_record(group: h5py.Group) -> SolveRecord | None:
+    """The solve record of a point group (None in a file before format 1.3)."""
+    if "solve" not in group or not name_is_record("solve", group["solve"]):
+        return None
+    attrs = group["solve"].attrs
+    data = {key: json.loads(attrs[key]) if key in _RECORD_LISTS else attrs[key] for key in attrs}
+    data = {key: value.item() if isinstance(value, np.generic) else value for key, value in data.items()}
+    for stage, seconds in zip(data["stages"], np.atleast_1d(data.pop("stage_seconds")), strict=True):
+        stage["seconds"] = float(seconds)
+    return record_from_dict(data)
 
 
 def _attach(dataset: h5py.Dataset, *scales: h5py.Dataset) -> None:
@@ -512,6 +547,8 @@ def _read_point(name: str, group: h5py.Group, fields: bool = True) -> PointResul
     scalars, units = _read_scalars(group)
     by_kind: dict[str, dict[str, Field]] = {"axis": {}, "field": {}, "history": {}, "scale": {}}
     for dataset_name, dataset in group.items():
+        if name_is_record(dataset_name, dataset):
+            continue
         kind = str(dataset.attrs["kind"])
         if fields or kind != "field":
             by_kind[kind][dataset_name] = _read_field(dataset)
@@ -526,6 +563,7 @@ def _read_point(name: str, group: h5py.Group, fields: bool = True) -> PointResul
         fields=by_kind["field"],
         history=by_kind["history"],
         models=json.loads(group.attrs["models"]),
+        record=_read_record(group),
     )
 
 

@@ -7,9 +7,37 @@ This module imports nothing of the package, so the solver loads it without the g
 from __future__ import annotations
 
 from dataclasses import dataclass
+from enum import Enum
 
-THERMAL_MODELS = ("off", "reduced", "full", "auto")
-OUTLET_REFINEMENTS = ("auto", "always", "never")
+
+class ThermalMode(str, Enum):
+    """The thermal model of a solve (`solver.thermal`): isothermal, reduced (one temperature per column from the
+    isothermal film), full (layered energy equation coupled with the pressure), or chosen per point (auto). A str
+    enum: it reads and writes as its word."""
+
+    OFF = "off"
+    REDUCED = "reduced"
+    FULL = "full"
+    AUTO = "auto"
+
+    def __str__(self) -> str:
+        return self.value
+
+
+class OutletRefinement(str, Enum):
+    """When a `full` thermal solve refines its outlet on patches (ehl/outlet.py): where its hot spot lies on the
+    outlet spike's flank and the grid's estimates miss their bounds (auto), always, or never. A str enum."""
+
+    AUTO = "auto"
+    ALWAYS = "always"
+    NEVER = "never"
+
+    def __str__(self) -> str:
+        return self.value
+
+
+THERMAL_MODELS = tuple(mode.value for mode in ThermalMode)
+OUTLET_REFINEMENTS = tuple(choice.value for choice in OutletRefinement)
 MAX_OUTLET_PATCHES = 3  # the outlet stage's nested patches (ehl/outlet.py PATCH_START, NESTED_PATCH_STARTS)
 
 
@@ -22,7 +50,7 @@ class SolverSettings:
     # entrainment (Venner & Lubrecht 2000; ehl.solve)
     domain_x: tuple[float, float] | None = None
     domain_y: tuple[float, float] | None = None  # in units of the major semi-axis a; None: automatic
-    thermal: str = "off"  # one of THERMAL_MODELS
+    thermal: ThermalMode = ThermalMode.OFF  # a ThermalMode or its word
     coarsest_grid: int = 17  # nodes per side on the coarsest grid of the hierarchy
     cycles_per_level: int = 2  # V-cycles per level in the full-multigrid start
     max_cycles: int = 40  # extra V-cycles allowed on the finest grid to meet the tolerances
@@ -41,11 +69,15 @@ class SolverSettings:
     # thermal full: the outlet solved again on a patch twice as fine along x (ehl/outlet.py), one of
     # OUTLET_REFINEMENTS; auto: where the hottest film node lies on the outlet spike's rising flank and the grid's
     # estimate of dT_max or mu misses 2 % or 1 %
-    outlet_refinement: str = "auto"
+    outlet_refinement: OutletRefinement = OutletRefinement.AUTO
     # the most nested outlet patches (1-3: half, a quarter, an eighth of the x spacing at the spike); each after the
     # first only where the one before moved dT_max or mu by more than 2 % or 1 %, or left the estimate reported
     # after it above them (`auto`)
     outlet_patches: int = MAX_OUTLET_PATCHES
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "thermal", ThermalMode(self.thermal))
+        object.__setattr__(self, "outlet_refinement", OutletRefinement(self.outlet_refinement))
 
     @property
     def nodes_y(self) -> int:

@@ -3,39 +3,14 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-import enum
 from typing import Mapping
 
 import numpy as np
 
+from facegear_tehl.outcome import CONVERGED, Outcome, Status
+from facegear_tehl.record import SolveRecord
 
-class Outcome(enum.Enum):
-    """How a solve ended."""
-
-    CONVERGED = "converged"  # every tolerance met
-    NOT_CONVERGED = "not converged"  # the iteration budget was spent before the tolerances were met
-    DIVERGED = "diverged"  # the iteration ran away; the last sound iterate is reported
-    FILM_CLOSED = "film closed"  # h_min <= 0: solid contact, outside the EHL model
-    FAILED = "failed"  # the solve raised an error; no data
-
-
-@dataclass(frozen=True)
-class Status:
-    """The outcome of a solve or of one of its steps, with the reason in words (empty when converged)."""
-
-    outcome: Outcome
-    message: str = ""
-
-    @property
-    def converged(self) -> bool:
-        return self.outcome is Outcome.CONVERGED
-
-    @property
-    def diverged(self) -> bool:
-        return self.outcome is Outcome.DIVERGED
-
-
-CONVERGED = Status(Outcome.CONVERGED)
+__all__ = ["CONVERGED", "Field", "Outcome", "PointSolution", "Status"]
 
 
 @dataclass(frozen=True)
@@ -58,6 +33,7 @@ class PointSolution:
     history: per-cycle arrays (residual_history, load_error_history, ...).
     outcome: how the solve ended; message says why it did not converge (empty when it did).
     models: which models produced it (viscosity, density, rheology, thermal, with their sources).
+    record: the typed solve record (record.py), from which models['solver'] is rendered.
     """
 
     name: str
@@ -68,6 +44,7 @@ class PointSolution:
     axes: Mapping[str, Field]
     history: Mapping[str, Field] = field(default_factory=dict)
     models: Mapping[str, str] = field(default_factory=dict)
+    record: SolveRecord | None = None  # how the solve ran (planned and run stages, retries); None for a stand-in
 
     @property
     def converged(self) -> bool:

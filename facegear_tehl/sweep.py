@@ -288,7 +288,7 @@ def _model_warnings(case: Case, solutions: Sequence[PointSolution]) -> tuple[str
     if wanted == "auto":
         return () if len(set(used)) <= 1 else (f"thermal model auto chose differently per grid: {', '.join(used)}",)
     return tuple(
-        f"{s.name}: thermal model {wanted!r} asked for, the solver used {s.models['thermal']!r}"
+        f"{s.name}: thermal model {str(wanted)!r} asked for, the solver used {s.models['thermal']!r}"
         for s in solutions
         if "thermal" in s.models and s.models["thermal"] != wanted
     )

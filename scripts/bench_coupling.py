@@ -104,7 +104,7 @@ SOLVE = r'''
 import dataclasses, json, sys, time
 from threadpoolctl import threadpool_limits
 from facegear_tehl.case import load_case
-from facegear_tehl.ehl.solve import solve_point
+from facegear_tehl.ehl.staged import solve_point
 from facegear_tehl.points import contact_analysis
 
 case = load_case(sys.argv[1])

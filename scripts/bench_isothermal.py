@@ -19,7 +19,8 @@ import time
 
 from facegear_tehl.case import SolverSettings
 from facegear_tehl.ehl.scaling import contact_from_moes
-from facegear_tehl.ehl.solve import STAGED, PointSolve, solve_point
+from facegear_tehl.ehl.solve import PointSolve
+from facegear_tehl.ehl.staged import STAGED, solve_point
 
 # Reference C code of Venner & Lubrecht (2000) run on this machine type, 513^2 values (docs/benchmarks.md).
 REFERENCE = {

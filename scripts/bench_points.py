@@ -24,7 +24,7 @@ from threadpoolctl import threadpool_limits
 
 from facegear_tehl.case import load_case
 from facegear_tehl.ehl import energy
-from facegear_tehl.ehl.solve import solve_point
+from facegear_tehl.ehl.staged import solve_point
 from facegear_tehl.points import contact_analysis
 
 HERE = Path(__file__).resolve().parents[1]

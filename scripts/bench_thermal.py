@@ -17,7 +17,7 @@ import statistics
 import time
 
 from facegear_tehl.case import load_case
-from facegear_tehl.ehl.solve import solve_point
+from facegear_tehl.ehl.staged import solve_point
 from facegear_tehl.ehl.thermal import gupta_reduction, thermal_choice
 from facegear_tehl.points import contact_analysis
 from facegear_tehl.run import run_case

@@ -27,7 +27,8 @@ from threadpoolctl import threadpool_limits
 
 from facegear_tehl.case import load_case
 from facegear_tehl.ehl import solve, thermal
-from facegear_tehl.ehl.solve import PointSolve, solve_point
+from facegear_tehl.ehl.solve import PointSolve
+from facegear_tehl.ehl.staged import solve_point
 from facegear_tehl.points import contact_analysis
 
 HERE = Path(__file__).resolve().parents[1]

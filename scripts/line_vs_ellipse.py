@@ -34,7 +34,7 @@ import warnings
 import numpy as np
 
 from facegear_tehl.contact import ContactPoint
-from facegear_tehl.ehl.solve import solve_point
+from facegear_tehl.ehl.staged import solve_point
 from facegear_tehl.hertz import hertz_contact
 from facegear_tehl.line import solve_line
 from facegear_tehl.lubricant import Lubricant

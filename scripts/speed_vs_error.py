@@ -33,7 +33,7 @@ from typing import Sequence
 from facegear_tehl.case import THERMAL_MODELS, Case, load_case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.scaling import contact_from_moes
-from facegear_tehl.ehl.solve import solve_point
+from facegear_tehl.ehl.staged import solve_point
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.points import contact_analysis
 from facegear_tehl.solution import PointSolution

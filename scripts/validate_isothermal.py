@@ -17,7 +17,7 @@ import math
 
 from facegear_tehl.case import SolverSettings
 from facegear_tehl.ehl.scaling import contact_from_moes, scaling_for
-from facegear_tehl.ehl.solve import solve_point
+from facegear_tehl.ehl.staged import solve_point
 from facegear_tehl.film_formulas import (
     chittenden_central,
     chittenden_minimum,

@@ -10,7 +10,7 @@ import pytest
 
 from facegear_tehl.case import load_case, parse_case
 from facegear_tehl.ehl import energy
-from facegear_tehl.ehl.solve import solve_point
+from facegear_tehl.ehl.staged import solve_point
 from facegear_tehl.lubricant import KELVIN, Lubricant
 from facegear_tehl.lubricant_laws import conductivity_ratio, conductivity_ratio_at
 from facegear_tehl.points import contact_analysis

@@ -9,7 +9,7 @@ import pytest
 from facegear_tehl.case import load_case
 from facegear_tehl.ehl.domain import INLET_GAP_TARGET, rigid_gap_ratio, solution_domain, venner_lubrecht_domain
 from facegear_tehl.ehl.scaling import scaling_for
-from facegear_tehl.ehl.solve import solve_point
+from facegear_tehl.ehl.staged import solve_point
 from facegear_tehl.points import contact_analysis, select_points
 
 

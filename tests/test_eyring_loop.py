@@ -1,5 +1,6 @@
 """The isothermal Ree-Eyring outer loop (ehl/solve.py): the Newtonian columns of its film state."""
 
+from dataclasses import replace
 import math
 
 import numpy as np
@@ -9,6 +10,7 @@ from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import rheology, solve
 from facegear_tehl.ehl.friction import friction_coefficients
 from facegear_tehl.ehl.report import cell_area
+from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.materials import Solid
 from facegear_tehl.settings import SolverSettings
@@ -28,9 +30,9 @@ def test_newtonian_columns_of_a_converged_eyring_film(monkeypatch):
     level = solver.solver.levels[-1]
     pressure, film = level.pressure * solver.scaling.p_h, level.film * solver.scaling.film_scale
     bounded = solver._film_model(level)
-    bound = math.sqrt(6.0 * solve.EYRING_NEWTONIAN_SHARE * solver.settings.eyring_tolerance)
+    bound = math.sqrt(6.0 * TUNING.eyring_newtonian_share * solver.settings.eyring_tolerance)
     assert bounded.newtonian_below == pytest.approx(bound, rel=1e-12)
-    monkeypatch.setattr(solve, "EYRING_NEWTONIAN_SHARE", 0.0)
+    monkeypatch.setattr(solve, "TUNING", replace(TUNING, eyring_newtonian_share=0.0))
     full = solver._film_model(level)
     temperature = full.initial_temperature()
     states = [model.update(pressure, film, temperature) for model in (bounded, full)]

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from facegear_tehl.contact import ContactPoint
-from facegear_tehl.ehl.solve import solve_point
+from facegear_tehl.ehl.staged import solve_point
 from facegear_tehl.film_formulas import nijenbanning_central
 from facegear_tehl.hertz import hertz_contact
 from facegear_tehl.lubricant import Lubricant

@@ -10,19 +10,14 @@ import pytest
 
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.multigrid import at_load_fraction
+from facegear_tehl.ehl.retry import ATTEMPTS, DAMPED, POLICY
 from facegear_tehl.ehl.scaling import scaling_for
-from facegear_tehl.ehl.solve import (
-    ATTEMPTS,
-    CONTINUATION_MOES_M,
-    DAMPED,
-    FILM_CLOSED_MESSAGE,
-    PointSolve,
-    next_attempt,
-    problem_for,
-)
+from facegear_tehl.ehl.solve import PointSolve, problem_for
+from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.film_formulas import nijenbanning_central
 from facegear_tehl.lubricant import KELVIN, Lubricant
 from facegear_tehl.materials import Solid
+from facegear_tehl.record import SolveRecord
 from facegear_tehl.settings import SolverSettings
 from facegear_tehl.solution import Outcome, PointSolution
 
@@ -49,45 +44,46 @@ def test_a_load_fraction_is_the_hertzian_problem_of_the_lighter_contact():
         assert getattr(got, name) == pytest.approx(getattr(expected, name), rel=1e-9)
 
 
-def _solution(outcome: Outcome, attempt: int, moes_m: float, message: str = "") -> PointSolution:
-    return PointSolution("P", outcome, message, {"attempts": (float(attempt), "1"), "moes_m": (moes_m, "1")}, {}, {},
-                         {}, {})
+def _solution(outcome: Outcome, attempt: int, moes_m: float, iteration: Outcome = Outcome.CONVERGED) -> PointSolution:
+    """A solution of `outcome` whose iteration ended `iteration` (before its closed film was checked)."""
+    return PointSolution("P", outcome, "", {"attempts": (float(attempt), "1"), "moes_m": (moes_m, "1")}, {}, {},
+                         {}, {}, record=SolveRecord(attempt=attempt, iteration=iteration))
 
 
-STALL = FILM_CLOSED_MESSAGE + "; not converged after 42 cycles on the finest grid"
+STALL, CLOSED = Outcome.NOT_CONVERGED, Outcome.CONVERGED  # the film closed in a stall, in a converged iteration
 
 
-@pytest.mark.parametrize(("outcome", "attempt", "moes_m", "message", "expected"), [
-    (Outcome.DIVERGED, 1, 10.0, "", 2),
-    (Outcome.NOT_CONVERGED, 1, 10.0, "", 3),  # a stall: the damped relaxation at once
-    (Outcome.NOT_CONVERGED, 3, 1e5, "", None),  # a damped stall is reported as it is
-    (Outcome.DIVERGED, 3, 10.0, "", None),  # a light load has no continued start
-    (Outcome.DIVERGED, 3, 1e5, "", 4),
+@pytest.mark.parametrize(("outcome", "attempt", "moes_m", "iteration", "expected"), [
+    (Outcome.DIVERGED, 1, 10.0, Outcome.DIVERGED, 2),
+    (Outcome.NOT_CONVERGED, 1, 10.0, STALL, 3),  # a stall: the damped relaxation at once
+    (Outcome.NOT_CONVERGED, 3, 1e5, STALL, None),  # a damped stall is reported as it is
+    (Outcome.DIVERGED, 3, 10.0, Outcome.DIVERGED, None),  # a light load has no continued start
+    (Outcome.DIVERGED, 3, 1e5, Outcome.DIVERGED, 4),
     (Outcome.FILM_CLOSED, 1, 1e5, STALL, None),  # the first attempt's closed film goes to a finer grid (run.py)
     (Outcome.FILM_CLOSED, 2, 10.0, STALL, 3),  # a retry's stall that closed the film: as a stall
-    (Outcome.FILM_CLOSED, 2, 1e5, FILM_CLOSED_MESSAGE, 4),
-    (Outcome.FILM_CLOSED, 2, 10.0, FILM_CLOSED_MESSAGE, None),
+    (Outcome.FILM_CLOSED, 2, 1e5, CLOSED, 4),
+    (Outcome.FILM_CLOSED, 2, 10.0, CLOSED, None),
     (Outcome.FILM_CLOSED, 3, 1e5, STALL, 4),
     (Outcome.FILM_CLOSED, 4, 1e5, STALL, None),
-    (Outcome.CONVERGED, 1, 1e5, "", None),
+    (Outcome.CONVERGED, 1, 1e5, CLOSED, None),
 ])
-def test_next_attempt(outcome, attempt, moes_m, message, expected):
-    assert next_attempt(_solution(outcome, attempt, moes_m, message)) == expected
+def test_next_attempt(outcome, attempt, moes_m, iteration, expected):
+    assert POLICY.next_attempt(_solution(outcome, attempt, moes_m, iteration)) == expected
     if expected is not None:
-        assert ATTEMPTS[expected - 1][2] == (expected == len(ATTEMPTS))
+        assert ATTEMPTS[expected - 1].load_continuation == (expected == len(ATTEMPTS))
 
 
 def test_a_heavy_ellipse_converges_only_from_a_start_at_a_fraction_of_its_load():
     # a/b = 5, p_h = 2.5 GPa, 0.5 m/s: Moes M = 4.0e4, L = 7.9 (scripts/envelope.py ab5_ph2.5_u0.5_iso) on 513^2
     point = _point((2.5e9 / scaling_for(_point(1.0), OIL).p_h) ** 3)  # p_h ~ W^(1/3) (Hertz)
     scaling = scaling_for(point, OIL)
-    assert scaling.ellipticity == pytest.approx(5.0, rel=1e-3) and scaling.moes_m > 30 * CONTINUATION_MOES_M
+    assert scaling.ellipticity == pytest.approx(5.0, rel=1e-3) and scaling.moes_m > 30 * TUNING.continuation_moes_m
     settings = SolverSettings(grid=513, thermal="off")
     plain = PointSolve(point, OIL, settings, DAMPED, attempt=3).begin()
     assert plain.outcome is not Outcome.CONVERGED
     solution = PointSolve(point, OIL, settings, DAMPED, attempt=4, load_continuation=True).begin()
     assert solution.outcome is Outcome.CONVERGED, solution.message
-    assert "of the load" in solution.models["solver"]
+    assert solution.record.attempt == 4 and any("of the load" in note for note in solution.record.notes)
     # an open film, and the pressure field carries the applied load (force balance)
     assert solution.scalar("h_min") > 0.0
     dx = np.diff(solution.axes["x"].values)[0]

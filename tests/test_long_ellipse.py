@@ -8,7 +8,7 @@ import math
 import pytest
 
 from facegear_tehl.contact import ContactPoint
-from facegear_tehl.ehl.solve import solve_point
+from facegear_tehl.ehl.staged import solve_point
 from facegear_tehl.hertz import hertz_contact
 from facegear_tehl.line import solve_line
 from facegear_tehl.lubricant import Lubricant

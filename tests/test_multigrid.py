@@ -178,32 +178,34 @@ def test_near_the_solution_the_truncated_correction_converges_below_the_old_floo
     """The circle at M = 20, L = 10 on 257 x 33 at a tolerance of 1e-5: with the coarse-grid correction added at every
     pressurised node the V-cycle stalls at ~6.4e-5 per cycle (the cavitation boundary flips by a node every cycle) and
     ends on that algebraic floor; truncated next to cavitation once the change is below 10x the tolerance
-    (solve.TRUNCATION_BAND) it converges on its tolerance, and on to 1e-7 when asked, to the same discrete solution
+    (TUNING.truncation_band) it converges on its tolerance, and on to 1e-7 when asked, to the same discrete solution
     (h_c and p_max within the flicker of the stalled iterate)."""
     from dataclasses import replace
 
-    from facegear_tehl.ehl import solve as solve_module
+    from facegear_tehl.ehl import pressure as pressure_module
     from facegear_tehl.ehl.solve import PointSolve
+    from facegear_tehl.ehl.start import start
+    from facegear_tehl.ehl.tuning import TUNING
 
     point, lubricant = contact_from_moes(20.0, 10.0, viscosity_model="roelands", density_model="dowson_higginson")
     settings = SolverSettings(grid=257, grid_y=33, domain_x=(-4.5, 1.5), domain_y=(-3.0, 3.0), max_cycles=60,
                               tolerance=1e-5, load_tolerance=1e-5)
     results = {}
-    for band in (0.0, solve_module.TRUNCATION_BAND):  # 0: never truncated
-        solve_module.TRUNCATION_BAND, saved = band, solve_module.TRUNCATION_BAND
+    for band in (0.0, TUNING.truncation_band):  # 0: never truncated
+        pressure_module.TUNING = replace(TUNING, truncation_band=band)
         try:
             solve = PointSolve(point, lubricant, settings)
-            index, status = solve.start(below_top=0)
+            index, status = start(solve, below_top=0)
             assert status.converged
             status = solve.cycle(index, settings.max_cycles)
             floor = solve.history.floor
-            solve.settings = replace(settings, tolerance=1e-7, load_tolerance=1e-7)
+            solve.pressure.settings = replace(settings, tolerance=1e-7, load_tolerance=1e-7)
             further = solve.cycle(index, settings.max_cycles)
         finally:
-            solve_module.TRUNCATION_BAND = saved
+            pressure_module.TUNING = TUNING
         level = solve.solver.levels[index]
         results[band] = status, floor, further, solve.history, solve.solver.central_film(level), level.pressure.max()
-    stalled, truncated = results[0.0], results[solve_module.TRUNCATION_BAND]
+    stalled, truncated = results[0.0], results[TUNING.truncation_band]
     assert stalled[0].converged and stalled[1] > 3e-5  # ended on the floor
     assert not stalled[2].converged and min(stalled[3].changes[-10:]) > 3e-5  # and cannot leave it
     assert truncated[0].converged and math.isnan(truncated[1])  # on its tolerance
@@ -220,7 +222,7 @@ def test_the_truncated_correction_waits_for_a_stall():
     from pathlib import Path
     import sys
 
-    from facegear_tehl.ehl.solve import solve_point
+    from facegear_tehl.ehl.staged import solve_point
 
     path = Path(__file__).resolve().parents[1] / "scripts" / "envelope.py"
     spec = importlib.util.spec_from_file_location("envelope", path)

@@ -20,8 +20,10 @@ from facegear_tehl.case import load_case
 from facegear_tehl.cli import tehl
 from facegear_tehl.ehl import jaeger, outlet
 from facegear_tehl.ehl.outlet import GHOST, PatchFilmModel, needs_outlet_patch
-from facegear_tehl.ehl.solve import THERMAL_FLOOR_H_C, solve_point
+from facegear_tehl.ehl.staged import solve_point
+from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.points import contact_analysis
+from facegear_tehl.record import Action, Reason, Stage
 from facegear_tehl.settings import MAX_OUTLET_PATCHES, SolverSettings
 from facegear_tehl.solution import Outcome, Status
 
@@ -128,8 +130,8 @@ def test_the_energy_sweeps_hold_the_inflow_columns():
 
 
 def test_each_patch_the_settings_allow_has_its_start():
-    assert len(outlet.NESTED_PATCH_STARTS) + 1 == MAX_OUTLET_PATCHES == SolverSettings().outlet_patches
-    starts = (outlet.PATCH_START,) + outlet.NESTED_PATCH_STARTS
+    assert len(outlet.TUNING.nested_patch_starts) + 1 == MAX_OUTLET_PATCHES == SolverSettings().outlet_patches
+    starts = (outlet.TUNING.patch_start,) + outlet.TUNING.nested_patch_starts
     assert all(a < b for a, b in zip(starts, starts[1:], strict=False))  # each inside the one before
 
 
@@ -160,7 +162,8 @@ def test_a_stage_that_fails_reports_the_uniform_solution(monkeypatch):
     for name in ("h_c", "h_min", "p_max", "dT_max", "mu"):
         assert failed.scalars[name] == plain.scalars[name], name
     assert "outlet_patch_start" not in failed.scalars
-    assert "outlet refinement dropped" in failed.models["solver"]
+    last = failed.record.retries[-1]  # (after the attempts the relaxation needed, as for `plain`)
+    assert (last.reason, last.action) == (Reason.STAGE_FAILED, Action.DROPPED)
 
 
 def test_a_stage_that_converges_is_reported_with_its_patch(monkeypatch):
@@ -171,7 +174,8 @@ def test_a_stage_that_converges_is_reported_with_its_patch(monkeypatch):
     refined = solve_point(point, case.lubricant, settings)
     assert refined.outcome == Outcome.CONVERGED and refined.scalars["outlet_patches"][0] == 1
     assert refined.scalars["outlet_patch_start"][0] == pytest.approx(-0.5 * refined.scalars["b"][0], rel=0.05)
-    assert "outlet refined" in refined.models["solver"]
+    assert [s.stage for s in refined.record.stages][-1] is Stage.OUTLET
+    assert Reason.STAGE_FAILED not in [r.reason for r in refined.record.retries]
     monkeypatch.setattr(outlet, "refine_outlet", lambda *args: (None, Status(Outcome.NOT_CONVERGED, "stub")))
     assert "outlet_patch_start" not in solve_point(point, case.lubricant, settings).scalars
 
@@ -182,9 +186,10 @@ def test_a_nested_stage_that_fails_reports_the_first_patch(monkeypatch):
     case, point = _face_gear("S2")
     settings = replace(case.solver, grid=129, grid_y=17, outlet_refinement="always")
     with monkeypatch.context() as stop:
-        stop.setattr(outlet, "NESTED_PATCH_STARTS", ())
+        stop.setattr(outlet, "TUNING", replace(outlet.TUNING, nested_patch_starts=()))
         first = solve_point(point, case.lubricant, settings)
-    monkeypatch.setattr(outlet, "NESTED_PATCH_STARTS", outlet.NESTED_PATCH_STARTS[:1])  # two patches: enough here
+    two = replace(outlet.TUNING, nested_patch_starts=outlet.TUNING.nested_patch_starts[:1])
+    monkeypatch.setattr(outlet, "TUNING", two)  # two patches: enough here
     both = solve_point(point, case.lubricant, settings)
     assert first.scalars["outlet_patches"][0] == 1 and both.scalars["outlet_patches"][0] == 2
     assert both.scalars["dT_max"][0] != first.scalars["dT_max"][0]
@@ -208,7 +213,8 @@ def test_a_nested_stage_that_fails_reports_the_first_patch(monkeypatch):
     assert failed.outcome == Outcome.CONVERGED and failed.scalars["outlet_patches"][0] == 1
     for name in ("h_c", "h_min", "p_max", "dT_max", "mu", "error_estimate_dT_max"):
         assert failed.scalars[name] == first.scalars[name], name
-    assert "outlet patch 2: diverged" in failed.models["solver"]
+    last = failed.record.retries[-1]
+    assert (last.reason, last.action) == (Reason.STAGE_FAILED, Action.KEPT_COARSER)
 
 
 def test_a_stage_stops_once_its_hot_spot_has_settled():
@@ -243,7 +249,7 @@ def test_a_stage_pressure_settles_with_a_small_load_bias():
     assert not outlet.stage_pressure_settled(history([3.6e-4, 2.2e-4, 1.5e-3, 4.4e-4], [-1.7e-4, -2.3e-4]), settings)
     assert not outlet.stage_pressure_settled(history(changes[1:], [-1.7e-4, -2.3e-4]), settings)
     # h_c's response to the band's largest load error: within 1e-4 (h ~ W^-0.067)
-    band = outlet.STAGE_LOAD_BAND * settings.load_tolerance
+    band = outlet.TUNING.stage_load_band * settings.load_tolerance
     assert abs((1.0 + band) ** -0.067 - 1.0) < 1e-4
 
 
@@ -279,20 +285,20 @@ def test_the_outlet_patches_land_on_the_uniform_grid_of_their_spacing(name):
 
 
 def test_the_next_stage_is_certain_beyond_the_margin():
-    """_next_certain: under `auto` a candidate whose ΔT_max or μ moved by more than PROVISIONAL_MARGIN times the
+    """_next_certain: under `auto` a candidate whose ΔT_max or μ moved by more than provisional_margin times the
     bounds asked of them (2 %, 1 %) makes the next stage certain, one that moved by less does not (the stage then
     runs to convergence and `auto` decides on its converged figures); under `always` it is always certain."""
     previous = {"dT_max": 40.0, "mu": 0.01}
-    margin = outlet.PROVISIONAL_MARGIN
+    margin = outlet.TUNING.provisional_margin
     assert margin > 1.0  # a provisional decision needs more than the converged one
 
     def certain(dT_max: float, mu: float, choice: str = "auto") -> bool:
         fake = SimpleNamespace(settings=SimpleNamespace(outlet_refinement=choice))
         with pytest.MonkeyPatch.context() as patch:
-            patch.setattr(outlet, "_stage_figures", lambda solve, candidate: {"dT_max": dT_max, "mu": mu})
+            patch.setattr(outlet, "stage_figures", lambda solve, candidate: {"dT_max": dT_max, "mu": mu})
             return outlet._next_certain(fake, previous)(None)
 
-    step_dT, step_mu = outlet.AUTO_DT_MAX_ERROR * 40.0, outlet.AUTO_MU_ERROR * 0.01
+    step_dT, step_mu = outlet.TUNING.auto_dt_max_error * 40.0, outlet.TUNING.auto_mu_error * 0.01
     assert certain(40.0 + 1.01 * margin * step_dT, 0.01) and certain(40.0 - 1.01 * margin * step_dT, 0.01)
     assert certain(40.0, 0.01 + 1.01 * margin * step_mu)
     assert not certain(40.0 + 0.99 * margin * step_dT, 0.01 - 0.99 * margin * step_mu)
@@ -304,11 +310,12 @@ def test_a_provisional_stage_leaves_the_result_within_the_last_stage_tolerance(m
     """The quick S2 with `always` and two patches: the first ends provisionally after PROVISIONAL_MIN_ITERATIONS
     outer iterations, the second converges on top of it. Against the same refinement with the first converged, the
     figures differ by less than the last stage's own stopping tolerance (FIGURE_SPREAD of ΔT_max, a fifth of the
-    accuracy asked of μ, h_c within the spread the outer loops accept, THERMAL_FLOOR_H_C): the stage below matters
+    accuracy asked of μ, h_c within the spread the outer loops accept, thermal_floor_h_c): the stage below matters
     only through the strip upstream of the next patch."""
     case, point = _face_gear("S2")
     settings = replace(case.solver, grid=129, grid_y=17, outlet_refinement="always")
-    monkeypatch.setattr(outlet, "NESTED_PATCH_STARTS", outlet.NESTED_PATCH_STARTS[:1])
+    two = replace(outlet.TUNING, nested_patch_starts=outlet.TUNING.nested_patch_starts[:1])
+    monkeypatch.setattr(outlet, "TUNING", two)
     real_refine = outlet.refine_outlet
     ended = []
 
@@ -320,16 +327,16 @@ def test_a_provisional_stage_leaves_the_result_within_the_last_stage_tolerance(m
 
     monkeypatch.setattr(outlet, "refine_outlet", spied)
     early = solve_point(point, case.lubricant, settings)
-    assert ended == [(True, outlet.PROVISIONAL_MIN_ITERATIONS), (False, ended[1][1])]
+    assert ended == [(True, outlet.TUNING.provisional_min_iterations), (False, ended[1][1])]
     ended.clear()
-    monkeypatch.setattr(outlet, "PROVISIONAL_MIN_ITERATIONS", 10**6)
+    monkeypatch.setattr(outlet, "TUNING", replace(outlet.TUNING, provisional_min_iterations=10**6))
     converged = solve_point(point, case.lubricant, settings)
     assert [provisional for provisional, _ in ended] == [False, False] and ended[0][1] > ended[1][1] / 4
     assert early.outcome == converged.outcome == Outcome.CONVERGED
     assert early.scalars["outlet_patches"][0] == converged.scalars["outlet_patches"][0] == 2
-    assert early.scalars["dT_max"][0] == pytest.approx(converged.scalars["dT_max"][0], rel=outlet.FIGURE_SPREAD)
-    assert early.scalars["mu"][0] == pytest.approx(converged.scalars["mu"][0], rel=0.2 * outlet.AUTO_MU_ERROR)
-    assert early.scalars["h_c"][0] == pytest.approx(converged.scalars["h_c"][0], rel=THERMAL_FLOOR_H_C)
+    assert early.scalars["dT_max"][0] == pytest.approx(converged.scalars["dT_max"][0], rel=outlet.TUNING.figure_spread)
+    assert early.scalars["mu"][0] == pytest.approx(converged.scalars["mu"][0], rel=0.2 * outlet.TUNING.auto_mu_error)
+    assert early.scalars["h_c"][0] == pytest.approx(converged.scalars["h_c"][0], rel=TUNING.thermal_floor_h_c)
     assert early.scalars["iterations"][0] < converged.scalars["iterations"][0]
 
 

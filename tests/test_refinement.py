@@ -1,5 +1,5 @@
 """The run's refinement policy (run.solve_refining): a converged point whose own error estimate of h_min or h_c
-exceeds run.COARSE_ESTIMATE is solved again on the next grid, the finer result kept if it converges, else the
+exceeds TUNING.coarse_estimate is solved again on the next grid, the finer result kept if it converges, else the
 coarser converged one with the reason; what the solver chose is in the run's warnings, the point's message and
 models and the overrides. The policy's unit behaviour runs on a stand-in solver; a real contact shows that the
 refined film is the better one."""
@@ -10,9 +10,11 @@ from dataclasses import replace
 
 import pytest
 
+from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.parallel import SolveTask
 from facegear_tehl.points import contact_analysis
-from facegear_tehl.run import COARSE_ESTIMATE, refinement_note, solve_refining
+from facegear_tehl.record import Action, Reason
+from facegear_tehl.run import refinement_note, solve_refining
 from facegear_tehl.solution import Outcome, PointSolution
 
 import synthetic
@@ -41,7 +43,7 @@ class StandIn:
 
 
 def test_a_converged_point_within_the_bound_is_left_alone():
-    solver = StandIn({129: (Outcome.CONVERGED, 0.5 * COARSE_ESTIMATE)})
+    solver = StandIn({129: (Outcome.CONVERGED, 0.5 * TUNING.coarse_estimate)})
     solved, failed, refined = solve_refining([_task()], solver, jobs=1)
     assert solver.grids == [129] and refined == {} and failed == ()
     assert solved[0].message == ""
@@ -59,8 +61,7 @@ def test_a_converged_point_beyond_the_bound_is_solved_again_until_within_it():
     note = refinement_note("contact", refinement, solution)
     assert note == ("contact: the 129 x 129 grid did not resolve the film (converged with h_c estimated 1 % and h_min "
                     "2.6e+02 % off, bound 10 %); solved on 513 x 513 (chosen by the solver)")
-    assert "grid 513 x 513 chosen by the solver (129 x 129 did not resolve the film: converged with" in \
-        solution.models["solver"]
+    assert [(r.reason, r.action) for r in solution.record.retries] == [(Reason.COARSE_ESTIMATE, Action.FINER_GRID)] * 2
 
 
 def test_a_trial_grid_is_left_alone_unless_it_fails():
@@ -83,7 +84,8 @@ def test_the_coarser_converged_point_is_kept_when_the_finer_grid_fails(outcome):
     assert solution.message == (f"grid 513 x 513 tried by the solver ended {outcome.value}; the result is the "
                                 "converged 257 x 257 solution (converged with h_c estimated 1 % and h_min 20 % off, "
                                 "bound 10 %)")
-    assert solution.message in solution.models["solver"]
+    last = solution.record.retries[-1]
+    assert (last.reason, last.action) == (Reason.FINER_GRID_FAILED, Action.KEPT_COARSER)
     refinement = refined["contact"]
     assert (refinement.grid, refinement.tried, refinement.outcome) == ("257 x 257", "513 x 513", outcome.value)
     assert refinement_note("contact", refinement, solution).endswith(
@@ -99,7 +101,7 @@ def test_the_asked_grid_is_kept_when_its_first_refinement_fails():
 
 
 def test_a_point_that_fails_is_refined_as_before_and_then_held_to_the_bound():
-    """A failure goes to the next grid (run._unresolved); once converged there, the bound applies as to any."""
+    """A failure goes to the next grid (RetryPolicy.unresolved); once converged there, the bound applies as to any."""
     solver = StandIn({129: (Outcome.FILM_CLOSED, 0.0), 257: (Outcome.CONVERGED, 0.5),
                       513: (Outcome.NOT_CONVERGED, 0.5)})
     (solution,), _, refined = solve_refining([_task()], _Closing(solver), jobs=1)
@@ -151,7 +153,7 @@ def test_a_converged_film_beyond_the_bound_is_refined_until_within_it(tmp_path):
     from facegear_tehl.case import load_case
     from facegear_tehl.cli import tehl
     from facegear_tehl.ehl.scaling import scaling_for
-    from facegear_tehl.ehl.solve import STAGED
+    from facegear_tehl.ehl.staged import STAGED
     from facegear_tehl.film_formulas import hamrock_dowson_minimum
     from facegear_tehl.results import read_result
 
@@ -165,16 +167,15 @@ def test_a_converged_film_beyond_the_bound_is_refined_until_within_it(tmp_path):
     point = run.points["contact"]
     assert point.converged and (point.scalars["grid"], point.scalars["grid_y"]) == (257, 257)
     assert run.overrides["refined_grid"] == {"contact": "257 x 257"}
-    assert "grid 257 x 257 chosen by the solver (129 x 129 did not resolve the film: converged" in \
-        point.models["solver"]
-    assert abs(point.scalars["error_estimate_h_min"]) < COARSE_ESTIMATE
+    assert [(r.reason, r.action) for r in point.record.retries] == [(Reason.COARSE_ESTIMATE, Action.FINER_GRID)]
+    assert abs(point.scalars["error_estimate_h_min"]) < TUNING.coarse_estimate
 
     case = load_case(case_file)
     contact = contact_analysis(case).points[0]
     sc = scaling_for(contact, case.lubricant)
     formula = hamrock_dowson_minimum(sc.hamrock_u, sc.hamrock_g, sc.hamrock_w, sc.ellipticity) * contact.radius_x
     coarse = STAGED(contact, case.lubricant, case.solver)  # the 129^2 solution the run refined
-    assert coarse.converged and abs(coarse.scalar("error_estimate_h_min")) > COARSE_ESTIMATE
+    assert coarse.converged and abs(coarse.scalar("error_estimate_h_min")) > TUNING.coarse_estimate
     assert abs(point.scalars["h_min"] / formula - 1.0) < abs(coarse.scalar("h_min") / formula - 1.0) - 0.04
 
 
@@ -186,13 +187,14 @@ def _thermal_solve(name: str, grid: int, grid_y: int, attempt: int):
     from test_envelope_cases import envelope
 
     from facegear_tehl.ehl.domain import RETRY_INLET_DOUBLINGS
-    from facegear_tehl.ehl.solve import ATTEMPTS, PointSolve
+    from facegear_tehl.ehl.retry import ATTEMPTS
+    from facegear_tehl.ehl.solve import PointSolve
 
     case = next(c for c in envelope.envelope_cases() if c.name == name)
-    _, relaxation, continued = ATTEMPTS[attempt - 1]
-    return PointSolve(case.point(), case.lubricant(), case.settings(grid, grid_y), relaxation,
+    chosen = ATTEMPTS[attempt - 1]
+    return PointSolve(case.point(), case.lubricant(), case.settings(grid, grid_y), chosen.relaxation,
                       escalate_start=attempt > 1, attempt=attempt, max_doublings=RETRY_INLET_DOUBLINGS,
-                      load_continuation=continued)
+                      load_continuation=chosen.load_continuation)
 
 
 def test_a_damped_attempt_whose_coarse_thermal_stage_runs_away_couples_on_the_finest_grid(monkeypatch):
@@ -201,11 +203,12 @@ def test_a_damped_attempt_whose_coarse_thermal_stage_runs_away_couples_on_the_fi
     isothermal solution, and says so; it solves the same discrete equations as the two-stage solve, so both
     converge to the same film within the loop's tolerances. An undamped attempt still reports the runaway (its
     damped retry comes next)."""
-    from facegear_tehl.ehl.solve import DAMPED_ATTEMPT, PointSolve
+    from facegear_tehl.ehl.solve import PointSolve
+    from facegear_tehl.ehl.tuning import TUNING
     from facegear_tehl.solution import Status
 
     name = "ab30_ph0.8_u10_srr0.5_th"
-    two_stage = _thermal_solve(name, 129, 33, DAMPED_ATTEMPT).begin().finish()
+    two_stage = _thermal_solve(name, 129, 33, TUNING.damped_attempt).begin().finish()
     assert two_stage.converged, two_stage.message
     couple = PointSolve.couple
     ran_away = Status(Outcome.DIVERGED, "diverged in the film temperature at outer iteration 1")
@@ -216,10 +219,10 @@ def test_a_damped_attempt_whose_coarse_thermal_stage_runs_away_couples_on_the_fi
         return couple(self, index, initial, coarse_h_c)
 
     monkeypatch.setattr(PointSolve, "couple", coarse_runs_away)
-    fallback = _thermal_solve(name, 129, 33, DAMPED_ATTEMPT).begin()
+    fallback = _thermal_solve(name, 129, 33, TUNING.damped_attempt).begin()
     assert isinstance(fallback, PointSolution) and fallback.converged, fallback
-    assert ("the coupled problem one grid coarser (129 x 33) ran away (diverged in the film temperature at outer "
-            "iteration 1): coupled on the finest grid from its isothermal solution") in fallback.models["solver"]
+    assert [(r.reason, r.action) for r in fallback.record.retries] == [(Reason.COARSE_STAGE_RAN_AWAY,
+                                                                        Action.COUPLED_ON_FINEST)]
     assert fallback.scalar("grid") == two_stage.scalar("grid")
     for key in ("h_c", "h_min", "dT_max"):
         assert fallback.scalar(key) == pytest.approx(two_stage.scalar(key), rel=2e-3), key
@@ -237,16 +240,16 @@ def test_the_thermal_film_the_coarse_stage_could_not_hold_converges():
     phi_T (L_th = beta eta_0 u_e^2/k = 2.3e-3 here: 1.9 %) less 2 % and the thinning of the oil by its thermal expansion
     (Dowson-Higginson's eps_T dT: the mass flow through the centre is the inlet's, so a hotter, lighter film is
     thicker by at most eps_T dT_max)."""
-    from facegear_tehl.ehl.solve import DAMPED_ATTEMPT
     from facegear_tehl.ehl.thermal import gupta_reduction
+    from facegear_tehl.ehl.tuning import TUNING
 
-    solve = _thermal_solve("ab30_ph1.5_u0.5_srr0.5_th", 513, 513, DAMPED_ATTEMPT)
+    solve = _thermal_solve("ab30_ph1.5_u0.5_srr0.5_th", 513, 513, TUNING.damped_attempt)
     thermal = solve.begin()
     assert isinstance(thermal, PointSolution) and thermal.converged, thermal
-    assert "coupled on the finest grid from its isothermal solution" in thermal.models["solver"]
+    assert Action.COUPLED_ON_FINEST in [r.action for r in thermal.record.retries]
     assert thermal.scalar("h_min") > 0.0
     assert abs(thermal.scalar("energy_balance_error")) <= 0.01
-    isothermal = _thermal_solve("ab30_ph1.5_u0.5_iso", 513, 513, DAMPED_ATTEMPT).begin()
+    isothermal = _thermal_solve("ab30_ph1.5_u0.5_iso", 513, 513, TUNING.damped_attempt).begin()
     assert isothermal.converged and isothermal.scalar("grid") == thermal.scalar("grid")
 
     gupta = gupta_reduction(solve.point, solve.lubricant)

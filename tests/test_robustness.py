@@ -5,6 +5,7 @@ while a solve that raises is recorded in a complete file; the hard-case script r
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 import subprocess
 import sys
@@ -16,10 +17,11 @@ import numpy as np
 import pytest
 import yaml
 
-from facegear_tehl import run as run_module
 from facegear_tehl.case import parse_case
 from facegear_tehl.cli import tehl
+from facegear_tehl.ehl import retry as retry_module
 from facegear_tehl.points import contact_analysis
+from facegear_tehl.record import Action
 from facegear_tehl.results import non_finite_entries, read_result, write_result
 from facegear_tehl.schema import CaseError
 
@@ -205,7 +207,7 @@ def test_a_film_that_closes_is_solved_again_on_a_finer_grid(tmp_path):
     point = run.points["contact"]
     assert point.converged and point.scalars["grid"] == 1025 and point.scalars["h_min"] > 0.0
     assert run.overrides["refined_grid"] == {"contact": "1025 x 1025"}
-    assert "chosen by the solver" in point.models["solver"]
+    assert [r.action for r in point.record.retries][-1] is Action.FINER_GRID
     case = load_case(synthetic.CASES / "hard" / "heavy_m5000_l10.yaml")
     contact = contact_analysis(case).points[0]
     sc = scaling_for(contact, case.lubricant)
@@ -224,7 +226,7 @@ def test_a_film_closing_in_the_side_lobes_is_solved_again_with_more_rows(tmp_pat
     from facegear_tehl.film_formulas import nijenbanning_central
 
     # Capped at 257 (as above): converged on 257^2 with h_min estimated 260 % off, the point would go on to 513^2.
-    monkeypatch.setattr(run_module, "MAX_REFINED_GRID", 257)
+    monkeypatch.setattr(retry_module, "TUNING", dataclasses.replace(retry_module.TUNING, max_refined_grid=257))
     case_file = synthetic.CASES / "hard" / "side_lobes_ab5.yaml"
     target = tmp_path / "side_lobes.h5"
     result = CliRunner().invoke(tehl, ["run", str(case_file), "-o", str(target), "--jobs", "1"])
@@ -247,14 +249,14 @@ def test_a_film_closing_in_the_side_lobes_is_solved_again_with_more_rows(tmp_pat
     (0.94, "off", (257, 257), (513, 513)),  # ... unless the rows already match the columns
     (0.10, "off", (257, 65), (513, 129)),  # at the outlet constriction: both axes
     (0.10, "off", (513, 513), (1025, 1025)),
-    (0.10, "off", (1025, 257), None),  # beyond MAX_REFINED_GRID
-    (0.10, "full", (513, 129), None),  # a thermal point stops at MAX_REFINED_THERMAL_GRID
+    (0.10, "off", (1025, 257), None),  # beyond max_refined_grid
+    (0.10, "full", (513, 129), None),  # a thermal point stops at max_refined_thermal_grid
     (0.94, "full", (513, 129), (513, 257)),
 ])
 def test_the_finer_grid_follows_where_the_film_is_lowest(y_over_a, thermal, asked, chosen):
     from dataclasses import replace
 
-    from facegear_tehl.run import _refined
+    from facegear_tehl.ehl.retry import POLICY
     from facegear_tehl.settings import SolverSettings
     from facegear_tehl.solution import Outcome, PointSolution
 
@@ -263,7 +265,7 @@ def test_the_finer_grid_follows_where_the_film_is_lowest(y_over_a, thermal, aske
                              scalars={"a": (a, "m"), "y_film_closed": (-y_over_a * a, "m")},
                              fields={}, axes={}, models={"thermal": thermal})
     settings = replace(SolverSettings(), grid=asked[0], grid_y=asked[1])
-    finer = _refined(settings, solution)
+    finer = POLICY.finer_settings(settings, solution)
     assert (None if finer is None else (finer.grid, finer.nodes_y)) == chosen
 
 
@@ -290,7 +292,7 @@ def test_a_period_2_limit_cycle_is_replaced_by_the_mean_of_its_phases():
 def _face_gear_point(solver: dict, **gear):
     """One point of the shipped face gear case with `gear` keys replaced (`points` naming it) and `solver` keys
     replaced, solved by ehl.solve.solve_point: (case, point, solution)."""
-    from facegear_tehl.ehl.solve import solve_point
+    from facegear_tehl.ehl.staged import solve_point
 
     raw = yaml.safe_load((Path(__file__).resolve().parents[1] / "cases" / "facegear_110.yaml").read_text())
     raw["gear"].update(gear)
@@ -356,7 +358,9 @@ def test_a_pressure_that_cycling_on_a_converged_film_state_left_unconverged_is_n
     that reaches the thermal loop cycles the pressure long once, not at each of its last outer iterations."""
     from dataclasses import replace
 
+    from facegear_tehl.ehl import pressure as pressure_module
     from facegear_tehl.ehl import solve as solve_module
+    from facegear_tehl.ehl.staged import solve_point
 
     raw = yaml.safe_load((ROOT / "cases" / "facegear_110.yaml").read_text())
     raw["gear"]["points"] = ["S1"]
@@ -366,24 +370,24 @@ def test_a_pressure_that_cycling_on_a_converged_film_state_left_unconverged_is_n
                        max_thermal_iterations=12)
     long_cycles: list[tuple[int, int]] = []  # (attempt, level) cycled with max_cycles inside the thermal loop
     inside = []
-    cycle, couple = solve_module.PointSolve.cycle, solve_module.PointSolve.couple
+    cycle, couple = pressure_module.PressureIteration.cycle, solve_module.PointSolve.couple
 
     def counted_cycle(self, index, max_cycles, best=None):
         if inside and max_cycles == settings.max_cycles:
-            long_cycles.append((self.attempt, index))
+            long_cycles.append((inside[-1], index))
         return cycle(self, index, max_cycles, best)
 
     def counted_couple(self, *args, **kwargs):
-        inside.append(True)
+        inside.append(self.attempt)
         try:
             return couple(self, *args, **kwargs)
         finally:
             inside.pop()
 
-    monkeypatch.setattr(solve_module.PointSolve, "cycle", counted_cycle)
+    monkeypatch.setattr(pressure_module.PressureIteration, "cycle", counted_cycle)
     monkeypatch.setattr(solve_module.PointSolve, "couple", counted_couple)
     point = contact_analysis(case).points[0]
-    solution = solve_module.solve_point(point, case.lubricant, settings)
+    solution = solve_point(point, case.lubricant, settings)
     assert solution.scalar("thermal_iterations") >= 3  # the film state had outer iterations to converge over
     assert long_cycles, "the film state never converged under the unconverged pressure: the test tests nothing"
     assert len(set(long_cycles)) == len(long_cycles), long_cycles
@@ -399,7 +403,9 @@ def test_a_coarse_stage_whose_pressure_cannot_hold_stops_once_its_film_state_has
     the finest grid's loop runs after it."""
     from dataclasses import replace
 
+    from facegear_tehl.ehl import pressure as pressure_module
     from facegear_tehl.ehl import solve as solve_module
+    from facegear_tehl.ehl.staged import solve_point
 
     raw = yaml.safe_load((ROOT / "cases" / "facegear_110.yaml").read_text())
     raw["gear"]["points"] = ["S1"]
@@ -409,7 +415,7 @@ def test_a_coarse_stage_whose_pressure_cannot_hold_stops_once_its_film_state_has
                        max_thermal_iterations=30)
     stages: list[tuple[int, int, int]] = []  # (level, its outer iterations, the one that cycled the pressure long)
     long_cycle: list[int] = []
-    cycle, couple = solve_module.PointSolve.cycle, solve_module.PointSolve.couple
+    cycle, couple = pressure_module.PressureIteration.cycle, solve_module.PointSolve.couple
 
     def counted_cycle(self, index, max_cycles, best=None):
         if max_cycles == settings.max_cycles and self.history.thermal_changes:
@@ -424,10 +430,10 @@ def test_a_coarse_stage_whose_pressure_cannot_hold_stops_once_its_film_state_has
         finally:
             stages.append((index, self.history.outer - before, long_cycle[0] - before if long_cycle else -1))
 
-    monkeypatch.setattr(solve_module.PointSolve, "cycle", counted_cycle)
+    monkeypatch.setattr(pressure_module.PressureIteration, "cycle", counted_cycle)
     monkeypatch.setattr(solve_module.PointSolve, "couple", counted_couple)
     point = contact_analysis(case).points[0]
-    solve_module.solve_point(point, case.lubricant, settings)
+    solve_point(point, case.lubricant, settings)
     (coarse, coarse_outer, coarse_long), (fine, fine_outer, _) = stages[:2]
     assert coarse < fine
     assert coarse_long > 0, "the film state never settled under the unconverged pressure: the test tests nothing"

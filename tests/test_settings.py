@@ -4,6 +4,7 @@ written, and `facegear_tehl.settings` loads without the gear geometry."""
 from __future__ import annotations
 
 from dataclasses import MISSING, fields
+from enum import Enum
 import subprocess
 import sys
 
@@ -54,6 +55,7 @@ def test_every_solver_key_round_trips():
     default = SolverSettings()
     assert all(getattr(written, f.name) != getattr(default, f.name) for f in fields(SolverSettings))
     block = {f.name: getattr(written, f.name) for f in fields(SolverSettings)}
+    block = {name: value.value if isinstance(value, Enum) else value for name, value in block.items()}  # YAML words
     block["domain"] = {"x": list(block.pop("domain_x")), "y": list(block.pop("domain_y"))}
     text = MINIMAL + yaml.safe_dump({"solver": block, "output": {"file": "out/run.h5"}})
     case = parse_case(text)

@@ -16,7 +16,7 @@ import pytest
 
 from facegear_tehl.case import load_case
 from facegear_tehl.cli import tehl
-from facegear_tehl.ehl.solve import THERMAL_FLOOR_H_C
+from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.results import NonFiniteError, RunResult, read_result, write_result
 from facegear_tehl.schema import CaseError
 from facegear_tehl.solution import Field
@@ -337,7 +337,7 @@ def test_a_grid_that_did_not_converge_enters_no_order_or_extrapolation():
 def _assert_converges(table, names, first, last, iteration_error=0.0):
     """Monotone over the grids first..last, observed order in [1, 2.5] on every triplet ending there, to within the
     order's own uncertainty when each value carries a relative iteration error up to `iteration_error` (a thermal
-    loop that ends at its floor: solve.THERMAL_FLOOR_H_C): p = log2(D_1/D_2) of the changes D_1, D_2 between the
+    loop that ends at its floor: TUNING.thermal_floor_h_c): p = log2(D_1/D_2) of the changes D_1, D_2 between the
     grids, each off by up to 2 e |f|, is uncertain by (2 e |f|/D_1 + 2 e |f|/D_2)/ln 2. A triplet whose uncertainty
     reaches 1 does not measure an order (its finest change is within the iteration error); at least one must."""
     grids = list(table["grid"].values)
@@ -377,7 +377,7 @@ def test_s1_of_the_face_gear_case_converges_and_the_default_grid_is_within_1_per
     sweep = run_sweep(case, GRIDS[1:], point="S1")
     table = sweep.run.sweep
     assert sweep.run.status == "ok"
-    _assert_converges(table, ["h_c"], 65, 513, iteration_error=THERMAL_FLOOR_H_C)
+    _assert_converges(table, ["h_c"], 65, 513, iteration_error=TUNING.thermal_floor_h_c)
     h_min = table["h_min"].values
     assert (np.diff(h_min) > 0).all() or (np.diff(h_min) < 0).all(), h_min
     default = list(table["grid"].values).index(case.solver.grid)

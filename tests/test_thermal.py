@@ -11,11 +11,12 @@ import pytest
 from facegear_tehl.case import load_case
 from facegear_tehl.cli import summary_table, tehl
 from facegear_tehl.contact import ContactPoint
-from facegear_tehl.ehl import solve
+from facegear_tehl.ehl import plan, solve
 from facegear_tehl.ehl.anderson import Anderson
+from facegear_tehl.ehl.coupled import next_film_state
 from facegear_tehl.ehl.energy import energy_budget
 from facegear_tehl.ehl.flow import temperature_factors
-from facegear_tehl.ehl.solve import solve_point
+from facegear_tehl.ehl.staged import solve_point
 from facegear_tehl.ehl.thermal import (
     MAX_TEMPERATURE_STEP,
     FilmState,
@@ -25,6 +26,7 @@ from facegear_tehl.ehl.thermal import (
     relaxed_steps,
     thermal_choice,
 )
+from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.lubricant_laws import viscosity_ratio_at, viscosity_temperature_coefficient_at
 from facegear_tehl.results import read_result
 from facegear_tehl.solution import Outcome
@@ -175,7 +177,7 @@ def test_thermal_floor_is_a_stalled_small_change_with_a_steady_film():
     """The outer loop's algebraic floor (solve._at_thermal_floor): a period-2 flicker that stopped falling,
     below 1 % of the rise, with h_c steady to 5e-4 or to half its grid error if larger, is accepted; a change
     still falling, a large flicker or a drifting film is not."""
-    from facegear_tehl.ehl.solve import _at_thermal_floor
+    from facegear_tehl.ehl.convergence import at_thermal_floor as _at_thermal_floor
 
     flicker = [0.45, 0.42, 0.45, 0.42, 0.44, 0.43, 0.45, 0.42]
     steady = [1.2669e-6] * 8
@@ -195,13 +197,13 @@ def test_thermal_floor_is_a_stalled_small_change_with_a_steady_film():
 
 
 def test_the_tolerance_stop_needs_a_steady_film():
-    """solve._h_c_steady, which the outer loop's tolerance stop asks over its last STEADY_UPDATES updates: the spread of
+    """convergence.h_c_steady, asked by the loop's tolerance stop over its last steady_updates updates: the spread of
     h_c within 5e-4 of the last value, or half its error estimate if larger. By hand: the 513^2 S1 updates that ended
     early (1.20504, 1.20419, 1.20482 um: spread 8.5e-4 / 1.20482 = 7.1e-4) are not steady at an error of 1e-3, are at
     2e-3 (half: 1e-3); the settled ones (1.20558, 1.20564, 1.20560 um: 5.0e-5) are."""
-    from facegear_tehl.ehl.solve import STEADY_UPDATES, _h_c_steady
+    from facegear_tehl.ehl.convergence import h_c_steady as _h_c_steady
 
-    assert STEADY_UPDATES >= 2  # one update has no spread to judge
+    assert TUNING.steady_updates >= 2  # one update has no spread to judge
     moving, settled = [1.20504, 1.20419, 1.20482], [1.20558, 1.20564, 1.20560]
     assert not _h_c_steady(moving) and not _h_c_steady(moving, h_c_error=1.0e-3)
     assert _h_c_steady(moving, h_c_error=2.0e-3)
@@ -213,7 +215,7 @@ def test_energy_sweeps_are_forced_loosely_in_a_transient_and_tighter_as_the_loop
     """solve.energy_forcing is Eisenstat & Walker's (1996) choice 2, gamma (c_k/c_k-1)^2 with gamma 0.3, kept within
     [0.1, 0.3]: by hand, a loop whose changes stay (the temperature continuation's 35 K steps) or grow keeps 0.3, one
     falling by 0.8 per update gets 0.3 x 0.64 = 0.192, one halving its change the floor 0.1 (0.075 by the formula)."""
-    from facegear_tehl.ehl.solve import energy_forcing
+    from facegear_tehl.ehl.coupled import energy_forcing
 
     assert energy_forcing([]) == energy_forcing([2.3]) == 0.3
     assert energy_forcing([35.0, 35.0]) == energy_forcing([0.5, 0.9]) == 0.3
@@ -238,16 +240,16 @@ def test_a_flickering_pressure_feeds_the_film_state_the_mean_of_its_two_phases()
     phase_a = np.sqrt(np.maximum(1.0 - xx**2 - yy**2, 0.0))
     phase_b = phase_a * (1.0 + 0.02 * np.exp(-((xx - 0.9) / 0.2) ** 2))  # the outlet side raised
     solver.restore(top, Iterate(phase_b, 0.30))
-    solve.before_cycle = (solver.snapshot(top), level.film.copy())
+    solve.pressure.before_cycle = (solver.snapshot(top), level.film.copy())
     solver.restore(top, Iterate(phase_a, 0.32))
     solve.history.changes = [math.nan, 2.9e-4, 2.8e-4, 2.9e-4]
-    pressure, film = solve.settled_pressure(top)
+    pressure, film = solve.pressure.settled_pressure(top)
     assert np.allclose(pressure, 0.5 * (phase_a + phase_b))
-    solve.settle(top)
+    solve.pressure.settle(top)
     assert solver.h0 == pytest.approx(0.31)
     assert np.allclose(level.pressure, pressure) and np.allclose(level.film, film, rtol=1e-12, atol=1e-14)
     solve.history.changes = [math.nan, 2.9e-4, 1.5e-4, 0.9e-4]  # still falling: no flicker
-    pressure, film = solve.settled_pressure(top)
+    pressure, film = solve.pressure.settled_pressure(top)
     assert pressure is level.pressure and film is level.film
 
 
@@ -320,7 +322,7 @@ def test_the_coarse_stage_seeded_two_grids_down_reaches_the_same_film(monkeypatc
     seeded_grids = dict(per_grid)
     per_grid.clear()
     with monkeypatch.context() as m:
-        m.setattr(solve, "MIN_SEED_STAGE_GRID", 10**6)
+        m.setattr(plan, "TUNING", dataclasses.replace(plan.TUNING, min_seed_stage_grid=10**6))
         unseeded = solve_point(point, case.lubricant, case.solver)
     unseeded_grids = dict(per_grid)
     assert seeded.converged and unseeded.converged
@@ -504,12 +506,12 @@ def test_accelerated_temperatures_move_by_at_most_the_continuation_step():
         accelerator, temperature, factor, jumps = Anderson(3), np.full(shape, t_in), np.ones(shape), []
         for held in (MAX_TEMPERATURE_STEP, 0.99 * MAX_TEMPERATURE_STEP):  # the updates, each at (or by) the limit
             if limited:
-                new, _, _, _ = solve._next_film_state(accelerator, temperature, factor, update(temperature, held), 1.0,
+                new, _, _, _ = next_film_state(accelerator, temperature, factor, update(temperature, held), 1.0,
                                                       max(float(temperature.max()) - t_in, 1.0))
-            else:  # the accelerator alone, as _next_film_state weighs it
+            else:  # the accelerator alone, as next_film_state weighs it
                 rise = max(float(temperature.max()) - t_in, 1.0)
                 x = accelerator.step(np.concatenate([temperature.ravel(), np.zeros(temperature.size)]),
-                                     np.concatenate([np.full(temperature.size, solve.THERMAL_RELAXATION * held),
+                                     np.concatenate([np.full(temperature.size, TUNING.thermal_relaxation * held),
                                                      np.zeros(temperature.size)]),
                                      (1.0 / rise, 1.0))
                 new = x[:temperature.size].reshape(shape)
@@ -518,9 +520,9 @@ def test_accelerated_temperatures_move_by_at_most_the_continuation_step():
         return jumps
 
     free, limited = steps(False), steps(True)
-    assert free[0] == limited[0] == pytest.approx(solve.THERMAL_RELAXATION * MAX_TEMPERATURE_STEP)  # no history yet
+    assert free[0] == limited[0] == pytest.approx(TUNING.thermal_relaxation * MAX_TEMPERATURE_STEP)  # no history yet
     assert free[1] > 10.0 * MAX_TEMPERATURE_STEP  # the secant through two nearly equal steps
-    assert limited[1] == pytest.approx(solve.ACCELERATED_STEP_LIMIT)
+    assert limited[1] == pytest.approx(MAX_TEMPERATURE_STEP)
 
 
 @pytest.mark.parametrize("law", ["roelands", "barus"])

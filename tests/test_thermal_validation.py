@@ -132,7 +132,7 @@ def test_an_attempt_that_runs_away_warns_no_one():
     import warnings
 
     from facegear_tehl.case import parse_case
-    from facegear_tehl.ehl.solve import solve_point
+    from facegear_tehl.ehl.staged import solve_point
     from facegear_tehl.points import contact_analysis
 
     case = parse_case(tv.ellipse_case_text(15.0, 129, 33, "off"), "long_ellipse_rolling")

@@ -20,6 +20,7 @@ import numpy as np
 
 from facegear_tehl.ehl import flow, grid, reynolds
 from facegear_tehl.ehl.elastic import DeflectionOperator
+from facegear_tehl.ehl.relaxation import Relaxation
 
 CIRCLE_SELF_COEFFICIENT = 8.0 * math.asinh(1.0) / math.pi**2  # C_d K_00/h for a circle on square cells
 
@@ -78,24 +79,6 @@ def at_load_fraction(problem: Problem, fraction: float) -> Problem:
         return problem
     return replace(problem, lam=problem.lam * fraction ** (-4.0 / 3.0),
                    p_hertz=problem.p_hertz * fraction ** (1.0 / 3.0))
-
-
-@dataclass(frozen=True)
-class Relaxation:
-    """Parameters of the relaxation and the cycle (defaults: Venner & Lubrecht 2000)."""
-
-    xi_switch: float = 0.3  # eps/h^2 above which a node is relaxed Gauss-Seidel (circular contact; see Level)
-    # under-relaxation of Gauss-Seidel changes (Venner & Lubrecht: 0.4; 0.3 keeps ellipses with k > 40 stable)
-    under_gs: float = 0.3
-    under_jd: float = 0.15  # under-relaxation of Jacobi-distributive changes (Venner & Lubrecht: 0.2)
-    pre_sweeps: int = 2
-    post_sweeps: int = 1
-    coarsest_sweeps: int = 40
-    force_factor: float = 0.1  # c_h in H_0 += c_h g on the coarsest grid
-    force_updates: int = 4  # H_0 updates per coarsest-grid solve
-    force_damping: float = 1.0  # fraction of the secant step taken
-    alternate_above: float = 0.25  # add Y-line sweeps when |c_y| > this * |c_x| (entrainment skewed > 14 deg)
-    scale_switch: bool = True  # scale xi_switch for long ellipses (see Level); False: Venner's value as is
 
 
 @dataclass(frozen=True)

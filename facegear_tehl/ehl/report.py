@@ -5,23 +5,26 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 import math
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 
+from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import grid
+from facegear_tehl.ehl.composite import Composite
+from facegear_tehl.ehl.convergence import History
 from facegear_tehl.ehl.domain import rigid_gap_ratio
 from facegear_tehl.ehl.energy import dissipated_power, energy_budget
 from facegear_tehl.ehl.friction import friction_coefficients
 from facegear_tehl.ehl.layers import simpson_weights
-from facegear_tehl.ehl.multigrid import Level
+from facegear_tehl.ehl.multigrid import Level, MultigridSolver
 from facegear_tehl.ehl.richardson import ORDER, richardson_error
 from facegear_tehl.ehl.scaling import Scaling
 from facegear_tehl.ehl.thermal import FilmState, thermal_loading
+from facegear_tehl.lubricant import Lubricant
+from facegear_tehl.record import Action, Reason, RetryRecord, SolveRecord
+from facegear_tehl.settings import ThermalMode
 from facegear_tehl.solution import Field, PointSolution, Status
-
-if TYPE_CHECKING:
-    from facegear_tehl.ehl.solve import PointSolve
 
 ORDER_DT_MAX = 1  # observed order of the largest temperature rise (at the outlet pressure spike; docs/accuracy.md)
 # Observed order of mu along x (its y-dependence is below 0.01 %): on the default face gear case, from the coarse
@@ -86,11 +89,31 @@ FILM_SCALARS = ("h_c", "h_min", "x_h_min", "y_h_min", "p_max", "error_estimate_h
                 "algebraic_floor", "inlet_gap_ratio")
 
 
-def point_solution(solve: PointSolve, level: Level, status: Status, state: FilmState | None,
-                   wall: float) -> PointSolution:
-    """The PointSolution of a finished solve reported on `level`: scalars with units, fields, histories, models.
-    A film that closed (h_min <= 0) gives no fields and no film scalars: only the point, its cost, histories
-    and the reason."""
+class Reported(Protocol):
+    """What the report reads of a finished point solve (solve.PointSolve)."""
+
+    point: ContactPoint
+    lubricant: Lubricant
+    scaling: Scaling
+    solver: MultigridSolver
+    summaries: list[LevelSummary]
+    mode: ThermalMode
+    reason: str
+    attempt: int
+    coarsest: int
+    outlet: Composite | None
+    outlet_note: str
+
+    @property
+    def history(self) -> History: ...
+
+
+def point_solution(solve: Reported, level: Level, status: Status, state: FilmState | None,
+                   wall: float, record: SolveRecord) -> PointSolution:
+    """The PointSolution of a finished solve reported on `level`: scalars with units, fields, histories, models and
+    the solve record. A film that closed (h_min <= 0) gives no fields and no film scalars: only the point, its cost,
+    histories and the reason."""
+    record = _with_outlet_note(solve, record)
     scaling = solve.scaling
     scalars = _film_scalars(solve, level, wall)
     fields = {
@@ -123,10 +146,19 @@ def point_solution(solve: PointSolve, level: Level, status: Status, state: FilmS
         scalars={k: v for k, v in scalars.items() if math.isfinite(v[0])}, fields=fields,
         axes={"x": Field(level.x * scaling.b, "m", "node coordinates along the minor axis (x = X b)"),
               "y": Field(level.y * scaling.a, "m", "node coordinates along the major axis (y = Y a)")},
-        history=_histories(solve), models=_models(solve))
+        history=_histories(solve), models=_models(solve, record), record=record)
 
 
-def _film_scalars(solve: PointSolve, level: Level, wall: float) -> dict[str, tuple[float, str]]:
+def _with_outlet_note(solve: Reported, record: SolveRecord) -> SolveRecord:
+    """The record with the outlet stage's failure, if one failed: its composite of the patches before it is
+    reported, or the uniform grid's solution."""
+    if not solve.outlet_note:
+        return record
+    action = Action.KEPT_COARSER if solve.outlet is not None else Action.DROPPED
+    return record.with_retry(RetryRecord(Reason.STAGE_FAILED, action, solve.attempt, solve.outlet_note))
+
+
+def _film_scalars(solve: Reported, level: Level, wall: float) -> dict[str, tuple[float, str]]:
     """Film, pressure, contact and cost figures of any solve."""
     point, scaling, summaries, history = solve.point, solve.scaling, solve.summaries, solve.history
     film_scale = scaling.film_scale
@@ -170,13 +202,13 @@ def _film_scalars(solve: PointSolve, level: Level, wall: float) -> dict[str, tup
     }
 
 
-def _lowest_film_place(solve: PointSolve, level: Level) -> tuple[tuple[float, str], tuple[float, str]]:
+def _lowest_film_place(solve: Reported, level: Level) -> tuple[tuple[float, str], tuple[float, str]]:
     """x and y (m) of the node of the lowest film on `level`."""
     j_min, i_min = np.unravel_index(np.argmin(level.film), level.film.shape)
     return (float(level.x[i_min]) * solve.scaling.b, "m"), (float(level.y[j_min]) * solve.scaling.a, "m")
 
 
-def _film_state_outputs(solve: PointSolve, level: Level, state: FilmState
+def _film_state_outputs(solve: Reported, level: Level, state: FilmState
                         ) -> tuple[dict[str, tuple[float, str]], dict[str, Field]]:
     """Friction, temperatures, energy budget (thermal models) and surface stresses of a film state."""
     scaling, lubricant, summaries = solve.scaling, solve.lubricant, solve.summaries
@@ -219,7 +251,7 @@ def _film_state_outputs(solve: PointSolve, level: Level, state: FilmState
         np.tensordot(simpson_weights(temperature.shape[0]), state.dissipation, axes=1) * film, "W/m^2",
         "power dissipated by shear per unit area, the integral of tau . gamma_dot across the film (Simpson; its sum "
         "times dx dy is dissipated_power)")
-    if solve.mode != "off":
+    if solve.mode is not ThermalMode.OFF:
         budget = energy_budget(state, film, dx, dy, t_in)
         scalars.update({k: (v, "1" if k == "energy_balance_error" else "W") for k, v in budget.items()})
         fields["heat_flux_1"] = Field(state.heat_flux_1, "W/m^2", "heat flux from the film into body 1")
@@ -231,7 +263,7 @@ def _film_state_outputs(solve: PointSolve, level: Level, state: FilmState
     return scalars, fields
 
 
-def _outlet_scalars(solve: PointSolve, uniform: dict[str, tuple[float, str]]) -> dict[str, tuple[float, str]]:
+def _outlet_scalars(solve: Reported, uniform: dict[str, tuple[float, str]]) -> dict[str, tuple[float, str]]:
     """The outlet stage's figures of the film state (outlet.composite), with the error estimates of dT_max and mu
     from the uniform grid's values, Richardson over the whole refinement (n patches divide the x spacing where they are
     set by 2^n; first order, the order ΔT_max shows from the uniform grid to the first patch). At S2 and S4 of the
@@ -249,7 +281,7 @@ def _outlet_scalars(solve: PointSolve, uniform: dict[str, tuple[float, str]]) ->
     return figures
 
 
-def _histories(solve: PointSolve) -> dict[str, Field]:
+def _histories(solve: Reported) -> dict[str, Field]:
     """Per-cycle, per-level and per-outer-iteration records of the solve."""
     history, summaries, film_scale = solve.history, solve.summaries, solve.scaling.film_scale
     records = {
@@ -276,8 +308,8 @@ def _histories(solve: PointSolve) -> dict[str, Field]:
     return records
 
 
-def _models(solve: PointSolve) -> dict[str, str]:
-    """Which models produced the solution, with their sources."""
+def _models(solve: Reported, record: SolveRecord) -> dict[str, str]:
+    """Which models produced the solution, with their sources; the solver's words rendered from its record."""
     lubricant, mode = solve.lubricant, solve.mode
     models = {
         "viscosity": f"{lubricant.viscosity_model} (Roelands 1966)" if lubricant.viscosity_model == "roelands"
@@ -285,28 +317,11 @@ def _models(solve: PointSolve) -> dict[str, str]:
         "density": "dowson_higginson (Dowson & Higginson 1966)" if lubricant.density_model == "dowson_higginson"
         else "incompressible",
         "rheology": "ree_eyring (Ree & Eyring 1955)" if lubricant.rheology == "ree_eyring" else "newtonian",
-        "thermal": mode,
+        "thermal": mode.value,
         "thermal_reason": solve.reason,
-        "solver": "FAS multigrid, line GS / Jacobi distributive (Venner & Lubrecht 2000), FFT deflection",
+        "solver": record.render(),
     }
-    lengthened = solve.domain.note(solve.asked)
-    if lengthened:
-        models["solver"] += "; " + lengthened
-    if solve.start_notes:
-        models["solver"] += (f"; full-multigrid start from the {solve.coarsest} x {solve.coarsest} grid (chosen by the "
-                             f"solver: the start ran away from {'; from '.join(solve.start_notes)})")
-    if solve.coarse_stage_note:
-        models["solver"] += "; " + solve.coarse_stage_note
-    if solve.outlet is not None:
-        models["solver"] += f"; outlet refined: {solve.outlet.note} (FAS composite grid, the film state solved on each)"
-        if solve.outlet_note:
-            models["solver"] += f"; {solve.outlet_note}: the composite of the patches before it"
-    elif solve.outlet_note:
-        models["solver"] += f"; outlet refinement dropped ({solve.outlet_note}): the uniform grid's solution"
-    if solve.start_load_fraction < 1.0:
-        models["solver"] += (f"; full-multigrid start at {solve.start_load_fraction:.3g} of the load (Moes M "
-                             f"{solve.scaling.moes_m:.3g}), raised to the full load one grid below the finest")
-    if mode != "off":
+    if mode is not ThermalMode.OFF:
         models["thermal_solids"] = "Jaeger (1942) high-Peclet moving heat source per surface"
         a, b = lubricant.conductivity_pressure_coefficient, lubricant.conductivity_pressure_saturation
         models["conductivity"] = (f"larsson (Larsson et al. 2000): k_0 [1 + a p/(1 + b p)], a = {a:g}/GPa, "

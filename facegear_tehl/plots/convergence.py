@@ -11,7 +11,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FormatStrFormatter, LogLocator, MaxNLocator, NullFormatter, NullLocator
 import numpy as np
 
-from facegear_tehl.ehl.solve import FLOOR_BAND, MIN_RISE, THERMAL_FLOOR_FRACTION
+from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.plots.case_values import CaseValues
 from facegear_tehl.plots.common import Output, figure, legend, title
 from facegear_tehl.results import PointResult, Result
@@ -90,13 +90,13 @@ def _history_panel(ax: Axes, points: Sequence[PointResult], key: str) -> None:
 def _tolerances(ax: Axes, points: Sequence[PointResult], key: str, solver: SolverSettings) -> None:
     """The tolerance a history is judged by (ehl.solve): the pressure change and the load error below their
     tolerances, or the pressure change settled below FLOOR_BAND times it; the temperature change per outer
-    iteration below thermal_tolerance times the rise (at least MIN_RISE), or settled below THERMAL_FLOOR_FRACTION
+    iteration below thermal_tolerance times the rise (at least TUNING.min_rise), or settled below THERMAL_FLOOR_FRACTION
     of it, lines per point in its colour."""
     if key == "pressure_change_history":
         ax.axhline(solver.tolerance, color="black", linestyle="--", linewidth=1.0,
                    label=f"tolerance {solver.tolerance:.0e}")
-        ax.axhline(FLOOR_BAND * solver.tolerance, color="black", linestyle=":", linewidth=1.0,
-                   label=f"settled-floor bound {FLOOR_BAND * solver.tolerance:.0e}")
+        ax.axhline(TUNING.floor_band * solver.tolerance, color="black", linestyle=":", linewidth=1.0,
+                   label=f"settled-floor bound {TUNING.floor_band * solver.tolerance:.0e}")
     elif key == "load_error_history":
         ax.axhline(solver.load_tolerance, color="black", linestyle="--", linewidth=1.0,
                    label=f"tolerance {solver.load_tolerance:.0e}")
@@ -106,12 +106,12 @@ def _tolerances(ax: Axes, points: Sequence[PointResult], key: str, solver: Solve
     elif key == "thermal_change_history":
         for line, p in zip(ax.get_lines(), [p for p in points if key in p.history]):
             if "dT_max" in p.scalars:
-                rise = max(float(p.scalars["dT_max"]), MIN_RISE)
-                for fraction, style in ((solver.thermal_tolerance, "--"), (THERMAL_FLOOR_FRACTION, ":")):
+                rise = max(float(p.scalars["dT_max"]), TUNING.min_rise)
+                for fraction, style in ((solver.thermal_tolerance, "--"), (TUNING.thermal_floor_fraction, ":")):
                     ax.axhline(fraction * rise, color=line.get_color(), linestyle=style, linewidth=0.8)
         symbol = r"$\Delta T_{max}$"
         ax.plot([], [], "k--", linewidth=0.8, label=f"tolerance {solver.thermal_tolerance:.0e} {symbol}")
-        ax.plot([], [], "k:", linewidth=0.8, label=f"settled-floor bound {THERMAL_FLOOR_FRACTION:.0e} {symbol}")
+        ax.plot([], [], "k:", linewidth=0.8, label=f"settled-floor bound {TUNING.thermal_floor_fraction:.0e} {symbol}")
     legend(ax, fontsize="small", ncols=2)
 
 

@@ -1,0 +1,149 @@
+"""The retry policy of a point solve: which typed failure leads to which next attempt, in which order, with what
+budget. Every remedy the solve has is decided here; the stages only ask.
+
+In the order a failing solve meets them:
+1. the start runs away (a heavy load's film and spike are not resolved by coarse grids): on a retry, the start is
+   begun again from a coarsest grid twice as fine, as long as the hierarchy keeps the levels asked for (start.py);
+2. the seed stage runs away: the coarse stage begins again from the coarsest grid (solve.py);
+3. the coarse thermal stage runs away on a damped attempt: the coupled problem is solved on the finest grid alone,
+   from its converged isothermal solution (the grid below the finest may not hold a film the finest resolves);
+4. an outlet stage fails: solved again with more V-cycles of the grid below per correction
+   (`stage_coarse_cycles`); a stage that fails on top of a provisional one has the stages below it solved again to
+   convergence; a stage that fails for good is dropped and the solution below it reported (outlet.py);
+5. the whole attempt runs away, stalls short of its tolerances or closes its film: the next of ATTEMPTS
+   (`next_attempt`): the ellipse-scaled Gauss-Seidel / Jacobi switch, Venner's switch, that damped, and for a
+   heavily loaded point that damped from a start at a fraction of its load (load continuation);
+6. the grid does not resolve the film (it closes, or an estimate exceeds its bound): the point is solved again on
+   a finer grid, up to a cap (`finer_settings`, run.py).
+The measurements behind each choice are in docs/tuning.md.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+import math
+
+from facegear_tehl.ehl.relaxation import Relaxation
+from facegear_tehl.ehl.tuning import TUNING
+from facegear_tehl.record import Reason
+from facegear_tehl.settings import SolverSettings, ThermalMode
+from facegear_tehl.solution import Outcome, PointSolution
+
+
+@dataclass(frozen=True)
+class Attempt:
+    """One attempt at a point: its name, the relaxation of its multigrid cycles and whether its start begins at a
+    fraction of the load (above Moes M = continuation_moes_m)."""
+
+    name: str
+    relaxation: Relaxation
+    load_continuation: bool = False
+
+
+DAMPED = Relaxation(scale_switch=False, under_gs=0.15, under_jd=0.1)  # Gauss-Seidel / Jacobi changes halved
+ATTEMPTS = (
+    Attempt("the ellipse-scaled switch", Relaxation()),
+    Attempt("Venner's switch", Relaxation(scale_switch=False)),
+    Attempt("Venner's switch, damped", DAMPED),
+    Attempt("Venner's switch, damped, from a fraction of the load", DAMPED, load_continuation=True),
+)
+
+
+@dataclass(frozen=True)
+class RetryPolicy:
+    """The one retry policy (see the module's list)."""
+
+    attempts: tuple[Attempt, ...] = ATTEMPTS
+
+    # --- within an attempt
+    def escalates_start(self, attempt: int) -> bool:
+        """A start that runs away begins again from a finer coarsest grid: on every retry."""
+        return attempt > 1
+
+    def couples_on_finest(self, attempt: int) -> bool:
+        """A coarse thermal stage that runs away is followed by the coupled problem on the finest grid alone: from
+        the damped attempt on (the attempts before it are where the points that converge do so)."""
+        return attempt >= TUNING.damped_attempt
+
+    # --- between attempts
+    def next_attempt(self, solution: PointSolution) -> int | None:
+        """The attempt (1-based) after `solution`'s, or None: the next relaxation after one that ran away; the damped
+        one after an undamped attempt's stall (a limit cycle), and after a retry's film that closed in a stall; for a
+        point above Moes M = continuation_moes_m the start at a fraction of the load after a damped attempt that ran
+        away or closed the film, or a retry whose film closed in a converged iteration. The first attempt's closed
+        film is left to a finer grid (`finer_settings`)."""
+        attempt = int(solution.scalar("attempts"))
+        if solution.outcome is Outcome.DIVERGED:
+            following = attempt + 1
+        elif solution.outcome is Outcome.NOT_CONVERGED:  # a damped attempt's stall is reported as it is
+            following = TUNING.damped_attempt
+        elif solution.outcome is Outcome.FILM_CLOSED and attempt > 1:  # a retry's film closed: in a stall, as a stall
+            in_stall = solution.record is not None and solution.record.iteration is not Outcome.CONVERGED
+            following = max(attempt + 1, TUNING.damped_attempt) if in_stall else len(self.attempts)
+        else:
+            return None
+        if following <= attempt or following > len(self.attempts):
+            return None
+        heavy = solution.scalar("moes_m") > TUNING.continuation_moes_m
+        return following if heavy or not self.attempts[following - 1].load_continuation else None
+
+    @staticmethod
+    def reason(solution: PointSolution) -> Reason:
+        """The typed failure of an attempt that is retried."""
+        return {Outcome.DIVERGED: Reason.RAN_AWAY, Outcome.NOT_CONVERGED: Reason.STALLED}.get(
+            solution.outcome, Reason.FILM_CLOSED)
+
+    @staticmethod
+    def better(first: PointSolution, retry: PointSolution) -> bool:
+        """The retry did better than the first attempt: converged after a stall, or anything but running away."""
+        if first.outcome is Outcome.NOT_CONVERGED:
+            return retry.outcome is Outcome.CONVERGED
+        return retry.outcome is not Outcome.DIVERGED
+
+    # --- between grids
+    def unresolved(self, solution: PointSolution) -> bool:
+        """The grid could not resolve the film: none was reported (it closed, or the solve ran away with it closed),
+        or the solve did not converge and estimates its own h_min error above unresolved_h_min."""
+        if solution.outcome in (Outcome.FILM_CLOSED, Outcome.DIVERGED) and "h_min" not in solution.scalars:
+            return True
+        estimate = solution.scalars.get("error_estimate_h_min", (0.0, "1"))[0]
+        return solution.outcome is Outcome.NOT_CONVERGED and abs(estimate) > TUNING.unresolved_h_min
+
+    def coarse(self, solution: PointSolution) -> bool:
+        """The solve converged but estimates its own h_min or h_c error above coarse_estimate (the two grids then
+        differ by more than the asymptotic range the estimate assumes)."""
+        return solution.converged and any(abs(e) > TUNING.coarse_estimate for e in estimates(solution))
+
+    def finer_settings(self, settings: SolverSettings, solution: PointSolution) -> SolverSettings | None:
+        """The settings on the next finer grid for a film that `solution` did not resolve: twice the rows alone when
+        its lowest film lies in a side lobe (|y| > side_lobe a) and the grid has fewer rows than columns, else
+        twice as fine along each axis; None beyond the largest refined grid."""
+        largest = self.largest_grid(solution)
+        if _in_side_lobe(solution) and settings.nodes_y < settings.grid and 2 * settings.nodes_y - 1 <= largest:
+            return replace(settings, grid_y=2 * settings.nodes_y - 1)
+        if 2 * max(settings.grid, settings.nodes_y) - 1 > largest:
+            return None
+        grid_y = None if settings.grid_y is None else 2 * settings.grid_y - 1
+        return replace(settings, grid=2 * settings.grid - 1, grid_y=grid_y)
+
+    @staticmethod
+    def largest_grid(solution: PointSolution) -> int:
+        """max_refined_grid, or max_refined_thermal_grid for a thermal solve."""
+        thermal = solution.models.get("thermal", "off") != ThermalMode.OFF.value
+        return TUNING.max_refined_thermal_grid if thermal else TUNING.max_refined_grid
+
+
+def estimates(solution: PointSolution) -> tuple[float, float]:
+    """The solve's own relative error estimates of h_c and h_min (0 where it has none)."""
+    return tuple(solution.scalars.get(f"error_estimate_{key}", (0.0, "1"))[0] for key in ("h_c", "h_min"))
+
+
+def _in_side_lobe(solution: PointSolution) -> bool:
+    """The lowest film of the solve (or where it closed) lies beyond side_lobe semi-axes a from the centre line."""
+    scalars = solution.scalars
+    y = scalars.get("y_h_min", scalars.get("y_film_closed", (math.nan, "m")))[0]
+    a = scalars.get("a", (math.nan, "m"))[0]
+    return abs(y) > TUNING.side_lobe * a
+
+
+POLICY = RetryPolicy()

@@ -1,0 +1,92 @@
+"""The EHL solver as the runner uses it: a point solve's attempts (retry.POLICY) around its stages, which may run in
+different worker processes with the same result (`begin`, `finish`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from facegear_tehl.contact import ContactPoint
+from facegear_tehl.ehl.domain import RETRY_INLET_DOUBLINGS
+from facegear_tehl.ehl.retry import POLICY
+from facegear_tehl.ehl.solve import PointSolve
+from facegear_tehl.lubricant import Lubricant
+from facegear_tehl.record import Action, RetryRecord
+from facegear_tehl.settings import SolverSettings
+from facegear_tehl.solution import PointSolution
+
+# numpy's floating-point warnings inside a solve: an iterate that runs away overflows before the solver's own
+# finiteness checks stop the attempt, report it and retry; the warning would only repeat that on the terminal.
+RUN_AWAY_ARITHMETIC = {"over": "ignore", "invalid": "ignore", "divide": "ignore"}
+
+
+def _completed(begun: PointSolution | PointSolve) -> PointSolution:
+    """A begun solve finished in this process."""
+    return begun.finish() if isinstance(begun, PointSolve) else begun
+
+
+@dataclass(frozen=True)
+class StagedSolver:
+    """The EHL solver: whole (`__call__`), or in stages that may run in different processes with the same result
+    (`begin`, `finish`, `needs_retry`, `with_retry`). An attempt that fails as retry.POLICY.next_attempt says is
+    solved again with the next attempt; the first attempt is reported if no retry did better, with the retries
+    recorded either way."""
+
+    def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
+        first = solution = _completed(self.begin(point, lubricant, settings))
+        while self.needs_retry(solution):
+            solution = _completed(self.begin(point, lubricant, settings, solution))
+        return first if solution is first else self.with_retry(first, solution)
+
+    def begin(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
+              retry_after: PointSolution | None = None) -> PointSolution | PointSolve:
+        """The first stage (PointSolve.begin). `retry_after`: the last attempt, which failed: this one is the next
+        attempt of the policy, with an escalating start, and its wall time counts the earlier attempts'."""
+        if retry_after is None:
+            solve = PointSolve(point, lubricant, settings)
+        else:
+            attempt = POLICY.next_attempt(retry_after)
+            chosen = POLICY.attempts[attempt - 1]
+            solve = PointSolve(point, lubricant, settings, chosen.relaxation,
+                               elapsed=retry_after.scalar("wall_time"), escalate_start=POLICY.escalates_start(attempt),
+                               attempt=attempt, max_doublings=RETRY_INLET_DOUBLINGS,
+                               load_continuation=chosen.load_continuation)
+            previous = () if retry_after.record is None else retry_after.record.retries
+            solve.retries.extend(previous)
+            solve.retries.append(RetryRecord(POLICY.reason(retry_after), Action.NEXT_RELAXATION, attempt,
+                                             f"attempt {attempt - 1}: {retry_after.message}"))
+        with np.errstate(**RUN_AWAY_ARITHMETIC):
+            return solve.begin()
+
+    def finish(self, stage: PointSolve) -> PointSolution:
+        """The second stage (PointSolve.finish)."""
+        with np.errstate(**RUN_AWAY_ARITHMETIC):
+            return stage.finish()
+
+    def needs_retry(self, solution: PointSolution) -> bool:
+        """The policy has a next attempt for this one (retry.RetryPolicy.next_attempt)."""
+        return POLICY.next_attempt(solution) is not None
+
+    def with_retry(self, first: PointSolution, retry: PointSolution) -> PointSolution:
+        """The last retry's solution if it did better than the first attempt (RetryPolicy.better); else the first
+        attempt's, with the time and count of all attempts and what the retries did in its record."""
+        if POLICY.better(first, retry):
+            return retry
+        last = RetryRecord(POLICY.reason(retry), Action.FIRST_KEPT, int(retry.scalar("attempts")),
+                           f"attempt {int(retry.scalar('attempts'))}: {retry.message}")
+        record = replace(retry.record, stages=first.record.stages, attempt=first.record.attempt,
+                         relaxation=first.record.relaxation, iteration=first.record.iteration,
+                         notes=first.record.notes).with_retry(last)
+        return replace(first, scalars={**first.scalars, "wall_time": retry.scalars["wall_time"],
+                                       "attempts": retry.scalars["attempts"]},
+                       models={**first.models, "solver": record.render()}, record=record)
+
+
+STAGED = StagedSolver()
+
+
+def solve_point(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
+    """Solve the EHL problem of one contact point (thermal model and rheology as the settings say), retrying a
+    solve that runs away or stalls as retry.POLICY says."""
+    return STAGED(point, lubricant, settings)

@@ -1,0 +1,149 @@
+"""The full-multigrid start of a point solve (Venner & Lubrecht 2000, ch. 5.6): the Hertz pressure on the coarsest
+grid with H_0 set for the Hamrock & Dowson (1977) central film, then each finer grid from the bicubic interpolation
+of the one below with `cycles_per_level` V-cycles.
+
+Two remedies of the retry policy (retry.py) act here: a start that runs away is begun again from a coarsest grid
+twice as fine (`escalate_start`), and the last attempt at a heavily loaded point starts at a fraction of its load
+and raises it step by step one grid below the finest (load continuation).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Protocol
+
+from facegear_tehl.ehl import grid
+from facegear_tehl.ehl.convergence import finite
+from facegear_tehl.ehl.domain import predicted_central_film
+from facegear_tehl.ehl.multigrid import Level, MultigridSolver, Problem, at_load_fraction
+from facegear_tehl.ehl.report import LevelSummary, summarise
+from facegear_tehl.ehl.scaling import Scaling
+from facegear_tehl.ehl.tuning import TUNING
+from facegear_tehl.record import Action, Reason, RetryRecord
+from facegear_tehl.settings import SolverSettings, ThermalMode
+from facegear_tehl.solution import CONVERGED, Outcome, Status
+
+# H = h R_x/b^2 of the central film against the load at fixed radii: h_c ~ W^-0.067 (Hamrock & Dowson 1977) and
+# b^2 ~ W^(2/3) (Hertz): each load step moves H_0 by the central film's predicted change.
+FILM_LOAD_EXPONENT = -0.067 - 2.0 / 3.0
+
+
+class Starting(Protocol):
+    """What the start needs of a point solve (solve.PointSolve)."""
+
+    solver: MultigridSolver
+    settings: SolverSettings
+    scaling: Scaling
+    summaries: list[LevelSummary]
+    coarsest: int
+    escalate_start: bool
+    start_load_fraction: float
+    mode: ThermalMode
+    coupled: bool
+    attempt: int
+    retries: list[RetryRecord]
+
+    def new_hierarchy(self, shapes: list[tuple[int, int]]) -> None: ...
+
+
+def start(solve: Starting, below_top: int) -> tuple[int, Status]:
+    """Full multigrid from the Hertz start up to `below_top` levels below the finest. With `escalate_start`, a start
+    that runs away is begun again from a coarsest grid twice as fine, as long as the hierarchy keeps the levels
+    asked for (a heavy load's film and spike are not resolved by coarse grids). Returns the finest level that
+    stayed sound (a level that runs away is undone) and the status."""
+    settings = solve.settings
+    while True:
+        index, status = _full_multigrid(solve, len(solve.solver.levels) - 1 - below_top)
+        finer = 2 * solve.coarsest - 1
+        shapes = grid.hierarchy_shapes(settings.grid, settings.nodes_y, finer)
+        if (not (status.diverged and solve.escalate_start) or finer > min(settings.grid, settings.nodes_y)
+                or len(shapes) <= below_top):
+            return index, status
+        solve.new_hierarchy(shapes)
+        solve.retries.append(RetryRecord(Reason.START_RAN_AWAY, Action.FINER_COARSEST_GRID, solve.attempt,
+                                         f"from {solve.coarsest} x {solve.coarsest}: {status.message}"))
+        solve.coarsest = min(shapes[0])
+
+
+def _full_multigrid(solve: Starting, last: int) -> tuple[int, Status]:
+    """Full multigrid from the Hertz start on the coarsest grid up to level `last`; appends a summary per level.
+    With a start_load_fraction below 1 the levels up to the one below `last` are solved at that fraction of the
+    load, raised to the full load there (_raise_load), and `last` is interpolated from it."""
+    solver, problem, fraction = solve.solver, solve.solver.problem, solve.start_load_fraction
+    ramp = max(last - 1, 0) if fraction < 1.0 else last  # the level whose load is raised
+    solver.problem = at_load_fraction(problem, fraction)
+    index = 0
+    try:
+        central = predicted_central_film(solve.scaling) / solve.scaling.film_scale
+        solver.start_from_hertz(central * fraction ** FILM_LOAD_EXPONENT)
+        for _ in range(solve.settings.cycles_per_level):
+            solver.cycle(0)
+        solve.summaries.append(_at_load(summarise(solver.levels[0]), fraction))
+        index, status = _climb(solve, 1, ramp, fraction)
+        if status.converged and fraction < 1.0:
+            status = _raise_load(solver, index, problem, fraction)
+            if status.converged:
+                solve.summaries[-1] = summarise(solver.levels[index])
+                index, status = _climb(solve, index + 1, last, 1.0)
+    finally:
+        solver.problem = problem
+        solver.update_film(solver.levels[index])
+    return index, status
+
+
+def _climb(solve: Starting, first: int, last: int, fraction: float) -> tuple[int, Status]:
+    """Full-multigrid steps from level `first - 1` (solved) up to level `last` at `fraction` of the load (the
+    solver's problem); returns the finest sound level and the status."""
+    solver = solve.solver
+    saved = solver.snapshot(first - 1)
+    for index in range(first, last + 1):
+        solver.interpolate_up(index)
+        # the finest grid of an isothermal Ree-Eyring film: its outer loop follows at once
+        eyring_top = index == len(solver.levels) - 1 and solve.mode is ThermalMode.OFF and solve.coupled
+        for _ in range(TUNING.eyring_start_cycles if eyring_top else solve.settings.cycles_per_level):
+            solver.cycle(index)
+        level = solver.levels[index]
+        if _ran_away(solver, level):
+            solver.restore(index - 1, saved)
+            message = f"diverged during the full-multigrid start on the {level.nx} x {level.ny} grid"
+            return index - 1, Status(Outcome.DIVERGED, message)
+        saved = solver.snapshot(index)
+        solve.summaries.append(_at_load(summarise(level), fraction))
+    return max(last, first - 1), CONVERGED
+
+
+def _ran_away(solver: MultigridSolver, level: Level) -> bool:
+    """A level not finite, or whose load error after its cycles exceeds diverged_load_error of the load."""
+    bound = TUNING.diverged_load_error * solver.problem.load_integral
+    return not finite(level) or abs(solver.force_error(level)) > bound
+
+
+def _raise_load(solver: MultigridSolver, index: int, problem: Problem, fraction: float) -> Status:
+    """Raise the load of level `index` from `fraction` to the full load of `problem` by load_step per step, H_0
+    moved by the predicted change of the central film (FILM_LOAD_EXPONENT), cycles_per_load_step V-cycles per step.
+    A step that runs away restores the last sound load's iterate and reports it."""
+    level = solver.levels[index]
+    while fraction < 1.0:
+        saved, previous = solver.snapshot(index), fraction
+        fraction = min(TUNING.load_step * fraction, 1.0)
+        h_c = solver.central_film(level)
+        solver.problem = at_load_fraction(problem, fraction)
+        solver.h0 += h_c * ((fraction / previous) ** FILM_LOAD_EXPONENT - 1.0)
+        solver.update_film(level)
+        for _ in range(TUNING.cycles_per_load_step):
+            solver.cycle(index)
+        if _ran_away(solver, level):
+            solver.problem = at_load_fraction(problem, previous)
+            solver.restore(index, saved)
+            return Status(Outcome.DIVERGED, f"diverged raising the load of the full-multigrid start from "
+                                            f"{previous:.3g} to {fraction:.3g} on the {level.nx} x {level.ny} grid")
+    return CONVERGED
+
+
+def _at_load(summary: LevelSummary, fraction: float) -> LevelSummary:
+    """A level summary solved at `fraction` of the load in the full load's Hertzian units: H = h R_x/b^2 and
+    P = p/p_h with b^2 and p_h scaling as f^(2/3) and f^(1/3) (multigrid.at_load_fraction)."""
+    if fraction == 1.0:
+        return summary
+    return replace(summary, h_c=summary.h_c * fraction ** (2.0 / 3.0), h_min=summary.h_min * fraction ** (2.0 / 3.0),
+                   p_max=summary.p_max * fraction ** (1.0 / 3.0))

@@ -1,0 +1,82 @@
+"""Every numerical constant of the point solve's driver, in one frozen object (`TUNING`).
+
+Each field says what it controls and why it has this value in one line; the experiments that chose the values
+(cases, grids, iteration counts, accuracy against converged references) are in docs/tuning.md, under the field's
+name. Physical constants and the models' own parameters live with their physics, not here.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Tuning:
+    """The solver driver's numerical constants (dimensionless unless a unit is given)."""
+
+    # --- full-multigrid start and load continuation
+    diverged_load_error: float = 0.5  # |load error| after a full cycle beyond which the iteration is running away
+    eyring_start_cycles: int = 1  # V-cycles of an isothermal Ree-Eyring film's finest start grid: its loop follows
+    continuation_moes_m: float = 1000.0  # Moes M from which the last attempt starts at a fraction of the load
+    load_step: float = 1.25  # load factor per continuation step (2 ran away at once)
+    cycles_per_load_step: int = 3  # V-cycles per continuation step
+    # --- the pressure iteration on a frozen film state
+    floor_stall: float = 0.8  # stalled: the change per cycle fell by less than 20 % over two cycles ...
+    floor_band: float = 10.0  # ... below this multiple of the tolerance: the algebraic floor (h_c steady to ~1e-5)
+    phase_mean_band: float = 100.0  # a stall below this multiple of the tolerance takes the mean of its two phases
+    max_phase_means: int = 10  # phase means per call of the pressure iteration (the 2000:1 ellipse needs ten)
+    truncation_band: float = 10.0  # a stall below this multiple of the tolerance tries the truncated correction
+    truncation_trial: int = 4  # cycles the truncated correction runs before a stall counts as the floor
+    # --- the coupled (pressure-film state) outer loop
+    cycles_per_thermal_update: int = 2  # V-cycles on the pressure between two updates of a thermal film state
+    cycles_per_eyring_update: int = 1  # ... of an isothermal Ree-Eyring film's state (an update costs 1/4 cycle)
+    thermal_relaxation: float = 0.7  # under-relaxation of the temperatures (the state lags the pressure by one update)
+    viscosity_relaxation: float = 0.4  # ... of ln(eta*/eta), the stiffer of the two
+    eyring_relaxation: float = 0.8  # ... of ln(eta*/eta) of an isothermal Ree-Eyring film (no energy equation)
+    anderson_depth: int = 3  # Anderson columns of the thermal loop (5 and 10 were no better)
+    eyring_anderson_depth: int = 5  # Anderson columns of an isothermal Ree-Eyring loop
+    eyring_layers: int = 9  # layers of an isothermal Ree-Eyring film (Simpson on 9 nodes, as the thermal default)
+    eyring_newtonian_share: float = 0.01  # share of eyring_tolerance a column taken as Newtonian may be off by
+    energy_forcing: float = 0.3  # energy sweeps of an update stop below this share of the loop's last change ...
+    energy_forcing_exponent: float = 2.0  # ... times (c_k / c_k-1)^this (Eisenstat & Walker 1996, choice 2) ...
+    min_energy_forcing: float = 0.1  # ... but never below this share
+    min_rise: float = 1.0  # K: tolerances relative to the temperature rise use at least this rise
+    steady_updates: int = 5  # a loop stops on its tolerance only with h_c steady over this many updates
+    thermal_floor_window: int = 8  # outer iterations (or cycles) over which a stall is judged
+    thermal_floor_stall: float = 0.5  # stalled: the window's later half's smallest change above this share ...
+    thermal_floor_fraction: float = 0.01  # largest stalled change of the temperatures accepted, share of the rise
+    thermal_floor_h_c: float = 5e-4  # largest relative spread of h_c at a floor (its grid error: 1e-3 to 6e-3)
+    thermal_floor_error_share: float = 0.5  # ... or this share of h_c's own error estimate, if larger
+    min_relaxation_scale: float = 0.125  # a loop stalled above its floor halves its relaxation down to this scale
+    # --- the thermal full multigrid's stages
+    min_coarse_thermal_grid: int = 65  # the coupled problem is solved one grid coarser first from this grid up
+    coarse_stage_tolerance: float = 5.0  # the coarse stage stops at this multiple of the thermal tolerance ...
+    coarse_stage_limit: float = 5e-3  # ... and never looser than this share of the rise (it seeds the estimates)
+    seed_stage_limit: float = 2e-2  # the seed stage (two grids below the finest) stops at this share of the rise
+    min_seed_stage_grid: int = 129  # nodes in x of the seed stage's grid from which it runs (65: no saving)
+    # --- outlet patches (outlet.py)
+    patch_start: float = -0.5  # X_a / b of the first patch: on the outlet side of the centre
+    nested_patch_starts: tuple[float, ...] = (-0.4, 0.0)  # X_a / b of the nested patches (a 1/4, an 1/8 spacing)
+    spike_flank_nodes: int = 2  # `auto`: the hottest node lies at most this many nodes upstream of the spike
+    auto_dt_max_error: float = 0.02  # `auto` patches where the grid's dT_max estimate misses 2 % ...
+    auto_mu_error: float = 0.01  # ... or its mu estimate misses 1 %
+    max_entrainment_angle: float = 45.0  # deg: beyond it the spike lies across the patch's rows; no stage runs
+    stage_coarse_cycles: tuple[int, ...] = (1, 3)  # grid-below V-cycles per patch correction, by attempt
+    stage_cycles_per_update: int = 1  # V-cycles of a stage's composite per update of its film state
+    figure_window: int = 4  # a stage also stops once its hottest rise settled over this many updates ...
+    figure_spread: float = 0.005  # ... spanning at most this share of its mean (a quarter of auto_dt_max_error) ...
+    flicker_bound: float = 0.025  # ... its changes below this share of the rise (past the transient)
+    stage_load_band: float = 10.0  # ... and the composite's load error within this multiple of the tolerance
+    provisional_margin: float = 1.5  # a stage ends provisionally once its figures moved by this multiple of the bound
+    provisional_window: int = 2  # ... at this many consecutive outer iterations ...
+    provisional_min_iterations: int = 3  # ... from this outer iteration on (the first is the transient)
+    # --- grid refinement of a point whose grid does not resolve its film (retry.py)
+    max_refined_grid: int = 1025  # largest refined grid along either axis (a 1025^2 solve takes about a minute)
+    max_refined_thermal_grid: int = 513  # ... of a thermal solve (1025 never resolved one that 513 did not)
+    unresolved_h_min: float = 0.1  # an unconverged solve estimating its h_min error above this is refined
+    coarse_estimate: float = 0.1  # a converged solve estimating its h_c or h_min error above this is refined
+    side_lobe: float = 0.5  # |y| / a beyond which the lowest film lies in a side lobe: rows alone are doubled
+    damped_attempt: int = 3  # the first attempt (1-based) with the damped relaxation
+
+
+TUNING = Tuning()

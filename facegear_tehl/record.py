@@ -1,0 +1,143 @@
+"""The typed record of a point solve: what was planned, what ran, what was retried and why.
+
+A `SolveRecord` travels with the `PointSolution`, is written to the result file (results.py, /points/<P>/solve) and
+shown by `tehl info`. Human sentences are rendered from it (`render`); no decision is ever taken by reading them back.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import Enum
+
+from facegear_tehl.outcome import Outcome
+
+
+class Stage(Enum):
+    """A stage of a point solve (plan.py orders them)."""
+
+    START = "full-multigrid start"  # from the Hertz pressure on the coarsest grid (Venner & Lubrecht 2000)
+    SEED = "seed stage"  # the coupled problem two grids below the finest
+    COARSE = "coarse stage"  # the coupled problem one grid below the finest
+    FINEST = "finest grid"  # the pressure (and the coupled loop) on the finest grid
+    OUTLET = "outlet patch"  # a patch at half the x spacing over the outlet spike (outlet.py)
+
+
+class Reason(Enum):
+    """A typed failure that leads to a retry (retry.py maps each to its next attempt)."""
+
+    RAN_AWAY = "ran away"
+    STALLED = "stalled short of its tolerances"
+    FILM_CLOSED = "the film closed"
+    START_RAN_AWAY = "the full-multigrid start ran away"
+    SEED_RAN_AWAY = "the seed stage ran away"
+    COARSE_STAGE_RAN_AWAY = "the coarse stage ran away"
+    STAGE_FAILED = "an outlet stage failed"
+    UNRESOLVED = "the grid did not resolve the film"
+    COARSE_ESTIMATE = "the error estimate exceeds its bound"
+    FINER_GRID_FAILED = "a finer grid did not converge"
+
+
+class Action(Enum):
+    """What the retry policy did about a failure."""
+
+    NEXT_RELAXATION = "solved again with the next relaxation"
+    FINER_COARSEST_GRID = "the start begun again from a finer coarsest grid"
+    COARSEST_GRID_AGAIN = "the coarse stage begun again from the coarsest grid"
+    COUPLED_ON_FINEST = "coupled on the finest grid alone from its isothermal solution"
+    MORE_COARSE_CYCLES = "the stage solved again with more V-cycles of the grid below"
+    STAGES_AGAIN = "the stages below solved again to convergence"
+    DROPPED = "dropped: the solution below it is reported"
+    FINER_GRID = "solved again on a finer grid"
+    KEPT_COARSER = "the converged coarser solution kept"
+    FIRST_KEPT = "no retry did better: the first attempt reported"
+    NONE = "kept as it is"
+
+
+@dataclass(frozen=True)
+class StageRecord:
+    """One stage that ran: on which grid (nodes in x, y), its V-cycles and outer iterations, how it ended, its wall
+    time (s)."""
+
+    stage: Stage
+    nx: int
+    ny: int
+    cycles: int
+    outer: int
+    outcome: Outcome
+    seconds: float
+
+
+@dataclass(frozen=True)
+class RetryRecord:
+    """One retry: the typed reason, what was done, on which attempt (1-based) or grid, and the failure's words."""
+
+    reason: Reason
+    action: Action
+    attempt: int
+    detail: str = ""
+
+
+@dataclass(frozen=True)
+class SolveRecord:
+    """The record of a point solve: the planned stages (as `plan.SolvePlan.describe` words), the stages that ran, the
+    retries with their reasons, the attempt reported and its relaxation, the outcome of the iteration itself
+    (before a closed film is reported as such), and fixed notes (the domain, the load continuation)."""
+
+    plan: tuple[str, ...] = ()
+    stages: tuple[StageRecord, ...] = ()
+    retries: tuple[RetryRecord, ...] = ()
+    attempt: int = 1
+    relaxation: str = ""
+    iteration: Outcome = Outcome.CONVERGED
+    notes: tuple[str, ...] = field(default=())
+
+    def with_retry(self, retry: RetryRecord) -> SolveRecord:
+        return SolveRecord(self.plan, self.stages, self.retries + (retry,), self.attempt, self.relaxation,
+                           self.iteration, self.notes)
+
+    def render(self) -> str:
+        """The record in words: the method, the notes, then each retry."""
+        words = ["FAS multigrid, line GS / Jacobi distributive (Venner & Lubrecht 2000), FFT deflection"]
+        words += list(self.notes)
+        for retry in self.retries:
+            where = f" ({retry.detail})" if retry.detail else ""
+            words.append(f"{retry.reason.value}{where}: {retry.action.value}")
+        return "; ".join(words)
+
+
+def record_to_dict(record: SolveRecord) -> dict[str, object]:
+    """The record as plain data (enums by their words), for the result file and `tehl info --json`."""
+    return {
+        "plan": list(record.plan),
+        "stages": [{"stage": s.stage.value, "nx": s.nx, "ny": s.ny, "cycles": s.cycles, "outer": s.outer,
+                    "outcome": s.outcome.value, "seconds": s.seconds} for s in record.stages],
+        "retries": [{"reason": r.reason.value, "action": r.action.value, "attempt": r.attempt, "detail": r.detail}
+                    for r in record.retries],
+        "attempt": record.attempt,
+        "relaxation": record.relaxation,
+        "iteration": record.iteration.value,
+        "notes": list(record.notes),
+    }
+
+
+def record_from_dict(data: dict[str, object]) -> SolveRecord:
+    """The record from `record_to_dict`'s plain data."""
+    stages = tuple(StageRecord(Stage(s["stage"]), int(s["nx"]), int(s["ny"]), int(s["cycles"]), int(s["outer"]),
+                               Outcome(s["outcome"]), float(s["seconds"])) for s in data["stages"])
+    retries = tuple(RetryRecord(Reason(r["reason"]), Action(r["action"]), int(r["attempt"]), str(r["detail"]))
+                    for r in data["retries"])
+    return SolveRecord(tuple(data["plan"]), stages, retries, int(data["attempt"]), str(data["relaxation"]),
+                       Outcome(data["iteration"]), tuple(data["notes"]))
+
+
+def record_lines(name: str, record: SolveRecord) -> list[str]:
+    """The record of point `name` for `tehl info`: the plan, each stage that ran (grid, V-cycles, outer iterations,
+    outcome, wall time), each retry with its reason, and the notes."""
+    lines = [f"solve of {name}: attempt {record.attempt} ({record.relaxation}), iteration {record.iteration.value}"]
+    lines += [f"  planned  {step}" for step in record.plan]
+    lines += [f"  ran      {s.stage.value} on {s.nx} x {s.ny}: {s.cycles} V-cycles, {s.outer} outer iterations, "
+              f"{s.outcome.value}, {s.seconds:.2f} s" for s in record.stages]
+    lines += [f"  retry    {r.reason.value}" + (f" ({r.detail})" if r.detail else "") + f": {r.action.value}"
+              for r in record.retries]
+    lines += [f"  note     {note}" for note in record.notes]
+    return lines
