@@ -1,6 +1,7 @@
 """The repository stands alone and its documentation holds together: no tracked file sends the reader to notes
-outside the repository, README's first screen has the two commands, and every relative link in README and
-docs/*.md (file and heading anchor) resolves."""
+outside the repository, README's first screen has the two commands, every relative link in README and
+docs/*.md (file and heading anchor) resolves, and the docs describe the present: benchmarks.md stays a page of
+results, no commit hash dates a statement, and method.md's code map names every module of the package."""
 
 from __future__ import annotations
 
@@ -20,6 +21,14 @@ README_COMMANDS = ("tehl run cases/facegear_110.yaml", "python -m pytest")  # th
 LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)\)")
 FENCE = re.compile(r"^```.*?^```", re.MULTILINE | re.DOTALL)
 HEADING = re.compile(r"^#{1,6}\s+(.*?)\s*#*\s*$", re.MULTILINE)
+BENCHMARKS_LINES = 400  # docs/benchmarks.md holds today's results, not the run history (git keeps that)
+# A commit hash: 7-40 hex digits with a letter and a digit, not part of a word, path or file name ...
+HEX_HASH = re.compile(r"(?<![\w/.-])(?=[0-9a-f]*[a-f])(?=[0-9a-f]*[0-9])[0-9a-f]{7,40}(?![\w/-]|\.\w)")
+# ... or digits alone after a word that dates a statement ("at 3294722")
+DIGIT_HASH = re.compile(r"\b(?:at|before|after|since|until|commit|commits|against|from|with|in)\s+`?<?\d{7,40}\b",
+                        re.IGNORECASE)
+PACKAGE = ROOT / "facegear_tehl"
+CODE_MAP = "## 7. Code layout"  # the section of docs/method.md that maps the package
 
 
 def tracked_files() -> list[Path]:
@@ -107,3 +116,43 @@ def test_github_anchor_rules():
         "16-load-contact-ratio-and-the-meshing-points-s1s5")
     assert github_anchor("Parallel runs (`--jobs`)") == "parallel-runs---jobs"
     assert github_anchor("Face gear pairs: the `gear:` block") == "face-gear-pairs-the-gear-block"
+
+
+def commit_hashes(text: str) -> list[tuple[int, str]]:
+    """(line number, match) of every commit hash in a text."""
+    return [(number, match.group(0)) for number, line in enumerate(text.splitlines(), start=1)
+            for pattern in (HEX_HASH, DIGIT_HASH) for match in pattern.finditer(line)]
+
+
+def test_commit_hash_scan_finds_planted_hashes():
+    text = ("S1 at 3294722 took 9 s\nbefore 60a2e8d, and `--before <db0f5c7>`.\nh_c 1.2046 um, 2049 x 65, "
+            "DIR/3f1c0e2a9b7d4c51.h5, 1e-3, ab30_ph2.5_u0.5_iso\n")
+    assert [number for number, _ in commit_hashes(text)] == [1, 2, 2]
+
+
+def test_benchmarks_is_a_page_of_results():
+    lines = len((ROOT / "docs" / "benchmarks.md").read_text(encoding="utf-8").splitlines())
+    assert lines <= BENCHMARKS_LINES, f"docs/benchmarks.md has {lines} lines (at most {BENCHMARKS_LINES})"
+
+
+def test_docs_name_no_commit():
+    paths = [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]
+    hits = [f"{path.relative_to(ROOT)}:{number}: {word}" for path in paths
+            for number, word in commit_hashes(path.read_text(encoding="utf-8"))]
+    assert not hits, "commit hashes in the docs (git keeps the history):\n" + "\n".join(hits)
+
+
+def code_map() -> str:
+    """The code-map section of docs/method.md."""
+    text = (ROOT / "docs" / "method.md").read_text(encoding="utf-8")
+    start = text.index(CODE_MAP)
+    end = text.find("\n## ", start + len(CODE_MAP))
+    return text[start:end if end >= 0 else len(text)]
+
+
+def test_code_map_names_every_module():
+    section = code_map()
+    modules = sorted(path.relative_to(PACKAGE).as_posix() for path in PACKAGE.rglob("*.py"))
+    missing = [name for name in modules
+               if not re.search(rf"(?<![\w/.]){re.escape(name)}(?!\w)", section)]
+    assert not missing, f"docs/method.md ({CODE_MAP}) does not name: {', '.join(missing)}"
