@@ -21,7 +21,7 @@ slide-to-roll ratio (Gupta et al. 1992), and says why.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 import math
 
 from numba import njit
@@ -29,7 +29,9 @@ import numpy as np
 
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import energy, jaeger, rheology
-from facegear_tehl.lubricant import ROELANDS, Lubricant
+from facegear_tehl.ehl.film_state import FilmState
+from facegear_tehl.lubricant import Lubricant
+from facegear_tehl.lubricant_constants import ROELANDS
 from facegear_tehl.lubricant_laws import (
     density_ratio_at,
     roelands_pressure_factor_at,
@@ -161,26 +163,6 @@ def relaxed_steps(temperature, updated, thermal_weight, viscosity_weight, x, f):
         if not abs(step) <= largest_f and largest_f == largest_f:
             largest_f = abs(step)
     return largest_t, largest_f
-
-
-@dataclass(frozen=True)
-class FilmState:
-    """Across-film state after one update; layer fields shaped (nz, ny, nx)."""
-
-    temperature: np.ndarray  # K
-    viscosity_factor: np.ndarray  # eta*/eta
-    dissipation: np.ndarray  # W/m^3
-    velocity_x: np.ndarray | None  # m/s (None without the energy equation, the only user of the velocities)
-    velocity_y: np.ndarray | None  # m/s
-    stress_1: np.ndarray  # (2, ny, nx) shear stress at surface 1, Pa
-    stress_2: np.ndarray  # (2, ny, nx) at surface 2, Pa
-    # (ny, nx) into solid 1 and 2, W/m^2 (None: deferred by `update(..., wall_fluxes=False)`, see `completed`)
-    heat_flux_1: np.ndarray | None
-    heat_flux_2: np.ndarray | None
-    compression: np.ndarray | None  # beta_T T (u . grad p), W/m^3 (None without the energy equation)
-    change: float  # largest temperature change of this update, K
-    heat_capacity: np.ndarray | None = None  # rho c per layer node as the energy equation used it, J/(m^3 K)
-    # (None without the energy equation)
 
 
 class FilmThermalModel:
