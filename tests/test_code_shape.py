@@ -11,11 +11,7 @@ MAX_LINES = 60
 # Decorators that make a function a Numba kernel: its loops are written out inline for speed.
 KERNEL_DECORATORS = frozenset({"njit", "jit", "vectorize", "guvectorize", "stencil"})
 # The lead's solver driver (file relative to the package, function): removed by the solver-driver redesign (issue 43).
-EXEMPT = frozenset({("ehl/solve.py", "couple"), ("ehl/outlet.py", "refine_outlet")}
-                   # being split into named helpers, one commit each
-                   | {("cycle.py", "mesh_cycle"), ("ehl/thermal.py", "update"), ("gears/analysis.py", "_sample"),
-                      ("heat_budget.py", "point_budget"), ("line/solve.py", "run"),
-                      ("line/thermal.py", "solve_energy")})
+EXEMPT = frozenset({("ehl/solve.py", "couple"), ("ehl/outlet.py", "refine_outlet")})
 
 
 def _decorator_name(node: ast.expr) -> str:
