@@ -1,13 +1,18 @@
 """The package's imports flow one way: no module imports, directly or through others, a module that imports it
 (imports inside function bodies included), so that no import has to hide in a function to dodge a circle. The
 layers themselves (command line -> workflows -> files -> case -> physics -> leaves; plots read files only) are
-import-linter contracts in pyproject.toml, checked by `lint-imports` in .ci/run."""
+import-linter contracts in pyproject.toml, checked by `lint-imports` in .ci/run and here."""
 
 from __future__ import annotations
+
+from pathlib import Path
+import subprocess
+import sys
 
 import grimp
 
 PACKAGE = "facegear_tehl"
+ROOT = Path(__file__).resolve().parents[1]
 # The one known circle, solve -> outlet -> report -> solve: removed by the solver-driver redesign (issue 43).
 KNOWN = {("facegear_tehl.ehl.outlet", "facegear_tehl.ehl.solve"),
          ("facegear_tehl.ehl.report", "facegear_tehl.ehl.solve")}
@@ -56,3 +61,12 @@ def test_the_known_circle_is_still_there():
     """KNOWN lists only imports that exist: once the redesign removes them, this fails until KNOWN is emptied."""
     graph = grimp.build_graph(PACKAGE, cache_dir=None)
     assert all(graph.direct_import_exists(importer=a, imported=b) for a, b in KNOWN)
+
+
+def test_the_import_contracts_hold():
+    """pyproject.toml's contracts, as `lint-imports` checks them (a new top-level module must be placed in a layer
+    there)."""
+    command = [sys.executable, "-c", "from importlinter.cli import lint_imports_command; lint_imports_command()"]
+    process = subprocess.run([*command, "--no-cache", "--no-logo"], cwd=ROOT, capture_output=True, text=True,
+                             timeout=120)
+    assert process.returncode == 0, process.stdout[-3000:] + process.stderr[-2000:]
