@@ -232,6 +232,7 @@ Examples:
 def study(ctx: click.Context, study_file: str, output: str | None, workers: int | None, scheduler: str | None) -> None:
     """Run every variant of STUDY (a base case and the keys it varies) on a Dask cluster: one result file per
     variant, named by the hash of its case, and index.csv; variants already finished are skipped."""
+    # Imported here: only this command needs Dask.
     from facegear_tehl.study import run_study
     from facegear_tehl.study_file import load_study
 

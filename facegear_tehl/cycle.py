@@ -121,55 +121,19 @@ def mesh_cycle(case: Case, points: Sequence[ContactPoint], solutions: Sequence[P
     path: the contact path table (gears/analysis.py); geometry: its scalars (base_pitch, normal_load,
     pinion_base_radius, path_start, path_end). The power loss and efficiency are given when the points span the
     whole path (both ends solved); the ISO/TR 14179-2 variant when the case gives a roughness."""
-    gear, lubricant = case.gear, case.lubricant
     solved = sorted(((p, sol) for p, sol in zip(points, solutions) if _has_film(sol)),
                     key=lambda pair: pair[0].path_coordinate)
     if not solved:  # the points' own messages say why
         return MeshCycle({}, {}, {})
-    base_pitch, normal_load = geometry["base_pitch"][0], geometry["normal_load"][0]
+    base_pitch = geometry["base_pitch"][0]
     s = np.array([p.path_coordinate for p, _ in solved])
-    load = np.array([p.load for p, _ in solved])
-    values = {name: np.array([sol.scalars[key][0] if key in sol.scalars else math.nan for _, sol in solved])
-              for name, (key, _, _) in _FROM_POINTS.items()}
-    bulk = tuple(lubricant.inlet_temperature if t is None else t
-                 for t in (gear.pinion_bulk_temperature, gear.face_gear_bulk_temperature))
-    columns = {
-        "point": Field(np.array([p.name for p, _ in solved]), "-", "meshing point (a name: no unit)"),
-        "s": Field(s, "m", "path coordinate: pinion roll distance from the pitch position"),
-        "roll_angle": Field(s / geometry["pinion_base_radius"][0], "rad",
-                            "pinion roll angle from the pitch position, s / r_b1"),
-        "load_share": Field(load / normal_load, "1", "share K of the normal load carried by the pair"),
-        "load": Field(load, "N", "normal load of the pair, K F_n"),
-        "sliding_speed": Field(np.array([p.sliding_speed for p, _ in solved]), "m/s", "sliding speed |u_1 - u_2|"),
-    }
-    columns.update({name: Field(values[name], units, description)
-                    for name, (_, units, description) in _FROM_POINTS.items() if np.isfinite(values[name]).all()})
-    sliding = load * columns["sliding_speed"].values
-    if "mu" in columns:
-        columns["sliding_power"] = Field(values["mu"] * sliding, "W", "sliding power P = mu F |v_s| of the solved "
-                                         "film; the attr power_loss is its " + QUADRATURE)
-    if "mu_xu" in columns:
-        columns["sliding_power_xu"] = Field(values["mu_xu"] * sliding, "W", "P = mu F |v_s| with Xu et al.'s mu")
     sigma = composite_roughness(case.materials.body_1.roughness, case.materials.body_2.roughness)
-    if sigma > 0.0:
-        columns["film_parameter"] = Field(values["h_min"] / sigma, "1",
-                                          "film parameter lambda = h_min / sqrt(R_q1^2 + R_q2^2)")
-    for body in (1, 2):
-        if "flash_temperature" in columns:
-            columns[f"contact_temperature_blok_{body}"] = Field(
-                bulk[body - 1] + values["flash_temperature"], "K",
-                f"contact temperature of flank {body}: its bulk temperature + Blok's flash temperature")
-        if case.solver.thermal != "off" and f"dT_surface_{body}_max" in columns:
-            columns[f"contact_temperature_{body}"] = Field(
-                bulk[body - 1] + values[f"dT_surface_{body}_max"], "K",
-                f"contact temperature of flank {body}: its bulk temperature + its solved surface temperature rise")
-
+    columns = _columns(case, solved, geometry, sigma)
     scalars: dict[str, tuple[float, str]] = {
         "point_count": (len(solved), "1"),
         "base_pitch": (base_pitch, "m"),
-        "input_power": (gear.pinion_torque * gear.pinion_speed, "W"),
-        "bulk_temperature_1": (bulk[0], "K"),
-        "bulk_temperature_2": (bulk[1], "K"),
+        "input_power": (case.gear.pinion_torque * case.gear.pinion_speed, "W"),
+        **{f"bulk_temperature_{body}": (t, "K") for body, t in enumerate(_bulk_temperatures(case), start=1)},
         **{f"s_{name}": (value, "m") for name, value in
            meshing_points(geometry["path_start"][0], geometry["path_end"][0], base_pitch).items()},
     }
@@ -182,19 +146,86 @@ def mesh_cycle(case: Case, points: Sequence[ContactPoint], solutions: Sequence[P
     if not spans or len(solved) < 2:
         notes.append("cycle: the solved points do not span the contact path from end to end; "
                      "no mesh power loss or efficiency")
-        return MeshCycle(columns, scalars, _point_scalars(columns), tuple(notes))
+    else:
+        notes.extend(_power_losses(case, s, columns, sigma, geometry, path, scalars))
+    return MeshCycle(columns, scalars, _point_scalars(columns), tuple(notes))
+
+
+def _bulk_temperatures(case: Case) -> tuple[float, float]:
+    """The bulk temperatures of the two flanks (K): the case's, else the oil's inlet temperature."""
+    return tuple(case.lubricant.inlet_temperature if t is None else t
+                 for t in (case.gear.pinion_bulk_temperature, case.gear.face_gear_bulk_temperature))
+
+
+def _columns(case: Case, solved: Sequence[tuple[ContactPoint, PointSolution]],
+             geometry: Mapping[str, tuple[float, str]], sigma: float) -> dict[str, Field]:
+    """The cycle table over the solved points (path order): position, load, sliding, the points' scalars present
+    at every point, the sliding power, the film parameter (roughness `sigma` > 0, m) and the contact temperatures."""
+    s = np.array([p.path_coordinate for p, _ in solved])
+    load = np.array([p.load for p, _ in solved])
+    values = {name: np.array([sol.scalars[key][0] if key in sol.scalars else math.nan for _, sol in solved])
+              for name, (key, _, _) in _FROM_POINTS.items()}
+    columns = {
+        "point": Field(np.array([p.name for p, _ in solved]), "-", "meshing point (a name: no unit)"),
+        "s": Field(s, "m", "path coordinate: pinion roll distance from the pitch position"),
+        "roll_angle": Field(s / geometry["pinion_base_radius"][0], "rad",
+                            "pinion roll angle from the pitch position, s / r_b1"),
+        "load_share": Field(load / geometry["normal_load"][0], "1", "share K of the normal load carried by the pair"),
+        "load": Field(load, "N", "normal load of the pair, K F_n"),
+        "sliding_speed": Field(np.array([p.sliding_speed for p, _ in solved]), "m/s", "sliding speed |u_1 - u_2|"),
+    }
+    columns.update({name: Field(values[name], units, description)
+                    for name, (_, units, description) in _FROM_POINTS.items() if np.isfinite(values[name]).all()})
+    sliding = load * columns["sliding_speed"].values
+    if "mu" in columns:
+        columns["sliding_power"] = Field(values["mu"] * sliding, "W", "sliding power P = mu F |v_s| of the solved "
+                                         "film; the attr power_loss is its " + QUADRATURE)
+    if "mu_xu" in columns:
+        columns["sliding_power_xu"] = Field(values["mu_xu"] * sliding, "W", "P = mu F |v_s| with Xu et al.'s mu")
+    if sigma > 0.0:
+        columns["film_parameter"] = Field(values["h_min"] / sigma, "1",
+                                          "film parameter lambda = h_min / sqrt(R_q1^2 + R_q2^2)")
+    columns.update(_contact_temperatures(case, columns, values))
+    return columns
+
+
+def _contact_temperatures(case: Case, columns: Mapping[str, Field],
+                          values: Mapping[str, np.ndarray]) -> dict[str, Field]:
+    """Each flank's contact temperature (K): its bulk temperature plus Blok's flash temperature, and plus its
+    solved surface temperature rise (a thermal solve), where the points give them."""
+    bulk = _bulk_temperatures(case)
+    temperatures = {}
+    for body in (1, 2):
+        if "flash_temperature" in columns:
+            temperatures[f"contact_temperature_blok_{body}"] = Field(
+                bulk[body - 1] + values["flash_temperature"], "K",
+                f"contact temperature of flank {body}: its bulk temperature + Blok's flash temperature")
+        if case.solver.thermal != "off" and f"dT_surface_{body}_max" in columns:
+            temperatures[f"contact_temperature_{body}"] = Field(
+                bulk[body - 1] + values[f"dT_surface_{body}_max"], "K",
+                f"contact temperature of flank {body}: its bulk temperature + its solved surface temperature rise")
+    return temperatures
+
+
+def _power_losses(case: Case, s: np.ndarray, columns: Mapping[str, Field], sigma: float,
+                  geometry: Mapping[str, tuple[float, str]], path: Mapping[str, Field],
+                  scalars: dict[str, tuple[float, str]]) -> list[str]:
+    """The mesh power loss and efficiency of each sliding power the table has (and of ISO/TR 14179-2's mean
+    friction with a roughness `sigma` > 0) into `scalars`, for points spanning the path; returns the notes."""
+    gear, base_pitch, normal_load = case.gear, geometry["base_pitch"][0], geometry["normal_load"][0]
+    notes = []
     variants = {suffix: columns[name].values for suffix, name in _LOSS_COLUMNS.items() if name in columns}
     if "" not in variants:
         notes.append("cycle: not every point has the film's friction coefficient; no mesh power loss from it")
     if sigma > 0.0:
         mu_iso = iso_tr_14179_mean_friction(case, normal_load, path)
         scalars["mu_iso"] = (mu_iso, "1")
-        variants["_iso"] = mu_iso * sliding
+        variants["_iso"] = mu_iso * (columns["load"].values * columns["sliding_speed"].values)
     for suffix, power in variants.items():
         loss = mesh_power_loss(s, power, base_pitch)
         scalars[f"power_loss{suffix}"] = (loss, "W")
         scalars[f"mesh_efficiency{suffix}"] = (mesh_efficiency(loss, gear.pinion_torque, gear.pinion_speed), "1")
-    return MeshCycle(columns, scalars, _point_scalars(columns), tuple(notes))
+    return notes
 
 
 def _has_film(solution: PointSolution | None) -> bool:

@@ -79,6 +79,16 @@ def point_budget(point: ContactPoint, solution: PointSolution, lubricant: Lubric
                  ) -> tuple[dict[str, float], dict[str, Field]]:
     """The budget of one solved point: (values of COLUMNS, SI; heat flux fields). Needs `mu` and the film state
     (fields temperature_mean and dissipation_column)."""
+    values = _friction_values(point, solution, lubricant)
+    values.update(_film_heat(point, solution, lubricant))
+    difference, fields = _heat_distributions(point, solution, values["friction_power"])
+    values["distribution_difference"] = difference
+    return values, fields
+
+
+def _friction_values(point: ContactPoint, solution: PointSolution, lubricant: Lubricant) -> dict[str, float]:
+    """Friction (the film's mu and Xu et al.'s), its power, its partition between the solids, their duty ratios and
+    steady-state powers, Blok's flash temperature and the largest solved surface temperature rise."""
     sc = solution.scalars
     mu = sc["mu"][0]
     b, a = sc["b"][0], sc["a"][0]
@@ -107,10 +117,16 @@ def point_budget(point: ContactPoint, solution: PointSolution, lubricant: Lubric
         mu, point.load, point.sliding_speed, b, a,
         point.body_1.thermal_effusivity_speed(u1), point.body_2.thermal_effusivity_speed(u2))
     values["surface_rise_max"] = max(sc["dT_surface_1_max"][0], sc["dT_surface_2_max"][0])
+    return values
 
+
+def _film_heat(point: ContactPoint, solution: PointSolution, lubricant: Lubricant) -> dict[str, float]:
+    """The heat the film dissipates during the dwell time 2b/u_e (over the domain, the Hertz ellipse, and the
+    seed's mu F v_s), the heat the oil film holds, and their ratios."""
+    sc, f = solution.scalars, solution.fields
+    mu, b, a = sc["mu"][0], sc["b"][0], sc["a"][0]
     x, y = solution.axes["x"].values, solution.axes["y"].values
     dx, dy = float(x[1] - x[0]), float(y[1] - y[0])
-    f = solution.fields
     pressure, film = f["pressure"].values, f["film_thickness"].values
     t_mean = f["temperature_mean"].values
     rho_c = lubricant.density_at(pressure, t_mean) * lubricant.specific_heat
@@ -124,29 +140,36 @@ def point_budget(point: ContactPoint, solution: PointSolution, lubricant: Lubric
     dissipated_ellipse = heat.power_in_region(f["dissipation_column"].values, inside, dx, dy)
     q_f_ellipse = heat.frictional_heat(dissipated_ellipse, dwell)
     q_f_seed = heat.seed_frictional_heat(mu, point.load, point.sliding_speed, dwell)
-    values.update({"dissipated_power": dissipated, "dissipated_power_ellipse": dissipated_ellipse,
-                   "dwell_time": dwell, "frictional_heat": q_f, "frictional_heat_seed": q_f_seed,
-                   "frictional_heat_ellipse": q_f_ellipse, "oil_film_heat": q_oil,
-                   "oil_film_heat_domain": heat.oil_film_heat(rho_c, film, rise, dx, dy),
-                   "oil_to_friction_ratio": q_oil / q_f, "oil_to_ellipse_friction_ratio": q_oil / q_f_ellipse})
+    values = {"dissipated_power": dissipated, "dissipated_power_ellipse": dissipated_ellipse,
+              "dwell_time": dwell, "frictional_heat": q_f, "frictional_heat_seed": q_f_seed,
+              "frictional_heat_ellipse": q_f_ellipse, "oil_film_heat": q_oil,
+              "oil_film_heat_domain": heat.oil_film_heat(rho_c, film, rise, dx, dy),
+              "oil_to_friction_ratio": q_oil / q_f, "oil_to_ellipse_friction_ratio": q_oil / q_f_ellipse}
     if q_f_seed > SEED_HEAT_FLOOR * q_f_ellipse:  # the seed's ratio is undefined without sliding
         values["oil_to_seed_friction_ratio"] = q_oil / q_f_seed
+    return values
 
-    by_pressure = heat.distribute_by_pressure(power, pressure)
+
+def _heat_distributions(point: ContactPoint, solution: PointSolution, power: float) -> tuple[float, dict[str, Field]]:
+    """The friction power `power` (W) distributed over the grid in proportion to the pressure and to the shear power
+    tau . v_s: (half the L1 difference of the two relative to the power, the two heat flux fields)."""
+    x, y = solution.axes["x"].values, solution.axes["y"].values
+    dx, dy = float(x[1] - x[0]), float(y[1] - y[0])
+    f = solution.fields
+    by_pressure = heat.distribute_by_pressure(power, f["pressure"].values)
     sliding = point.sliding  # u_1 - u_2; the film stress eta* du/dz does positive work on -sliding
     tau_x = -0.5 * (f["shear_stress_1_x"].values + f["shear_stress_2_x"].values)
     tau_y = -0.5 * (f["shear_stress_1_y"].values + f["shear_stress_2_y"].values)
     by_shear = np.maximum(heat.distribute_by_shear_power(tau_x, tau_y, sliding[0], sliding[1], dx, dy), 0.0)
     by_shear = by_shear * (power / by_shear.sum()) if by_shear.sum() > 0.0 else np.zeros_like(by_shear)
-    values["distribution_difference"] = (0.5 * float(np.abs(by_pressure - by_shear).sum()) / power
-                                         if power > 0.0 else 0.0)
+    difference = 0.5 * float(np.abs(by_pressure - by_shear).sum()) / power if power > 0.0 else 0.0
     fields = {
         "heat_flux_by_pressure": Field(by_pressure / (dx * dy), "W/m^2",
                                        "frictional heat flux, P distributed in proportion to the pressure"),
         "heat_flux_by_shear": Field(by_shear / (dx * dy), "W/m^2",
                                     "frictional heat flux, P distributed in proportion to the shear power tau . v_s"),
     }
-    return values, fields
+    return difference, fields
 
 
 def heat_budget(points: list[ContactPoint], solutions: list[PointSolution], lubricant: Lubricant

@@ -12,8 +12,8 @@ Density (ratio to rho_0 at p = 0, T = T_0):
 Thermal conductivity (ratio to k_0 at p = 0):
   Larsson, Larsson, Eriksson, Sjoberg & Hoglund (2000):  k/k_0 = 1 + a p/(1 + b p),  p in GPa, a and b in 1/GPa
   (a = b = 0: constant k_0)
-The laws themselves are Numba kernels in lubricant_laws.py, imported on first use: reading a case (`tehl validate`)
-does not load Numba.
+The laws' constants are in lubricant_constants.py; the laws themselves are Numba kernels in lubricant_laws.py,
+imported on first use: reading a case (`tehl validate`) does not load Numba.
 """
 
 from __future__ import annotations
@@ -23,24 +23,22 @@ import math
 
 import numpy as np
 
-# Roelands (1966): reference pressure and the asymptotic viscosity ln(eta_inf / Pa s) = -9.67.
-ROELANDS_PRESSURE = 1.96e8  # Pa
-ROELANDS_LN_ETA_INF = -9.67  # ln(Pa s)
-# Roelands (1966) temperature law: viscosity tends to infinity at 138 K.
-ROELANDS_T_INF = 138.0  # K
-# Dowson & Higginson (1966) density constants as written by Venner & Lubrecht (2000).
-DH_P1 = 5.9e8  # Pa
-DH_RATIO = 1.34  # rho(p -> inf)/rho_0
+from facegear_tehl.lubricant_constants import (
+    BARUS,
+    DOWSON_HIGGINSON,
+    INCOMPRESSIBLE,
+    ROELANDS,
+    ROELANDS_LN_ETA_INF,
+    ROELANDS_PRESSURE,
+    ROELANDS_T_INF,
+)
+
 KELVIN = 273.15  # K at 0 degC
 
 VISCOSITY_MODELS = ("roelands", "barus")
 DENSITY_MODELS = ("dowson_higginson", "incompressible")
 RHEOLOGY_MODELS = ("newtonian", "ree_eyring")
 OIL_TYPES = ("mineral", "pao", "ester", "pag")  # base oils of ISO/TR 14179-2's oil factor X_L (heat.py)
-
-# Integer codes used inside Numba kernels.
-ROELANDS, BARUS = 0, 1
-DOWSON_HIGGINSON, INCOMPRESSIBLE = 0, 1
 
 
 @dataclass(frozen=True)
@@ -108,6 +106,7 @@ class Lubricant:
 
     def viscosity_at(self, pressure, temperature=None) -> np.ndarray:
         """eta(p, T), Pa s; temperature in K (default: inlet)."""
+        # imported here, not at the top, for start-up: reading a case (`tehl validate`) does not load Numba
         from facegear_tehl.lubricant_laws import viscosity_ratio
 
         p, t = _broadcast(pressure, temperature, self.inlet_temperature)
@@ -115,6 +114,7 @@ class Lubricant:
 
     def density_at(self, pressure, temperature=None) -> np.ndarray:
         """rho(p, T), kg/m^3; temperature in K (default: inlet)."""
+        # imported here, not at the top, for start-up: reading a case (`tehl validate`) does not load Numba
         from facegear_tehl.lubricant_laws import density_ratio
 
         p, t = _broadcast(pressure, temperature, self.inlet_temperature)
@@ -122,6 +122,7 @@ class Lubricant:
 
     def conductivity_at(self, pressure) -> np.ndarray:
         """k(p), W/(m K) (Larsson et al. 2000; exactly k_0 everywhere when a = b = 0)."""
+        # imported here, not at the top, for start-up: reading a case (`tehl validate`) does not load Numba
         from facegear_tehl.lubricant_laws import conductivity_ratio
 
         p = np.asarray(pressure, dtype=np.float64)

@@ -1,6 +1,7 @@
 """The viscosity, density and conductivity laws of lubricant.py as Numba kernels (SI units; the law parameters
-from `Lubricant.law_parameters`). Apart from the Lubricant dataclass so that reading a case does not import Numba
-(`tehl validate`: Numba takes about 0.15 s to import)."""
+from `Lubricant.law_parameters`; their constants from lubricant_constants.py). Apart from the Lubricant dataclass,
+which imports them on first use, so that reading a case does not import Numba (`tehl validate`: Numba takes about
+0.15 s to import)."""
 
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ import math
 from numba import njit
 import numpy as np
 
-from facegear_tehl.lubricant import (
+from facegear_tehl.lubricant_constants import (
     DH_P1,
     DH_RATIO,
     DOWSON_HIGGINSON,

@@ -57,7 +57,9 @@ if TYPE_CHECKING:  # h5py is imported where a file is written or read: `tehl val
     import h5py
 
 FILETYPE = "facegear_tehl result"
-FORMAT_VERSION = "1.3"  # 1.1: /points/<name> attrs outcome; 1.2: dimension scales, integer counts; 1.3: solve
+# 1.1: /points/<name> attrs outcome; 1.2: dimension scales, integer counts; 1.3: /points/<name>/solve, root attr
+# convergence_bands
+FORMAT_VERSION = "1.3"
 STATUSES = ("ok", "not_converged", "failed")
 # Group attributes that are not scalars.
 _RESERVED_ATTRS = ("units", "converged", "outcome", "message", "models")
@@ -115,6 +117,8 @@ class RunResult:
     heat: Mapping[str, Field] = field(default_factory=dict)
     sweep: Mapping[str, Field] = field(default_factory=dict)
     sweep_scalars: Mapping[str, tuple[float, str]] = field(default_factory=dict)
+    # the solver's settled-floor bands (ehl.tuning.convergence_bands), for the convergence plot; {}: none given
+    convergence_bands: Mapping[str, float] = field(default_factory=dict)
     cycle: Mapping[str, Field] = field(default_factory=dict)
     cycle_scalars: Mapping[str, tuple[float, str]] = field(default_factory=dict)
     warnings: tuple[str, ...] = ()
@@ -185,6 +189,8 @@ class Result:
     cycle: Mapping[str, Field] = field(default_factory=dict)
     cycle_scalars: Mapping[str, float | int] = field(default_factory=dict)
     cycle_units: Mapping[str, str] = field(default_factory=dict)
+    # the solver's settled-floor bands (ehl.tuning.convergence_bands; empty in a file of format 1.2 or older)
+    convergence_bands: Mapping[str, float] = field(default_factory=dict)
 
 
 # ----------------------------------------------------------------------------------------- writing
@@ -272,6 +278,7 @@ def _write_root(h5: h5py.File, run: RunResult) -> None:
     h5.attrs["warnings"] = json.dumps(list(run.warnings))
     h5.attrs["models"] = json.dumps(run.models)
     h5.attrs["overrides"] = json.dumps(dict(run.overrides))
+    h5.attrs["convergence_bands"] = json.dumps(dict(run.convergence_bands))
 
 
 def _write_point(points: h5py.Group, solution: PointSolution, chunks: _Chunks) -> None:
@@ -529,6 +536,7 @@ def read_result(path: str | Path, fields: bool = True) -> Result:
                 cycle=_read_table(cycle),
                 cycle_scalars=cycle_scalars,
                 cycle_units=cycle_units,
+                convergence_bands=json.loads(attrs.get("convergence_bands", "{}")),
             )
         except (KeyError, ValueError, TypeError) as exc:
             raise ResultFileError(f"{path}: damaged tehl result ({_reason(exc)})") from None

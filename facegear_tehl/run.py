@@ -13,7 +13,7 @@ from facegear_tehl.cycle import MeshCycle, mesh_cycle, with_film_parameter
 from facegear_tehl.ehl.domain import MIN_LENGTHENED_NODES, solution_domain
 from facegear_tehl.ehl.retry import POLICY, estimates
 from facegear_tehl.ehl.scaling import scaling_for
-from facegear_tehl.ehl.tuning import TUNING
+from facegear_tehl.ehl.tuning import TUNING, convergence_bands
 from facegear_tehl.heat_budget import heat_budget
 from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
 from facegear_tehl.points import contact_analysis, select_points
@@ -82,6 +82,7 @@ def run_case(
         cycle_scalars=cycle.scalars,
         warnings=warnings,
         overrides=overrides,
+        convergence_bands=convergence_bands(),
     )
 
 

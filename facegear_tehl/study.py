@@ -33,8 +33,8 @@ import h5py
 from facegear_tehl.results import ResultFileError, RunResult, read_result, write_result
 from facegear_tehl.schema import CaseError
 from facegear_tehl.study_file import Study, Variant, digest, value_text
+from facegear_tehl.study_index import COLUMNS, CYCLE_COLUMNS, INDEX, POINT_COLUMNS
 
-INDEX = "index.csv"
 FAILURES = "failures.txt"
 # Dask starts worker processes with MALLOC_TRIM_THRESHOLD_=65536 (its distributed.nanny.pre-spawn-environ), which
 # fixes glibc's mmap threshold: every array above 128 KiB is then mapped and unmapped anew, and a 257^2 solve of
@@ -42,13 +42,6 @@ FAILURES = "failures.txt"
 # (docs/study.md shows the same for `dask worker`).
 WORKER_ENVIRON = {"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}
 CONNECT_TIMEOUT = "10s"  # a scheduler that does not answer within this is taken as absent (Dask's default: 30 s)
-# Per-point scalars of the index (SI units in its header); a point without one leaves the cell empty.
-POINT_COLUMNS = (("h_c", "m"), ("h_min", "m"), ("film_parameter", "1"), ("p_max", "Pa"), ("dT_max", "K"),
-                 ("mu", "1"))
-# Attributes of a result's /cycle group (the mesh cycle: power loss, efficiency), the same on every point's row.
-CYCLE_COLUMNS = (("power_loss", "W"), ("mesh_efficiency", "1"))
-COLUMNS = tuple(name for name, _ in POINT_COLUMNS + CYCLE_COLUMNS)
-"""The scalars of the index, in its order: what `tehl plot --what maps --z` can draw."""
 
 
 @dataclass(frozen=True)
@@ -98,6 +91,7 @@ seconds left)."""
 
 def solve_variant(text: str) -> VariantRun:
     """The task: the variant's resolved case text run as `tehl run` runs it, its points in this process."""
+    # imported here, not at the top, for start-up: a study whose variants are all finished loads no solver (Numba)
     from facegear_tehl.case import parse_case
     from facegear_tehl.run import run_case
 
@@ -151,6 +145,7 @@ def run_study(study: Study, folder: Path, *, workers: int = 1, scheduler: str | 
 @contextmanager
 def _client(workers: int, scheduler: str | None) -> Iterator[object]:
     """A Dask client: of the cluster at `scheduler`, else of a local cluster of `workers` processes."""
+    # imported here, not at the top, for start-up: a study whose variants are all finished does not load Dask
     import dask
     from distributed import Client, LocalCluster
 

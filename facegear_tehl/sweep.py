@@ -46,6 +46,7 @@ from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.domain import solution_domain
 from facegear_tehl.ehl.richardson import ORDER
 from facegear_tehl.ehl.scaling import scaling_for
+from facegear_tehl.ehl.tuning import convergence_bands
 from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
 from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.results import RunResult
@@ -235,6 +236,7 @@ def run_sweep(
         warnings=analysis.warnings + _model_warnings(case, solutions)
         + iteration_warnings(quantities, case.solver.thermal_tolerance),
         overrides=overrides,
+        convergence_bands=convergence_bands(),
     )
     return Sweep(point=target.name, grids=grids, tolerance=tolerance, quantities=quantities, run=run)
 

@@ -1,28 +1,12 @@
-"""The envelope suite's case generator (scripts/envelope.py): its size, its spans, both models, and contacts
-that really have the asked ellipticity and Hertz pressure. Nothing is solved."""
+"""The envelope suite's case generator (facegear_tehl/suites/envelope.py, run by scripts/envelope.py): its size,
+its spans, both models, and contacts that really have the asked ellipticity and Hertz pressure. Nothing is solved."""
 
 from __future__ import annotations
-
-import importlib.util
-from pathlib import Path
-import sys
-from types import ModuleType
 
 import numpy as np
 import pytest
 
-SCRIPT = Path(__file__).resolve().parents[1] / "scripts" / "envelope.py"
-
-
-def _load() -> ModuleType:
-    spec = importlib.util.spec_from_file_location("envelope", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module  # dataclasses look their module up while the file executes
-    spec.loader.exec_module(module)
-    return module
-
-
-envelope = _load()
+from facegear_tehl.suites import envelope
 
 
 @pytest.fixture(scope="module")

@@ -1,24 +1,19 @@
-"""The random face gear designs of scripts/gear_designs.py: drawn inside their ranges, turned into valid cases on
-their usable face width, speed and torque by hand; a design the checks reject is a row, not a crash. Nothing is
-solved here (the suite itself is run by hand: docs/envelope.md)."""
+"""The random face gear designs of facegear_tehl/suites/gear_designs.py (run by scripts/gear_designs.py): drawn
+inside their ranges, turned into valid cases on their usable face width, speed and torque by hand; a design the
+checks reject is a row, not a crash. Nothing is solved here (the suite itself is run by hand: docs/envelope.md)."""
 
 from __future__ import annotations
 
-import importlib.util
 import math
 from pathlib import Path
-import sys
 
 import pytest
 
 from facegear_tehl.case import parse_case
 from facegear_tehl.schema import CaseError
+from facegear_tehl.suites import gear_designs as designs_module
 
-SCRIPT = Path(__file__).resolve().parents[1] / "scripts" / "gear_designs.py"
-spec = importlib.util.spec_from_file_location("gear_designs", SCRIPT)
-designs_module = importlib.util.module_from_spec(spec)
-sys.modules[spec.name] = designs_module  # dataclasses look their module up while the file executes
-spec.loader.exec_module(designs_module)
+CASE = (Path(__file__).resolve().parents[1] / "cases" / "facegear_110.yaml").read_text()
 
 
 @pytest.fixture(scope="module")
@@ -47,7 +42,7 @@ def test_accepted_designs_are_valid_cases_on_their_whole_usable_width(designs):
     accepted = 0
     for d in designs:
         try:
-            case = parse_case(d.case_text(65, 17))
+            case = parse_case(d.case_text(CASE, 65, 17))
         except CaseError as error:  # the case checks' own reason, e.g. a path in the undercut zone
             assert str(error).startswith("gear.")
             continue

@@ -333,7 +333,7 @@ def test_thermal_rolling_film_reduction_gupta(speed):
     """Pure rolling: h_c(thermal)/h_c(isothermal) against the thermal reduction factor of Gupta, Cheng, Zhu,
     Forster & Schrand (1992), phi_T = [1 - 13.2 (p_h/E') L^0.42]/[1 + 0.213 (1 + 2.23 SRR^0.83) L^0.64],
     L = beta eta_0 u_e^2/k_f: ours loses less film, within 10 % (measured +2.3 % at L = 0.03 and +9.1 % at
-    L = 0.86). Gupta's fit lies 3-9 % below the thermal inlet analysis of scripts/thermal_inlet.py at every L from
+    L = 0.86). Gupta's fit lies 3-9 % below the thermal inlet analysis of suites/thermal_inlet.py at every L from
     0.03 to 20 (0.965 / 0.800 / 0.453 against 0.994 / 0.877 / 0.489 at L = 0.03 / 0.86 / 10), which the line
     solver matches within 1.3 % at L <= 0.86 (tests/test_thermal_validation.py; docs/accuracy.md)."""
     iso = _solve(LOAD_08, speed, THERMAL_OIL)

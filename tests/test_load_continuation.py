@@ -25,7 +25,7 @@ STEEL = Solid(elastic_modulus=210e9, poisson_ratio=0.3, density=7850.0, thermal_
 # the envelope suite's gear oil (scripts/envelope.py: ISO VG 320 at 80 degC, Roelands + Dowson-Higginson)
 OIL = Lubricant(viscosity=0.04, pressure_viscosity=2.0e-8, inlet_temperature=80.0 + KELVIN, density=835.0,
                 viscosity_model="roelands", density_model="dowson_higginson")
-RADIUS_Y = 0.020 * 11.8266  # R_y/R_x of an a/b = 5 ellipse (exact Hertz ellipticity; scripts/envelope.py)
+RADIUS_Y = 0.020 * 11.8266  # R_y/R_x of an a/b = 5 ellipse (exact Hertz ellipticity; suites/envelope.py)
 
 
 def _point(load: float, speed: float = 0.5) -> ContactPoint:

@@ -20,8 +20,10 @@ from facegear_tehl.ehl import flow, grid
 from facegear_tehl.ehl.multigrid import MultigridSolver
 from facegear_tehl.ehl.scaling import contact_from_moes, scaling_for
 from facegear_tehl.ehl.solve import problem_for
+from facegear_tehl.ehl.staged import solve_point
 from facegear_tehl.film_formulas import hamrock_dowson_central
 from facegear_tehl.settings import SolverSettings
+from facegear_tehl.suites import envelope
 
 GRIDS = (33, 65, 129)
 COARSEST = 17
@@ -215,20 +217,9 @@ def test_near_the_solution_the_truncated_correction_converges_below_the_old_floo
 
 
 def test_the_truncated_correction_waits_for_a_stall():
-    """The envelope's a/b = 5, 1.5 GPa, 2 m/s contact (scripts/envelope.py, 257 x 65): its second attempt's change per
+    """The envelope's a/b = 5, 1.5 GPa, 2 m/s contact (suites/envelope.py, 257 x 65): its second attempt's change per
     cycle falls through 8.3e-4, 5e-4, 3.1e-4 to its tolerance with the full correction; the truncated one switched on
     below 10x the tolerance ran it away (to a load error of 60 %). Switched on at a stall only, it converges."""
-    import importlib.util
-    from pathlib import Path
-    import sys
-
-    from facegear_tehl.ehl.staged import solve_point
-
-    path = Path(__file__).resolve().parents[1] / "scripts" / "envelope.py"
-    spec = importlib.util.spec_from_file_location("envelope", path)
-    envelope = importlib.util.module_from_spec(spec)
-    sys.modules.setdefault(spec.name, envelope)
-    spec.loader.exec_module(envelope)
     case = next(c for c in envelope.envelope_cases() if c.name == "ab5_ph1.5_u2_iso")
     solution = solve_point(case.point(), case.lubricant(), case.settings())
     assert solution.converged, solution.message

@@ -8,11 +8,13 @@ the tooth load; files from failed or partial runs draw what is there."""
 from __future__ import annotations
 
 from dataclasses import replace
+import json
 import math
 from pathlib import Path
 import warnings
 
 from click.testing import CliRunner
+import h5py
 import numpy as np
 from PIL import Image
 import pytest
@@ -232,6 +234,25 @@ def test_convergence_draws_the_tolerances_of_the_case(gear_file, tmp_path, monke
     levels = {float(line.get_ydata()[0]) for ax in figures["convergence"].axes for line in ax.get_lines()
               if line.get_linestyle() == "--" and len(set(line.get_ydata())) == 1}
     assert {case.solver.tolerance, case.solver.load_tolerance} <= levels
+
+
+def test_convergence_draws_the_settled_floor_bound_the_file_holds(gear_file, tmp_path, monkeypatch):
+    """Plots read files only: the pressure's settled-floor bound is the file's band times the case's tolerance (a
+    band rewritten in the file moves the line); a file without the bands (format 1.2) gets the tolerances alone."""
+    tolerance = load_case(FACE_GEAR).solver.tolerance
+    for name, bands, expected in (("rewritten", {"pressure_floor_band": 7.0}, {7.0 * tolerance}), ("old", None, set())):
+        path = tmp_path / f"{name}.h5"
+        path.write_bytes(gear_file.read_bytes())
+        with h5py.File(path, "r+") as h5:
+            if bands is None:
+                del h5.attrs["convergence_bands"]
+            else:
+                h5.attrs["convergence_bands"] = json.dumps(bands)
+        figures = _capture(monkeypatch)
+        _plot(path, tmp_path / name, what=["convergence"])
+        bounds = {float(line.get_ydata()[0]) for ax in figures["convergence"].axes for line in ax.get_lines()
+                  if line.get_label().startswith("settled-floor bound") and len(line.get_ydata())}
+        assert bounds == expected
 
 
 def test_sweep_file_draws_error_vs_grid_and_cost(sweep_file, tmp_path):

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from facegear_tehl import results
+from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.results import (
     FORMAT_VERSION,
     NonFiniteError,
@@ -436,3 +437,11 @@ def test_a_format_1_1_file_is_still_read(tmp_path):
     assert result.format_version == "1.1" and result.points["S1"].scalars == {"h_c": 1.2e-6, "iterations": 34.0}
     assert set(result.points["S1"].axes) == {"x", "y"} and result.points["S1"].fields["pressure"].values.shape == (3, 5)
     assert result.heat["mu"].values.tolist() == [0.05]
+
+
+def test_the_file_states_the_solvers_settled_floor_bands(facegear_file):
+    """The bands the convergence plot draws from the file are the ones the solver judges its loops by."""
+    result = read_result(facegear_file)
+    assert result.convergence_bands == {"pressure_floor_band": TUNING.floor_band,
+                                        "thermal_floor_fraction": TUNING.thermal_floor_fraction,
+                                        "min_rise": TUNING.min_rise}

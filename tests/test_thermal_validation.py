@@ -1,24 +1,21 @@
-"""The thermal film against a published one (scripts/thermal_validation.py): the central film lost to inlet shear
-heating in pure rolling, h_c(thermal)/h_c(isothermal), of the line solver and of a long ellipse solved as a
-`contact:` case (run_case, the path of `tehl run`), against a thermal inlet-zone analysis solved from scratch under
-the published analyses' assumptions (scripts/thermal_inlet.py) and the thermal correction factor of Wilson & Sheu
-(1983, J. Lubr. Technol. 105:187, eq. 8), C = 1/(1 + 0.241 L^0.64), L = eta_0 beta u_e^2/k_f; and the inlet analysis
-itself against Ertel & Grubin's film, the Hertz gap and, at the large L where they were fitted, the published fits.
-Tolerances and their reasons: the scripts' docstrings and docs/accuracy.md (Published thermal validation)."""
+"""The thermal film against a published one (facegear_tehl/suites/thermal_validation.py): the central film lost to
+inlet shear heating in pure rolling, h_c(thermal)/h_c(isothermal), of the line solver and of a long ellipse solved as
+a `contact:` case (run_case, the path of `tehl run`), against a thermal inlet-zone analysis solved from scratch under
+the published analyses' assumptions (facegear_tehl/suites/thermal_inlet.py) and the thermal correction factor of
+Wilson & Sheu (1983, J. Lubr. Technol. 105:187, eq. 8), C = 1/(1 + 0.241 L^0.64), L = eta_0 beta u_e^2/k_f; and the
+inlet analysis itself against Ertel & Grubin's film, the Hertz gap and, at the large L where they were fitted, the
+published fits. Tolerances and their reasons: those modules' docstrings and docs/accuracy.md (Published thermal
+validation)."""
 
 from __future__ import annotations
 
 import math
-from pathlib import Path
-import sys
 
 import pytest
 from scipy import integrate
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "scripts"))
-
-import thermal_inlet as ti  # noqa: E402
-import thermal_validation as tv  # noqa: E402
+from facegear_tehl.suites import thermal_inlet as ti
+from facegear_tehl.suites import thermal_validation as tv
 
 WORKING_GRID = (401, 12)  # nodes x layers: C within 0.7 % of the 801 x 24 grid's (the script's table)
 ELLIPSE_GRID = (65, 17)  # grid x grid_y: C within 0.2 % of the 129 x 33 grid's (the script's table)

@@ -49,15 +49,11 @@ constant k_0, or Larsson et al. 2000).
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from numba import njit
 import numpy as np
 
+from facegear_tehl.ehl.film_state import FilmState
 from facegear_tehl.ehl.layers import simpson_weights
-
-if TYPE_CHECKING:
-    from facegear_tehl.ehl.thermal import FilmState
 
 # Largest cell Péclet number across the film at which the face temperature is the central (linear) one: the
 # three-point convection-diffusion scheme stays monotone up to 2 (e.g. Patankar 1980, §5.2); the correction

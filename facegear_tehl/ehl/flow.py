@@ -29,7 +29,7 @@ from numba import njit
 import numpy as np
 
 from facegear_tehl.ehl.layers import cumulative_stencil, simpson_weight
-from facegear_tehl.lubricant import ROELANDS
+from facegear_tehl.lubricant_constants import ROELANDS
 from facegear_tehl.lubricant_laws import (
     density_pressure_factor_at,
     density_ratio_at,

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from facegear_tehl.ehl.thermal import FilmState
+from facegear_tehl.ehl.film_state import FilmState
 
 
 def friction_coefficients(state: FilmState, pressure: np.ndarray, cell: float,

@@ -195,8 +195,9 @@ def _solve_band(a, rhs, x, n):
         x[i] = s / a[i, lo]
 
 
+# A Numba kernel (exempt from the complexity limit): its branches are the discretisation's cases, inline for speed.
 @njit(cache=True)
-def relax_lines(p, qx, qy, fx, fy, eps, f, hx, hy, px, py, sx, sy, e_gs, e_jd, wx, wy, xi_switch, ur_gs, ur_jd):
+def relax_lines(p, qx, qy, fx, fy, eps, f, hx, hy, px, py, sx, sy, e_gs, e_jd, wx, wy, xi_switch, ur_gs, ur_jd):  # noqa: C901
     """One sweep of line relaxation over lines of constant Y (in place on p); returns the L1 norm of changes.
 
     H (through qx = fx H, qy = fy H), the Couette factors fx, fy and eps are frozen during the sweep

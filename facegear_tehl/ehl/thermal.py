@@ -29,7 +29,9 @@ import numpy as np
 
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import energy, jaeger, rheology
-from facegear_tehl.lubricant import ROELANDS, Lubricant
+from facegear_tehl.ehl.film_state import FilmState
+from facegear_tehl.lubricant import Lubricant
+from facegear_tehl.lubricant_constants import ROELANDS
 from facegear_tehl.lubricant_laws import (
     density_ratio_at,
     roelands_pressure_factor_at,
@@ -164,23 +166,18 @@ def relaxed_steps(temperature, updated, thermal_weight, viscosity_weight, x, f):
 
 
 @dataclass(frozen=True)
-class FilmState:
-    """Across-film state after one update; layer fields shaped (nz, ny, nx)."""
+class _Shear:
+    """The shear state of one update (rheology.shear_state's outputs; layer fields (nz, ny, nx), empty where not
+    evaluated) and beta = -d ln(eta)/dT (1/K) of the Newtonian viscosity per layer node."""
 
-    temperature: np.ndarray  # K
     viscosity_factor: np.ndarray  # eta*/eta
     dissipation: np.ndarray  # W/m^3
-    velocity_x: np.ndarray | None  # m/s (None without the energy equation, the only user of the velocities)
-    velocity_y: np.ndarray | None  # m/s
-    stress_1: np.ndarray  # (2, ny, nx) shear stress at surface 1, Pa
-    stress_2: np.ndarray  # (2, ny, nx) at surface 2, Pa
-    # (ny, nx) into solid 1 and 2, W/m^2 (None: deferred by `update(..., wall_fluxes=False)`, see `completed`)
-    heat_flux_1: np.ndarray | None
-    heat_flux_2: np.ndarray | None
-    compression: np.ndarray | None  # beta_T T (u . grad p), W/m^3 (None without the energy equation)
-    change: float  # largest temperature change of this update, K
-    heat_capacity: np.ndarray | None = None  # rho c per layer node as the energy equation used it, J/(m^3 K)
-    # (None without the energy equation)
+    velocity_x: np.ndarray  # m/s
+    velocity_y: np.ndarray  # m/s
+    stress_1: np.ndarray  # (2, ny, nx), Pa
+    stress_2: np.ndarray  # (2, ny, nx), Pa
+    thinning: np.ndarray  # d ln(dissipation)/d ln(eta)
+    beta: np.ndarray  # 1/K
 
 
 class FilmThermalModel:
@@ -247,75 +244,31 @@ class FilmThermalModel:
         p = np.ascontiguousarray(np.maximum(pressure, 0.0))
         grad_y, grad_x = np.gradient(p, self.dy, self.dx)
         temperature = temperature.copy()
-        lub = self.lubricant
-        shape = temperature.shape
-        viscosity_factor = np.empty(shape)
-        dissipation = np.empty(shape)
-        # velocities and thinning factor only for the energy equation (rheology.shear_state: empty, not evaluated)
-        layers = shape if self.solve_energy else (0, 0, 0)
-        velocity_x = np.empty(layers)
-        velocity_y = np.empty(layers)
-        warm = self._stress is not None
-        stress_1 = self._stress.copy() if warm else np.zeros((2,) + p.shape)
-        stress_2 = np.empty((2,) + p.shape)
-        thinning = np.empty(layers)
-        conductivity = lub.conductivity_at(p)  # (ny, nx): one k per column (p is constant across the film)
-        change = 0.0
-        rho_c = None
-        # the shear state once per update, from the entry temperatures: the outer loop iterates it with the pressure
-        # (re-evaluating it here between the passes below couples the temperature of the inlet's stagnation layers
-        # to the velocity across the layers without the outer loop's relaxation: a period-2 flicker of 1-1.5 K on
-        # the 257 x 65 face gear points S2-S4)
-        known = temperature_factor is not None and temperature_factor.shape == shape
-        ratio, beta = layer_viscosity(p, temperature, self.law, self.solve_energy,
-                                      temperature_factor if known else np.empty((0, 0, 0)))
-        eta = lub.viscosity * ratio
-        rheology.shear_state(p, film, np.ascontiguousarray(grad_x), np.ascontiguousarray(grad_y), eta,
-                             self.velocity_1, self.velocity_2, self.tau0, warm, viscosity_factor, dissipation,
-                             velocity_x, velocity_y, stress_1, stress_2, thinning, self.newtonian_below)
-        compression = None
+        shear = self._shear(p, film, grad_x, grad_y, temperature, temperature_factor)
+        conductivity = self.lubricant.conductivity_at(p)  # (ny, nx): one k per column (p is constant across the film)
+        change, rho_c, compression = 0.0, None, None
         if self.solve_energy:
-            compression_coefficient, rho_c, sensitivity = heat_coefficients(
-                p, temperature, velocity_x, velocity_y, grad_x, grad_y, dissipation, beta, thinning, self.law,
-                lub.thermal_expansion, self.t_inlet, lub.density, lub.specific_heat)
-            fluxes = energy.transport_fluxes(velocity_x, velocity_y, rho_c, film, self.dx, self.dy)[:3]
-            fixed = energy.fixed_parts(fluxes[2], dissipation, sensitivity, temperature.copy(),
-                                       compression_coefficient, conductivity, film)
-            kernel_args = (*fluxes, *fixed, conductivity, film, self.dx, self.dy, self.t_inlet)
-            q1, q2 = np.empty(p.shape), np.empty(p.shape)
-            w = SURFACE_RELAXATION
-            for _ in range(INNER_ITERATIONS):
-                # the surfaces from the heat fluxes of the film as it stands, then the film's interior for them: the
-                # state returned solves the film's discrete energy equation for its own surfaces
-                before = temperature.copy()
-                energy.wall_fluxes(temperature, *kernel_args, q1, q2)
-                temperature[0] += w * (self._surface(q1, 0, float(self.velocity_1[0])) - temperature[0])
-                temperature[-1] += w * (self._surface(q2, 1, float(self.velocity_2[0])) - temperature[-1])
-                energy.sweep_columns(temperature, *kernel_args, ENERGY_SWEEPS,
-                                     max(sweep_tolerance, ENERGY_SWEEP_TOLERANCE), ENERGY_MIN_SWEEPS,
-                                     self.first_column)
-                np.clip(temperature, start - MAX_TEMPERATURE_STEP, start + MAX_TEMPERATURE_STEP, out=temperature)
-                change = float(np.abs(temperature - before).max())
-            if wall_fluxes:
-                energy.wall_fluxes(temperature, *kernel_args, q1, q2)
-            else:
-                q1 = q2 = None
-                self._deferred = self._deferred[1 - DEFERRED_UPDATES:] + [(dissipation, temperature, kernel_args)]
+            heat = heat_coefficients(p, temperature, shear.velocity_x, shear.velocity_y, grad_x, grad_y,
+                                     shear.dissipation, shear.beta, shear.thinning, self.law,
+                                     self.lubricant.thermal_expansion, self.t_inlet, self.lubricant.density,
+                                     self.lubricant.specific_heat)
+            compression_coefficient, rho_c, sensitivity = heat
+            kernel_args = self._energy_arguments(shear, rho_c, sensitivity, compression_coefficient, temperature,
+                                                 conductivity, film)
+            change = self._film_passes(temperature, start, kernel_args, sweep_tolerance)
+            q1, q2 = self._wall_fluxes(wall_fluxes, shear.dissipation, temperature, kernel_args)
             compression = compression_coefficient * temperature
-        elif wall_fluxes:  # no energy equation: the flux of the temperatures as they are
-            q1, q2 = energy.wall_heat_flux(temperature, film, conductivity)
-        else:
-            q1 = q2 = None
-            self._deferred = self._deferred[1 - DEFERRED_UPDATES:] + [(dissipation, temperature, (film, conductivity))]
-        self._stress = stress_1
+        else:  # no energy equation: the flux of the temperatures as they are
+            q1, q2 = self._wall_fluxes(wall_fluxes, shear.dissipation, temperature, (film, conductivity))
+        self._stress = shear.stress_1
         return FilmState(
             temperature=temperature,
-            viscosity_factor=viscosity_factor,
-            dissipation=dissipation,
-            velocity_x=velocity_x if self.solve_energy else None,
-            velocity_y=velocity_y if self.solve_energy else None,
-            stress_1=stress_1,
-            stress_2=stress_2,
+            viscosity_factor=shear.viscosity_factor,
+            dissipation=shear.dissipation,
+            velocity_x=shear.velocity_x if self.solve_energy else None,
+            velocity_y=shear.velocity_y if self.solve_energy else None,
+            stress_1=shear.stress_1,
+            stress_2=shear.stress_2,
             heat_flux_1=q1,
             heat_flux_2=q2,
             compression=compression,
@@ -323,6 +276,76 @@ class FilmThermalModel:
             heat_capacity=rho_c,
         )
 
+    def _shear(self, p: np.ndarray, film: np.ndarray, grad_x: np.ndarray, grad_y: np.ndarray,
+               temperature: np.ndarray, temperature_factor: np.ndarray | None) -> _Shear:
+        """The shear state once per update, from the entry temperatures: the outer loop iterates it with the
+        pressure (re-evaluating it between the energy passes couples the temperature of the inlet's stagnation
+        layers to the velocity across the layers without the outer loop's relaxation: a period-2 flicker of 1-1.5 K
+        on the 257 x 65 face gear points S2-S4). Velocities and thinning factors only for the energy equation
+        (rheology.shear_state: empty, not evaluated)."""
+        shape = temperature.shape
+        layers = shape if self.solve_energy else (0, 0, 0)
+        warm = self._stress is not None
+        shear = _Shear(viscosity_factor=np.empty(shape), dissipation=np.empty(shape), velocity_x=np.empty(layers),
+                       velocity_y=np.empty(layers), stress_1=self._stress.copy() if warm else np.zeros((2,) + p.shape),
+                       stress_2=np.empty((2,) + p.shape), thinning=np.empty(layers), beta=np.empty(0))
+        known = temperature_factor is not None and temperature_factor.shape == shape
+        ratio, beta = layer_viscosity(p, temperature, self.law, self.solve_energy,
+                                      temperature_factor if known else np.empty((0, 0, 0)))
+        eta = self.lubricant.viscosity * ratio
+        rheology.shear_state(p, film, np.ascontiguousarray(grad_x), np.ascontiguousarray(grad_y), eta,
+                             self.velocity_1, self.velocity_2, self.tau0, warm, shear.viscosity_factor,
+                             shear.dissipation, shear.velocity_x, shear.velocity_y, shear.stress_1, shear.stress_2,
+                             shear.thinning, self.newtonian_below)
+        return replace(shear, beta=beta)
+
+    def _energy_arguments(self, shear: _Shear, rho_c: np.ndarray, sensitivity: np.ndarray,
+                          compression_coefficient: np.ndarray, temperature: np.ndarray, conductivity: np.ndarray,
+                          film: np.ndarray) -> tuple:
+        """The arguments of the energy kernels (energy.wall_fluxes, energy.sweep_columns) after the temperatures:
+        the transport fluxes and the parts of the balance fixed during the update."""
+        fluxes = energy.transport_fluxes(shear.velocity_x, shear.velocity_y, rho_c, film, self.dx, self.dy)[:3]
+        fixed = energy.fixed_parts(fluxes[2], shear.dissipation, sensitivity, temperature.copy(),
+                                   compression_coefficient, conductivity, film)
+        return (*fluxes, *fixed, conductivity, film, self.dx, self.dy, self.t_inlet)
+
+    def _film_passes(self, temperature: np.ndarray, start: np.ndarray, kernel_args: tuple,
+                     sweep_tolerance: float) -> float:
+        """INNER_ITERATIONS passes (in place on `temperature`, K): the surfaces from the heat fluxes of the film as
+        it stands, then the film's interior for them, so that the state returned solves the film's discrete energy
+        equation for its own surfaces; within MAX_TEMPERATURE_STEP of `start`. Returns the last pass's largest
+        change (K)."""
+        q1, q2 = np.empty(temperature.shape[1:]), np.empty(temperature.shape[1:])
+        w = SURFACE_RELAXATION
+        change = 0.0
+        for _ in range(INNER_ITERATIONS):
+            before = temperature.copy()
+            energy.wall_fluxes(temperature, *kernel_args, q1, q2)
+            temperature[0] += w * (self._surface(q1, 0, float(self.velocity_1[0])) - temperature[0])
+            temperature[-1] += w * (self._surface(q2, 1, float(self.velocity_2[0])) - temperature[-1])
+            energy.sweep_columns(temperature, *kernel_args, ENERGY_SWEEPS, max(sweep_tolerance, ENERGY_SWEEP_TOLERANCE),
+                                 ENERGY_MIN_SWEEPS, self.first_column)
+            np.clip(temperature, start - MAX_TEMPERATURE_STEP, start + MAX_TEMPERATURE_STEP, out=temperature)
+            change = float(np.abs(temperature - before).max())
+        return change
+
+    def _wall_fluxes(self, now: bool, dissipation: np.ndarray, temperature: np.ndarray,
+                     kernel_args: tuple) -> tuple[np.ndarray | None, np.ndarray | None]:
+        """The wall heat fluxes (W/m^2) of the update's temperatures if `now`, else (None, None) with their inputs
+        kept for `completed` (`kernel_args`: the energy kernels' arguments, or (film, conductivity) without the
+        energy equation)."""
+        if not now:
+            self._deferred = self._deferred[1 - DEFERRED_UPDATES:] + [(dissipation, temperature, kernel_args)]
+            return None, None
+        return self._fluxes(temperature, kernel_args)
+
+    def _fluxes(self, temperature: np.ndarray, kernel_args: tuple) -> tuple[np.ndarray, np.ndarray]:
+        """The wall heat fluxes of `temperature` (K) from the arguments `_wall_fluxes` describes."""
+        if not self.solve_energy:
+            return energy.wall_heat_flux(temperature, *kernel_args)
+        q1, q2 = np.empty(temperature.shape[1:]), np.empty(temperature.shape[1:])
+        energy.wall_fluxes(temperature, *kernel_args, q1, q2)
+        return q1, q2
 
     def completed(self, state: FilmState | None) -> FilmState | None:
         """`state` (or a state replaced from it) with the wall heat fluxes of the update it came from, for an update
@@ -331,11 +354,7 @@ class FilmThermalModel:
             return state
         for dissipation, temperature, kernel_args in self._deferred:
             if dissipation is state.dissipation:
-                if not self.solve_energy:  # (film, conductivity)
-                    q1, q2 = energy.wall_heat_flux(temperature, *kernel_args)
-                    return replace(state, heat_flux_1=q1, heat_flux_2=q2)
-                q1, q2 = np.empty(dissipation.shape[1:]), np.empty(dissipation.shape[1:])
-                energy.wall_fluxes(temperature, *kernel_args, q1, q2)
+                q1, q2 = self._fluxes(temperature, kernel_args)
                 return replace(state, heat_flux_1=q1, heat_flux_2=q2)
         raise ValueError("the update of this film state is not among the last ones with deferred wall fluxes")
 

@@ -80,3 +80,12 @@ class Tuning:
 
 
 TUNING = Tuning()
+
+
+def convergence_bands() -> dict[str, float]:
+    """The bands, beyond the case's tolerances, by which a loop is accepted on its algebraic floor, as the result file
+    states them for the convergence plot: the pressure change per cycle settled below pressure_floor_band times
+    `solver.tolerance`; the thermal loop's change settled below thermal_floor_fraction of the rise, taken as at least
+    min_rise (K)."""
+    return {"pressure_floor_band": TUNING.floor_band, "thermal_floor_fraction": TUNING.thermal_floor_fraction,
+            "min_rise": TUNING.min_rise}

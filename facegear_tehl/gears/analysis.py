@@ -29,7 +29,7 @@ from facegear_tehl.gears.geometry import PairGeometry, axial_section, pointing_l
 from facegear_tehl.gears.kinematics import surface_velocities
 from facegear_tehl.gears.loads import contact_ratio, interpolated_share, load_share, normal_load
 from facegear_tehl.gears.spec import GearSpec
-from facegear_tehl.gears.tca import ContactPath, meshing_points, order_warnings
+from facegear_tehl.gears.tca import ContactPath, ContactState, meshing_points, order_warnings
 from facegear_tehl.hertz import hertz_contact
 from facegear_tehl.materials import Solid, reduced_modulus
 
@@ -208,52 +208,11 @@ def _sample(
     route_gap = 0.0
     for s, load, share in zip(s_values, loads, shares):
         state = contact_path.state(float(s))
-        n, axis = state.normal, state.pinion_axis
-        profile = np.cross(axis, n)
         face_gear = face_gear_shape_operator(geo, state)
         direct = face_gear_shape_operator(geo, state, direct=True)
         route_gap = max(route_gap, float(np.max(np.abs(face_gear - direct)) / np.max(np.abs(face_gear))))
-        relative = principal_curvatures(face_gear - pinion_shape_operator(state), profile, axis)
-        own = principal_curvatures(face_gear, profile, axis)
-        velocities = surface_velocities(geo, state, pinion_speed)
-        x = relative.direction_max
-        if velocities.entrainment @ x < 0.0:
-            x = -x
-        y = np.cross(n, x)
-        major = y if y @ axis >= 0.0 else -y
-        u1 = np.array([velocities.pinion @ x, velocities.pinion @ y])
-        u2 = np.array([velocities.face_gear @ x, velocities.face_gear @ y])
-        entrainment, sliding = 0.5 * (u1 + u2), u1 - u2
-        radius_x, radius_y = 1.0 / relative.kappa_max, 1.0 / relative.kappa_min
-        hertz = hertz_contact(radius_x, radius_y, float(load), e_reduced)
-        speed_e, speed_s = float(np.hypot(*entrainment)), float(np.hypot(*sliding))
-        values = {
-            "s": float(s),
-            "contact_point": state.point,
-            "face_gear_radius": axial_section(geo, state.point - state.face_gear_origin)[1],
-            "pinion_profile_radius": state.rho_1,
-            "Rx": radius_x,
-            "Ry": radius_y,
-            "pinion_curvature": 1.0 / state.rho_1,
-            "face_gear_curvature_1": own.kappa_max,
-            "face_gear_curvature_2": own.kappa_min,
-            "ellipse_angle": math.degrees(math.atan2(major @ profile, major @ axis)),
-            "load_share": float(share),
-            "load": float(load),
-            "u1": u1,
-            "u2": u2,
-            "entrainment": entrainment,
-            "sliding": sliding,
-            "entrainment_speed": speed_e,
-            "sliding_speed": speed_s,
-            "srr": math.copysign(speed_s / speed_e, float(sliding @ entrainment)),
-            "entrainment_angle": math.degrees(math.atan2(entrainment[1], entrainment[0])),
-            "a": hertz.a,
-            "b": hertz.b,
-            "ellipticity": hertz.ellipticity,
-            "p_h": hertz.p_max,
-            "transmission_error": state.transmission_error(geo),
-        }
+        values = _point_values(geo, state, face_gear, pinion_speed, float(load), e_reduced)
+        values.update({"s": float(s), "load_share": float(share), "load": float(load)})
         for name, value in values.items():
             rows[name].append(value)
     table = {}
@@ -262,3 +221,50 @@ def _sample(
         array.setflags(write=False)
         table[name] = array
     return MappingProxyType(table), route_gap
+
+
+def _point_values(geo: PairGeometry, state: ContactState, face_gear: np.ndarray, pinion_speed: float, load: float,
+                  e_reduced: float) -> dict[str, object]:
+    """The PATH_UNITS quantities of one contact state but its s, load share and load: the contact frame (x along
+    the relative curvature's largest principal direction, against the entrainment's sign), curvatures, surface
+    velocities in that frame and the Hertz contact under `load` (N) for the reduced modulus `e_reduced` (Pa)."""
+    n, axis = state.normal, state.pinion_axis
+    profile = np.cross(axis, n)
+    relative = principal_curvatures(face_gear - pinion_shape_operator(state), profile, axis)
+    own = principal_curvatures(face_gear, profile, axis)
+    velocities = surface_velocities(geo, state, pinion_speed)
+    x = relative.direction_max
+    if velocities.entrainment @ x < 0.0:
+        x = -x
+    y = np.cross(n, x)
+    major = y if y @ axis >= 0.0 else -y
+    u1 = np.array([velocities.pinion @ x, velocities.pinion @ y])
+    u2 = np.array([velocities.face_gear @ x, velocities.face_gear @ y])
+    entrainment, sliding = 0.5 * (u1 + u2), u1 - u2
+    radius_x, radius_y = 1.0 / relative.kappa_max, 1.0 / relative.kappa_min
+    hertz = hertz_contact(radius_x, radius_y, load, e_reduced)
+    speed_e, speed_s = float(np.hypot(*entrainment)), float(np.hypot(*sliding))
+    return {
+        "contact_point": state.point,
+        "face_gear_radius": axial_section(geo, state.point - state.face_gear_origin)[1],
+        "pinion_profile_radius": state.rho_1,
+        "Rx": radius_x,
+        "Ry": radius_y,
+        "pinion_curvature": 1.0 / state.rho_1,
+        "face_gear_curvature_1": own.kappa_max,
+        "face_gear_curvature_2": own.kappa_min,
+        "ellipse_angle": math.degrees(math.atan2(major @ profile, major @ axis)),
+        "u1": u1,
+        "u2": u2,
+        "entrainment": entrainment,
+        "sliding": sliding,
+        "entrainment_speed": speed_e,
+        "sliding_speed": speed_s,
+        "srr": math.copysign(speed_s / speed_e, float(sliding @ entrainment)),
+        "entrainment_angle": math.degrees(math.atan2(entrainment[1], entrainment[0])),
+        "a": hertz.a,
+        "b": hertz.b,
+        "ellipticity": hertz.ellipticity,
+        "p_h": hertz.p_max,
+        "transmission_error": state.transmission_error(geo),
+    }

@@ -319,14 +319,7 @@ class _FilmIteration:
                 if backoffs >= MAX_BACKOFFS:
                     break
                 backoffs += 1
-                self.temperature = 0.5 * (saved[0] + self.temperature)
-                if self.rate is not None and saved[1] is self.rate:
-                    # no film state has been solved yet (the first pressure solve, at the rates of the Newtonian
-                    # start): nothing to fall back to, so halve the Ree-Eyring rates themselves, a step back
-                    # towards the Newtonian film the grid sequence converged (801 nodes at 10 m/s need it)
-                    self.rate = 0.5 * self.rate
-                elif self.rate is not None:
-                    self.rate = np.sqrt(np.maximum(saved[1], 1e-300) * np.maximum(self.rate, 1e-300))
+                self._back_off(*saved)
                 omega, rate_weight = max(MIN_RELAXATION, 0.5 * omega), max(MIN_RELAXATION, 0.5 * rate_weight)
                 continue
             backoffs = 0
@@ -359,6 +352,18 @@ class _FilmIteration:
                 converged = True
                 break
         return self._solution(result, energy, converged and result.converged, outer, change)
+
+    def _back_off(self, temperature: np.ndarray, rate: np.ndarray | None) -> None:
+        """Half of the last film-state update, back towards the `temperature` (K) and Ree-Eyring `rate` it started
+        from: the temperatures arithmetically, the rates geometrically."""
+        self.temperature = 0.5 * (temperature + self.temperature)
+        if self.rate is not None and rate is self.rate:
+            # no film state has been solved yet (the first pressure solve, at the rates of the Newtonian
+            # start): nothing to fall back to, so halve the Ree-Eyring rates themselves, a step back
+            # towards the Newtonian film the grid sequence converged (801 nodes at 10 m/s need it)
+            self.rate = 0.5 * self.rate
+        elif self.rate is not None:
+            self.rate = np.sqrt(np.maximum(rate, 1e-300) * np.maximum(self.rate, 1e-300))
 
     def _cavitated(self, film: GeneralizedFilm, p_bar: np.ndarray, h_bar: np.ndarray) -> np.ndarray:
         """Nodes past the pressure peak with P = 0 and an excess of outflow (film rupture)."""

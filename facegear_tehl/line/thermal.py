@@ -173,94 +173,25 @@ def solve_energy(x: np.ndarray, h: np.ndarray, p: np.ndarray, cells: CrossFilmIn
     d = 1.0 / m
     size = n * m
     me = np.arange(size).reshape(n, m)
-    rows: list[np.ndarray] = []
-    cols: list[np.ndarray] = []
-    vals: list[np.ndarray] = []
-    diag = np.zeros(size)
-    rhs = np.zeros(size)
-
-    def add(r, c, v):
-        rows.append(np.asarray(r).ravel())
-        cols.append(np.asarray(c).ravel())
-        vals.append(np.asarray(v, dtype=np.float64).ravel())
-
-    # x-convection: face f (0 .. n) between cell f - 1 and cell f
+    system = _Assembly(size)
     fx = flow.x_flux  # (n + 1, m), positive towards +x
-    left_in = np.clip(fx[:-1], 0.0, None)  # inflow of cell i through its left face
-    right_in = np.clip(-fx[1:], 0.0, None)  # inflow through its right face
-    diag += c_f * (left_in + right_in).ravel()
-    add(me[1:], me[:-1], -c_f * left_in[1:])
-    add(me[:-1], me[1:], -c_f * right_in[:-1])
-    rhs[me[0]] += c_f * left_in[0] * t0  # oil entering through the inlet boundary
-    rhs[me[-1]] += c_f * right_in[-1] * t0  # and through the outlet boundary (reverse flow), if any
-    # z-convection: flux through the top of layer k (k = 0 .. m - 2), positive upwards
-    fz = flow.z_flux
-    up = np.clip(fz, 0.0, None)  # enters layer k + 1 from below
-    down = np.clip(-fz, 0.0, None)  # enters layer k from above
-    diag[me[:, 1:].ravel()] += c_f * up.ravel()
-    add(me[:, 1:], me[:, :-1], -c_f * up)
-    diag[me[:, :-1].ravel()] += c_f * down.ravel()
-    add(me[:, :-1], me[:, 1:], -c_f * down)
+    _add_convection(system, fx, flow.z_flux, me, c_f, t0)
     # cross-film conduction, W/(m K) per unit width
     g_z = theta * k_f * volume / (h * d)
     g_w = 2.0 * g_z
-    if m > 1:
-        gz = np.repeat(g_z[:, None], m - 1, axis=1)
-        diag[me[:, :-1].ravel()] += gz.ravel()
-        diag[me[:, 1:].ravel()] += gz.ravel()
-        add(me[:, :-1], me[:, 1:], -gz)
-        add(me[:, 1:], me[:, :-1], -gz)
-    diag[me[:, 0]] += g_w
-    diag[me[:, -1]] += g_w
+    _add_conduction(system, g_z, g_w, me)
     # dissipation of the current film state (Picard: frozen during this solve)
     dissipation = cells.dissipation(h, p_x) * (theta * volume)[:, None]  # W/m per cell
-    rhs += dissipation.ravel()
+    system.rhs += dissipation.ravel()
     # compression work T eps_T' u p_x (implicit in T)
     layer_flux = 0.5 * (fx[:-1] + fx[1:])  # (n, m) mean x mass flux of each cell
     eps_t = lubricant.thermal_expansion / (1.0 - lubricant.thermal_expansion * (temperature - t0))
     compression = eps_t * (layer_flux / cells.rho) * p_x[:, None] * volume[:, None]  # W/(m K), times T
-    diag -= compression.ravel()
-    add(np.arange(size), np.arange(size), diag)
-    fluid = sparse.csc_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                              shape=(size, size))
-    lu = splinalg.splu(fluid)
-    # surfaces: T_s + Jc (g T_s) - Jc (g T_f) = T_0, Jc = W/sqrt(pi k rho c u), g = g_w/V (W/(m^2 K))
-    jaeger = jaeger_matrix(x)
-    conductance = g_w / volume
-    blocks = []
-    for body, speed in ((body_1, u_1), (body_2, u_2)):
-        if speed <= 0.0:
-            raise ValueError(f"surface speed {speed} m/s: the moving-source (Jaeger) model needs u > 0")
-        jc = jaeger / math.sqrt(math.pi * body.thermal_conductivity * body.density * body.specific_heat * speed)
-        blocks.append((jc, np.eye(n) + jc * conductance[None, :]))
-    layer_of = (me[:, 0], me[:, -1])
-
-    def fluid_from_walls(walls: np.ndarray, source: np.ndarray) -> np.ndarray:
-        b = source.copy()
-        b[layer_of[0]] += g_w * walls[:n]
-        b[layer_of[1]] += g_w * walls[n:]
-        return lu.solve(b)
-
-    def walls_from_fluid(t_fluid: np.ndarray, constant: float) -> np.ndarray:
-        out = np.empty(2 * n)
-        for side, (jc, e) in enumerate(blocks):
-            right = constant + jc @ (conductance * t_fluid[layer_of[side]])
-            out[side * n:(side + 1) * n] = linalg.solve_triangular(e, right, lower=True, check_finite=False)
-        return out
-
-    zero = np.zeros(size)
-
-    def operator(v: np.ndarray) -> np.ndarray:  # (I - E^-1 D A^-1 C) v, the preconditioned Schur complement
-        return v - walls_from_fluid(fluid_from_walls(v, zero), 0.0)
-
-    start = walls_from_fluid(lu.solve(rhs), t0)
-    schur = splinalg.LinearOperator((2 * n, 2 * n), matvec=operator, dtype=np.float64)
-    walls, info = splinalg.gmres(schur, start, x0=start, rtol=GMRES_TOLERANCE, atol=0.0, restart=GMRES_RESTART,
-                                 maxiter=GMRES_RESTART)
-    if info != 0:  # stiff state (extreme temperatures early in the outer iteration): form the Schur complement
-        columns = np.column_stack([operator(e) for e in np.eye(2 * n)])
-        walls = linalg.solve(columns, start, check_finite=False)
-    t_film = fluid_from_walls(walls, rhs).reshape(n, m)
+    system.diag -= compression.ravel()
+    walls_coupling = _WallCoupling(x, splinalg.splu(system.matrix()), g_w, volume, (me[:, 0], me[:, -1]),
+                                   ((body_1, u_1), (body_2, u_2)))
+    walls = walls_coupling.solve(system.rhs, t0)
+    t_film = walls_coupling.fluid_from_walls(walls, system.rhs).reshape(n, m)
     t_1, t_2 = walls[:n], walls[n:]
     to_1 = float((g_w * (t_film[:, 0] - t_1)).sum())
     to_2 = float((g_w * (t_film[:, -1] - t_2)).sum())
@@ -270,3 +201,113 @@ def solve_energy(x: np.ndarray, h: np.ndarray, p: np.ndarray, cells: CrossFilmIn
     convected = float(c_f * ((out_left * (t_film[0] - t0)).sum() + (out_right * (t_film[-1] - t0)).sum()))
     return EnergySolution(temperature=t_film, surface_1=t_1, surface_2=t_2, generated=generated,
                           to_solid_1=to_1, to_solid_2=to_2, convected=convected)
+
+
+class _Assembly:
+    """The fluid block of the energy system: (row, column, value) triplets, its diagonal and its right-hand side
+    (W/m per cell; `size` cells)."""
+
+    def __init__(self, size: int):
+        self.size = size
+        self.rows: list[np.ndarray] = []
+        self.cols: list[np.ndarray] = []
+        self.vals: list[np.ndarray] = []
+        self.diag = np.zeros(size)
+        self.rhs = np.zeros(size)
+
+    def add(self, r, c, v) -> None:
+        self.rows.append(np.asarray(r).ravel())
+        self.cols.append(np.asarray(c).ravel())
+        self.vals.append(np.asarray(v, dtype=np.float64).ravel())
+
+    def matrix(self) -> sparse.csc_matrix:
+        """The matrix of the triplets added and the diagonal, added last."""
+        self.add(np.arange(self.size), np.arange(self.size), self.diag)
+        return sparse.csc_matrix((np.concatenate(self.vals), (np.concatenate(self.rows), np.concatenate(self.cols))),
+                                 shape=(self.size, self.size))
+
+
+def _add_convection(system: _Assembly, fx: np.ndarray, fz: np.ndarray, me: np.ndarray, c_f: float,
+                    t0: float) -> None:
+    """Upwind convection along x through the cell faces (`fx` (n + 1, m): face f between cell f - 1 and cell f,
+    positive towards +x, kg/(m s)), with oil at `t0` (K) entering through either boundary, and across the layers
+    (`fz` (n, m - 1): through the top of layer k, positive upwards)."""
+    left_in = np.clip(fx[:-1], 0.0, None)  # inflow of cell i through its left face
+    right_in = np.clip(-fx[1:], 0.0, None)  # inflow through its right face
+    system.diag += c_f * (left_in + right_in).ravel()
+    system.add(me[1:], me[:-1], -c_f * left_in[1:])
+    system.add(me[:-1], me[1:], -c_f * right_in[:-1])
+    system.rhs[me[0]] += c_f * left_in[0] * t0  # oil entering through the inlet boundary
+    system.rhs[me[-1]] += c_f * right_in[-1] * t0  # and through the outlet boundary (reverse flow), if any
+    up = np.clip(fz, 0.0, None)  # enters layer k + 1 from below
+    down = np.clip(-fz, 0.0, None)  # enters layer k from above
+    system.diag[me[:, 1:].ravel()] += c_f * up.ravel()
+    system.add(me[:, 1:], me[:, :-1], -c_f * up)
+    system.diag[me[:, :-1].ravel()] += c_f * down.ravel()
+    system.add(me[:, :-1], me[:, 1:], -c_f * down)
+
+
+def _add_conduction(system: _Assembly, g_z: np.ndarray, g_w: np.ndarray, me: np.ndarray) -> None:
+    """Cross-film conduction between neighbouring layers (conductance `g_z`, W/(m K) per unit width, per column)
+    and from the outer layers to the walls (`g_w`)."""
+    m = me.shape[1]
+    if m > 1:
+        gz = np.repeat(g_z[:, None], m - 1, axis=1)
+        system.diag[me[:, :-1].ravel()] += gz.ravel()
+        system.diag[me[:, 1:].ravel()] += gz.ravel()
+        system.add(me[:, :-1], me[:, 1:], -gz)
+        system.add(me[:, 1:], me[:, :-1], -gz)
+    system.diag[me[:, 0]] += g_w
+    system.diag[me[:, -1]] += g_w
+
+
+class _WallCoupling:
+    """The fluid block's coupling to the 2n surface temperatures: T_s + Jc (g T_s) - Jc (g T_f) = T_0 for each
+    surface, Jc = W/sqrt(pi k rho c u) (W the Jaeger matrix), g = g_w/V (W/(m^2 K))."""
+
+    def __init__(self, x: np.ndarray, lu, g_w: np.ndarray, volume: np.ndarray, layer_of: tuple[np.ndarray, ...],
+                 surfaces: tuple[tuple[Solid, float], ...]):
+        """`lu`: the factorised fluid block; `layer_of`: the cells next to surface 1 and 2; `surfaces`: each solid
+        and its surface speed (m/s)."""
+        self.n = x.size
+        self.lu, self.g_w, self.layer_of = lu, g_w, layer_of
+        jaeger = jaeger_matrix(x)
+        self.conductance = g_w / volume
+        self.blocks = []
+        for body, speed in surfaces:
+            if speed <= 0.0:
+                raise ValueError(f"surface speed {speed} m/s: the moving-source (Jaeger) model needs u > 0")
+            jc = jaeger / math.sqrt(math.pi * body.thermal_conductivity * body.density * body.specific_heat * speed)
+            self.blocks.append((jc, np.eye(self.n) + jc * self.conductance[None, :]))
+
+    def fluid_from_walls(self, walls: np.ndarray, source: np.ndarray) -> np.ndarray:
+        b = source.copy()
+        b[self.layer_of[0]] += self.g_w * walls[:self.n]
+        b[self.layer_of[1]] += self.g_w * walls[self.n:]
+        return self.lu.solve(b)
+
+    def walls_from_fluid(self, t_fluid: np.ndarray, constant: float) -> np.ndarray:
+        n = self.n
+        out = np.empty(2 * n)
+        for side, (jc, e) in enumerate(self.blocks):
+            right = constant + jc @ (self.conductance * t_fluid[self.layer_of[side]])
+            out[side * n:(side + 1) * n] = linalg.solve_triangular(e, right, lower=True, check_finite=False)
+        return out
+
+    def solve(self, rhs: np.ndarray, t0: float) -> np.ndarray:
+        """The surface temperatures (K, surface 1 then 2) for the fluid's right-hand side `rhs` and the solids'
+        bulk temperature `t0` (K): GMRES on the Schur complement, formed and solved directly if GMRES fails."""
+        zero = np.zeros(rhs.size)
+
+        def operator(v: np.ndarray) -> np.ndarray:  # (I - E^-1 D A^-1 C) v, the preconditioned Schur complement
+            return v - self.walls_from_fluid(self.fluid_from_walls(v, zero), 0.0)
+
+        n = self.n
+        start = self.walls_from_fluid(self.lu.solve(rhs), t0)
+        schur = splinalg.LinearOperator((2 * n, 2 * n), matvec=operator, dtype=np.float64)
+        walls, info = splinalg.gmres(schur, start, x0=start, rtol=GMRES_TOLERANCE, atol=0.0,
+                                     restart=GMRES_RESTART, maxiter=GMRES_RESTART)
+        if info != 0:  # stiff state (extreme temperatures early in the outer iteration): form the Schur complement
+            columns = np.column_stack([operator(e) for e in np.eye(2 * n)])
+            walls = linalg.solve(columns, start, check_finite=False)
+        return walls

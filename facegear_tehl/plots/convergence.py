@@ -11,7 +11,6 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FormatStrFormatter, LogLocator, MaxNLocator, NullFormatter, NullLocator
 import numpy as np
 
-from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.plots.case_values import CaseValues
 from facegear_tehl.plots.common import Output, figure, legend, title
 from facegear_tehl.results import PointResult, Result
@@ -49,7 +48,7 @@ def _convergence_figure(result: Result, points: Sequence[PointResult], histories
     for ax, key in zip(axes, histories):
         _history_panel(ax, points, key)
         if case is not None:
-            _tolerances(ax, points, key, case.solver)
+            _tolerances(ax, points, key, case.solver, result.convergence_bands)
     if levels:
         _levels_panel(axes[len(histories)], levels)
     for ax in axes[count:]:
@@ -87,16 +86,19 @@ def _history_panel(ax: Axes, points: Sequence[PointResult], key: str) -> None:
     legend(ax, fontsize="small", ncols=2)
 
 
-def _tolerances(ax: Axes, points: Sequence[PointResult], key: str, solver: SolverSettings) -> None:
+def _tolerances(ax: Axes, points: Sequence[PointResult], key: str, solver: SolverSettings,
+                bands: Mapping[str, float]) -> None:
     """The tolerance a history is judged by (ehl.solve): the pressure change and the load error below their
-    tolerances, or the pressure change settled below FLOOR_BAND times it; the temperature change per outer
-    iteration below thermal_tolerance times the rise (at least TUNING.min_rise), or settled below THERMAL_FLOOR_FRACTION
-    of it, lines per point in its colour."""
+    tolerances, or the pressure change settled below `pressure_floor_band` times it; the temperature change per
+    outer iteration below thermal_tolerance times the rise (at least `min_rise`), or settled below
+    `thermal_floor_fraction` of it, lines per point in its colour. The bands are the file's (`convergence_bands`);
+    a file without them gets the tolerances alone."""
     if key == "pressure_change_history":
         ax.axhline(solver.tolerance, color="black", linestyle="--", linewidth=1.0,
                    label=f"tolerance {solver.tolerance:.0e}")
-        ax.axhline(TUNING.floor_band * solver.tolerance, color="black", linestyle=":", linewidth=1.0,
-                   label=f"settled-floor bound {TUNING.floor_band * solver.tolerance:.0e}")
+        if "pressure_floor_band" in bands:
+            bound = bands["pressure_floor_band"] * solver.tolerance
+            ax.axhline(bound, color="black", linestyle=":", linewidth=1.0, label=f"settled-floor bound {bound:.0e}")
     elif key == "load_error_history":
         ax.axhline(solver.load_tolerance, color="black", linestyle="--", linewidth=1.0,
                    label=f"tolerance {solver.load_tolerance:.0e}")
@@ -104,15 +106,24 @@ def _tolerances(ax: Axes, points: Sequence[PointResult], key: str, solver: Solve
         ax.axhline(solver.eyring_tolerance, color="black", linestyle="--", linewidth=1.0,
                    label=f"tolerance {solver.eyring_tolerance:.0e}")
     elif key == "thermal_change_history":
-        for line, p in zip(ax.get_lines(), [p for p in points if key in p.history]):
-            if "dT_max" in p.scalars:
-                rise = max(float(p.scalars["dT_max"]), TUNING.min_rise)
-                for fraction, style in ((solver.thermal_tolerance, "--"), (TUNING.thermal_floor_fraction, ":")):
-                    ax.axhline(fraction * rise, color=line.get_color(), linestyle=style, linewidth=0.8)
-        symbol = r"$\Delta T_{max}$"
-        ax.plot([], [], "k--", linewidth=0.8, label=f"tolerance {solver.thermal_tolerance:.0e} {symbol}")
-        ax.plot([], [], "k:", linewidth=0.8, label=f"settled-floor bound {TUNING.thermal_floor_fraction:.0e} {symbol}")
+        _thermal_tolerances(ax, points, key, solver, bands)
     legend(ax, fontsize="small", ncols=2)
+
+
+def _thermal_tolerances(ax: Axes, points: Sequence[PointResult], key: str, solver: SolverSettings,
+                        bands: Mapping[str, float]) -> None:
+    """The thermal loop's tolerance (and settled-floor bound, if the file has it) times each point's rise."""
+    floor = bands.get("thermal_floor_fraction")
+    fractions = ((solver.thermal_tolerance, "--"),) + (((floor, ":"),) if floor is not None else ())
+    for line, p in zip(ax.get_lines(), [p for p in points if key in p.history]):
+        if "dT_max" in p.scalars:
+            rise = max(float(p.scalars["dT_max"]), bands.get("min_rise", 0.0))
+            for fraction, style in fractions:
+                ax.axhline(fraction * rise, color=line.get_color(), linestyle=style, linewidth=0.8)
+    symbol = r"$\Delta T_{max}$"
+    ax.plot([], [], "k--", linewidth=0.8, label=f"tolerance {solver.thermal_tolerance:.0e} {symbol}")
+    if floor is not None:
+        ax.plot([], [], "k:", linewidth=0.8, label=f"settled-floor bound {floor:.0e} {symbol}")
 
 
 def _levels_panel(ax: Axes, points: Sequence[PointResult]) -> None:

@@ -23,7 +23,7 @@ from facegear_tehl.plots import FORMATS
 from facegear_tehl.plots.common import Output, PlotReport, figure
 from facegear_tehl.results import ResultFileError
 from facegear_tehl.schema import CaseError
-from facegear_tehl.study import COLUMNS, INDEX
+from facegear_tehl.study_index import COLUMNS, INDEX
 from facegear_tehl.units import display
 
 WORST = "worst"

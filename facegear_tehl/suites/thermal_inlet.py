@@ -1,5 +1,6 @@
 r"""Thermal inlet-zone analysis of a rolling line contact: the film lost to inlet shear heating under the
-assumptions of the published inlet analyses, solved here from scratch (it shares no code with facegear_tehl).
+assumptions of the published inlet analyses, solved here from scratch (it imports nothing else of facegear_tehl:
+an independent reference).
 
 Assumptions (those Wilson & Sheu 1983 and Murch & Wilson 1975 state for their inlet analyses): Grubin's (1949)
 inlet, i.e. rigid surfaces with the dry Hertzian gap up to the edge of the contact, where the pressure becomes

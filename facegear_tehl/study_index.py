@@ -1,0 +1,11 @@
+"""The index of a study folder (`tehl study` writes it, `tehl plot --what maps` reads it): its file name and the
+scalars of its columns."""
+
+INDEX = "index.csv"
+# Per-point scalars of the index (SI units in its header); a point without one leaves the cell empty.
+POINT_COLUMNS = (("h_c", "m"), ("h_min", "m"), ("film_parameter", "1"), ("p_max", "Pa"), ("dT_max", "K"),
+                 ("mu", "1"))
+# Attributes of a result's /cycle group (the mesh cycle: power loss, efficiency), the same on every point's row.
+CYCLE_COLUMNS = (("power_loss", "W"), ("mesh_efficiency", "1"))
+COLUMNS = tuple(name for name, _ in POINT_COLUMNS + CYCLE_COLUMNS)
+"""The scalars of the index, in its order: what `tehl plot --what maps --z` can draw."""
