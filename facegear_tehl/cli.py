@@ -146,10 +146,13 @@ def run(
 
 
 def _load_case(case_file: str) -> Case:
-    """The validated case; its warnings (valid but unusual values) on stderr."""
+    """The validated case; its warnings (valid but unusual values) and the inputs it derived (an oil given by
+    grade or nu40, nu100) on stderr."""
     case = load_case(case_file)
     for warning in case.warnings:
         click.echo(f"warning: {warning}", err=True)
+    for line in case.derived:
+        click.echo(f"derived: {line}", err=True)
     return case
 
 
@@ -419,6 +422,7 @@ def info_text(result: Result, si: bool = False) -> str:
             header.append((table_name, f"{len(table)} columns: {', '.join(table)}"))
     if result.message:
         header.append(("message", result.message.replace("\n", "; ")))
+    header += [("derived", line) for line in result.derived]
     header += [("warning", warning) for warning in result.warnings]
     points = list(result.points.values())
     names = list(dict.fromkeys(key for p in points for key in p.scalars))

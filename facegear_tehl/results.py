@@ -4,7 +4,8 @@ Layout (format 1.x; docs/cli.md describes it for readers):
 
     /                   attrs: filetype, format_version, tehl_version, created, case_name, case_yaml,
                         status (ok | not_converged | failed), message, warnings (JSON list),
-                        models (JSON), overrides (JSON)
+                        models (JSON), overrides (JSON), derived (JSON list: the case's inputs derived
+                        from others, '<key path> = <value>: <source>', e.g. an oil given by ISO grade)
     /points/<name>/     attrs: one per scalar (SI), units (JSON: scalar -> unit), converged, outcome (from 1.1:
                         converged | not converged | diverged | film closed | failed), message,
                         models (JSON); datasets x, y (kind 'axis'), fields (ny, nx) (kind 'field'),
@@ -173,6 +174,7 @@ class Result:
     contact_units: Mapping[str, str]
     heat: Mapping[str, Field]
     sweep: Mapping[str, Field] = field(default_factory=dict)
+    derived: tuple[str, ...] = ()  # the case's inputs derived from others (Case.derived)
     sweep_scalars: Mapping[str, float | int] = field(default_factory=dict)
     sweep_units: Mapping[str, str] = field(default_factory=dict)
     cycle: Mapping[str, Field] = field(default_factory=dict)
@@ -265,6 +267,7 @@ def _write_root(h5: h5py.File, run: RunResult) -> None:
     h5.attrs["warnings"] = json.dumps(list(run.warnings))
     h5.attrs["models"] = json.dumps(run.models)
     h5.attrs["overrides"] = json.dumps(dict(run.overrides))
+    h5.attrs["derived"] = json.dumps(list(run.case.derived))
 
 
 def _write_point(points: h5py.Group, solution: PointSolution, chunks: _Chunks) -> None:
@@ -483,6 +486,7 @@ def read_result(path: str | Path, fields: bool = True) -> Result:
                 warnings=tuple(json.loads(attrs["warnings"])),
                 models=json.loads(attrs["models"]),
                 overrides=json.loads(attrs["overrides"]),
+                derived=tuple(json.loads(attrs.get("derived", "[]"))),
                 points={name: _read_point(name, group, fields) for name, group in h5["points"].items()},
                 contact=_read_table(contact),
                 contact_scalars=contact_scalars,
