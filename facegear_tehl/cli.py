@@ -45,6 +45,7 @@ from facegear_tehl.tables import (
 )
 from facegear_tehl.templates import case_template
 from facegear_tehl.units import CELSIUS, MILLIMETRE, PERCENT, Unit, display
+from facegear_tehl.verdict import assess
 
 EXIT_ERROR, EXIT_BAD_INPUT, EXIT_NOT_CONVERGED = 1, 2, 3
 
@@ -126,7 +127,7 @@ def run(
     # Imported once the input is checked: only this command needs the solver (Numba kernels).
     from facegear_tehl.run import run_case
 
-    run_result = run_case(case, grid=grid, points=names, progress=_report_progress, jobs=workers)
+    run_result = assess(run_case(case, grid=grid, points=names, progress=_report_progress, jobs=workers))
     if thermal is not None:  # recorded in the file like the other options that change the case
         run_result = replace(run_result, overrides={**run_result.overrides, "thermal": thermal})
     for warning in run_result.warnings:
