@@ -45,7 +45,7 @@ from facegear_tehl.tables import (
 )
 from facegear_tehl.templates import case_template
 from facegear_tehl.units import CELSIUS, MILLIMETRE, PERCENT, Unit, display
-from facegear_tehl.verdict import assess
+from facegear_tehl.verdict import assess, verdict_text
 
 EXIT_ERROR, EXIT_BAD_INPUT, EXIT_NOT_CONVERGED = 1, 2, 3
 
@@ -142,6 +142,8 @@ def run(
     if result.cycle:
         click.echo(cycle_table(result))
         click.echo(cycle_summary(result))
+    if result.verdict:
+        click.echo(verdict_text(result))
     click.echo(f"result: {target} (status {result.status})")
     _exit_on_status(ctx, result)
 
@@ -443,6 +445,8 @@ def info_text(result: Result, si: bool = False) -> str:
         lines += ["", "heat budget:", heat_budget_table(result)]
     if result.cycle:
         lines += ["", "meshing cycle:", cycle_table(result), cycle_summary(result)]
+    if result.verdict:
+        lines += ["", verdict_text(result)]
     if result.contact_scalars:
         contact_rows = [_scalar_row(key, result.contact_units[key], [value], abs(value), si)
                         for key, value in result.contact_scalars.items()]

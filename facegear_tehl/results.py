@@ -15,6 +15,8 @@ Layout (format 1.x; docs/cli.md describes it for readers):
     /heat/              table over points, written if given
     /cycle/             meshing cycle of a gear case (cycle.py), written if given: one dataset per column along
                         the path (kind 'table'); attrs: power_loss, mesh_efficiency, ... and their units (JSON)
+    /verdict/           the case's verdict (verdict.py), written if given: attrs lambda_min, contact_temperature_max,
+                        mesh_efficiency, ... (SI) and their units (JSON), labels (JSON: lambda_min_point, regime)
     /sweep/             grid-convergence table of `tehl sweep` (sweep.py), written if given: one dataset
                         per column (kind 'table'), one row per grid; its derived columns hold NaN where a
                         value is not defined (e.g. the order on the two coarsest grids), never Inf;
@@ -56,7 +58,7 @@ FILETYPE = "facegear_tehl result"
 FORMAT_VERSION = "1.2"  # 1.1: /points/<name> attrs outcome; 1.2: dimension scales, integer counts
 STATUSES = ("ok", "not_converged", "failed")
 # Group attributes that are not scalars.
-_RESERVED_ATTRS = ("units", "converged", "outcome", "message", "models")
+_RESERVED_ATTRS = ("units", "converged", "outcome", "message", "models", "labels")
 # The 2-D numeric datasets (the points' fields, the tables' vectors) are stored with HDF5's shuffle and deflate filters
 # at this zlib level, one chunk per dataset: any HDF5 reader (h5py, xarray, HDFView) inflates them. The chunks are
 # shuffled and deflated here rather than by the HDF5 library, on up to DEFLATE_THREADS threads (zlib releases the
@@ -100,6 +102,7 @@ class RunResult:
     sweep: grid-convergence table (one row per grid), name -> column; sweep_scalars: name -> (value, units).
     warnings: remarks on the run that are not failures (e.g. from the contact analysis).
     overrides: command-line options that changed the case (e.g. grid, points).
+    verdict: the case's verdict (verdict.py), name -> (value, units); verdict_labels: its words, name -> text.
     """
 
     case: Case
@@ -114,6 +117,8 @@ class RunResult:
     cycle_scalars: Mapping[str, tuple[float, str]] = field(default_factory=dict)
     warnings: tuple[str, ...] = ()
     overrides: Mapping[str, Any] = field(default_factory=dict)
+    verdict: Mapping[str, tuple[float, str]] = field(default_factory=dict)
+    verdict_labels: Mapping[str, str] = field(default_factory=dict)
 
     @property
     def status(self) -> str:
@@ -175,6 +180,9 @@ class Result:
     heat: Mapping[str, Field]
     sweep: Mapping[str, Field] = field(default_factory=dict)
     derived: tuple[str, ...] = ()  # the case's inputs derived from others (Case.derived)
+    verdict: Mapping[str, float | int] = field(default_factory=dict)
+    verdict_units: Mapping[str, str] = field(default_factory=dict)
+    verdict_labels: Mapping[str, str] = field(default_factory=dict)
     sweep_scalars: Mapping[str, float | int] = field(default_factory=dict)
     sweep_units: Mapping[str, str] = field(default_factory=dict)
     cycle: Mapping[str, Field] = field(default_factory=dict)
@@ -204,6 +212,9 @@ def write_result(run: RunResult, path: str | Path) -> Path:
             _write_table(h5, "heat", run.heat, {}, chunks)
             _write_table(h5, "sweep", run.sweep, run.sweep_scalars, chunks)
             _write_table(h5, "cycle", run.cycle, run.cycle_scalars, chunks)
+            _write_table(h5, "verdict", {}, run.verdict, chunks)
+            if run.verdict_labels:
+                h5["verdict"].attrs["labels"] = json.dumps(dict(run.verdict_labels))
             h5.flush()
         _fsync(temporary)
         os.replace(temporary, target)
@@ -382,6 +393,7 @@ def _check_run(run: RunResult) -> None:
     _check_scalars("/contact", run.contact_scalars)
     _check_scalars("/sweep", run.sweep_scalars)
     _check_scalars("/cycle", run.cycle_scalars)
+    _check_scalars("/verdict", run.verdict)
     for table_name, table in (("contact", run.contact), ("heat", run.heat), ("sweep", run.sweep),
                               ("cycle", run.cycle)):
         for name, column in table.items():
@@ -474,6 +486,8 @@ def read_result(path: str | Path, fields: bool = True) -> Result:
             sweep_scalars, sweep_units = _read_scalars(sweep) if sweep is not None else ({}, {})
             cycle = h5.get("cycle")
             cycle_scalars, cycle_units = _read_scalars(cycle) if cycle is not None else ({}, {})
+            verdict = h5.get("verdict")
+            verdict_scalars, verdict_units = _read_scalars(verdict) if verdict is not None else ({}, {})
             return Result(
                 path=path,
                 format_version=version,
@@ -487,6 +501,9 @@ def read_result(path: str | Path, fields: bool = True) -> Result:
                 models=json.loads(attrs["models"]),
                 overrides=json.loads(attrs["overrides"]),
                 derived=tuple(json.loads(attrs.get("derived", "[]"))),
+                verdict=verdict_scalars,
+                verdict_units=verdict_units,
+                verdict_labels=json.loads(verdict.attrs.get("labels", "{}")) if verdict is not None else {},
                 points={name: _read_point(name, group, fields) for name, group in h5["points"].items()},
                 contact=_read_table(contact),
                 contact_scalars=contact_scalars,

@@ -45,5 +45,30 @@ def test_a_boundary_point_is_named_in_the_warnings_and_the_file(tmp_path):
 def test_a_full_film_and_a_smooth_case_warn_nothing():
     # sigma = sqrt(2) x 20 nm = 28.3 nm: lambda_min = 3.18, full film
     assert assess(rough_run(2.0e-8)).warnings == ()
-    smooth = rough_run(0.0)
-    assert assess(smooth) is smooth
+    smooth = assess(rough_run(0.0))
+    assert smooth.warnings == () and "lambda_min" not in smooth.verdict
+    assert "film_parameter_central" not in smooth.points[0].scalars
+
+
+def test_the_verdict_names_the_lowest_film_the_hottest_flank_and_one_efficiency(tmp_path):
+    run = rough_run(1.0e-7)
+    hot = replace(run.points[0], scalars={**run.points[0].scalars, "contact_temperature_1": (400.0, "K"),
+                                          "contact_temperature_2": (410.0, "K"),
+                                          "contact_temperature_blok_1": (395.0, "K"),
+                                          "contact_temperature_blok_2": (395.0, "K")})
+    cycle = {"mesh_efficiency": (0.99, "1"), "power_loss": (100.0, "W"), "mesh_efficiency_dissipated": (0.97, "1"),
+             "power_loss_dissipated": (300.0, "W"), "mesh_efficiency_xu": (0.995, "1"), "power_loss_xu": (50.0, "W")}
+    verdict = assess(replace(run, points=(hot,), cycle_scalars=cycle))
+    assert verdict.verdict["lambda_min"][0] == pytest.approx(0.6364, rel=1e-3)
+    assert verdict.verdict_labels == {"lambda_min_point": hot.name, "regime": "boundary"}
+    assert verdict.verdict["contact_temperature_max"] == (410.0, "K")
+    assert verdict.verdict["contact_temperature_blok_max"] == (395.0, "K")
+    assert verdict.verdict["mesh_efficiency"] == (0.99, "1") and verdict.verdict["power_loss"] == (100.0, "W")
+    result = read_result(write_result(verdict, tmp_path / "verdict.h5"), fields=False)
+    assert result.verdict["lambda_min"] == pytest.approx(0.6364, rel=1e-3)
+    assert result.verdict_labels["regime"] == "boundary"
+    text = info_text(result)
+    assert f"lambda_min 0.64 at {hot.name}, lambda_c 1.06 there: boundary" in text
+    assert "max 136.9 °C solved TEHL" in text and "121.9 °C Blok" in text
+    assert "99.000 % recommended: film mu (solved) x sliding speed, power loss 100.0 W, an upper bound" in text
+    assert "97.000 % film dissipation" in text and "99.500 % Xu et al." in text
