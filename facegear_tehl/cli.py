@@ -391,7 +391,7 @@ def plot(result_file: str, what: str, points: str | None, output: str | None, fm
 
 def info_json(result: Result) -> dict[str, Any]:
     """{'case', 'status', 'message', 'format_version', 'points': {name: {scalar: SI value, 'converged',
-    'message'}}, 'units': {name: {scalar: unit}}}."""
+    'message'}}, 'units': {name: {scalar: unit}}}, and 'cycle' and 'verdict' where the file has them."""
     return {
         "case": result.case_name,
         "status": result.status,
@@ -404,6 +404,8 @@ def info_json(result: Result) -> dict[str, Any]:
         **({"cycle": {**result.cycle_scalars, "units": dict(result.cycle_units),
                       "columns": {name: column.values.tolist() for name, column in result.cycle.items()}}}
            if result.cycle else {}),
+        **({"verdict": {**result.verdict, "units": dict(result.verdict_units), "labels": dict(result.verdict_labels)}}
+           if result.verdict else {}),
     }
 
 

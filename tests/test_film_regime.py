@@ -4,7 +4,7 @@ from dataclasses import replace
 
 import pytest
 
-from facegear_tehl.cli import info_text
+from facegear_tehl.cli import info_json, info_text
 from facegear_tehl.cycle import with_film_parameter
 from facegear_tehl.film_regime import Regime, regime
 from facegear_tehl.points import contact_analysis
@@ -67,6 +67,7 @@ def test_the_verdict_names_the_lowest_film_the_hottest_flank_and_one_efficiency(
     result = read_result(write_result(verdict, tmp_path / "verdict.h5"), fields=False)
     assert result.verdict["lambda_min"] == pytest.approx(0.6364, rel=1e-3)
     assert result.verdict_labels["regime"] == "boundary"
+    assert info_json(result)["verdict"]["labels"]["regime"] == "boundary"
     text = info_text(result)
     assert f"lambda_min 0.64 at {hot.name}, lambda_c 1.06 there: boundary" in text
     assert "max 136.9 °C solved TEHL" in text and "121.9 °C Blok" in text
