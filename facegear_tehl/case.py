@@ -194,6 +194,7 @@ def _lubricant(block: Block) -> tuple[Lubricant, tuple[str, ...]]:
         specific_heat=block.number("specific_heat", d["specific_heat"], positive=True, low=1.0, high=1e5,
                                    unit="J/(kg K)"),
         oil_type=oil_type,
+        scuffing_temperature=_scuffing_temperature(block, temperature),
     )
     check(
         lubricant.roelands_log_term > 0.0 or lubricant.viscosity_model != "roelands",
@@ -213,6 +214,16 @@ def _inlet_temperature(block: Block) -> float:
     if celsius > OIL_HOTTEST:
         warn(block.key_path("inlet_temperature"), f"{celsius:g} degC is hotter than an oil bath runs (at most "
              f"{OIL_HOTTEST:g} degC); the key is in degC: if {celsius:g} is kelvin, write {celsius - KELVIN:g}")
+    return celsius + KELVIN
+
+
+def _scuffing_temperature(block: Block, inlet: float) -> float | None:
+    """lubricant.scuffing_temperature (degC in the file) in K, above the inlet temperature; None if not given."""
+    if not block.has("scuffing_temperature"):
+        return None
+    celsius = block.number("scuffing_temperature", low=0.0, high=2000.0, unit="degC")
+    check(celsius + KELVIN > inlet, block.key_path("scuffing_temperature"), celsius,
+          f"a temperature above the inlet's {inlet - KELVIN:g} degC (the oil scuffs above its bath temperature)")
     return celsius + KELVIN
 
 

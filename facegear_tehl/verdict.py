@@ -1,7 +1,8 @@
 """The engineer's verdict on a run, added after the solve (docs/verdict.md): the film parameter at the centre beside
 the one at the film's minimum, a warning where a point runs in boundary lubrication, and one verdict per case (the
-/verdict group): the lowest film parameter and where, the highest contact temperature solved and by formula, and
-one recommended mesh efficiency beside the others as comparisons."""
+/verdict group): the lowest film parameter and where, the highest contact temperature solved and by formula, the
+scuffing safety against a given scuffing temperature from both, and one recommended mesh efficiency beside the
+others as comparisons."""
 
 from __future__ import annotations
 
@@ -17,7 +18,9 @@ from facegear_tehl.film_regime import (
     regime_warning,
     with_central_film_parameter,
 )
+from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.results import Result, RunResult
+from facegear_tehl.scuffing import flash_safety
 from facegear_tehl.units import CELSIUS, MILLIMETRE, PERCENT
 
 # The recommended mesh power loss: the solved film's sliding traction times the sliding speed (cycle.py's
@@ -44,6 +47,7 @@ def assess(run: RunResult) -> RunResult:
                       warnings=run.warnings + ((warning,) if warning else ()))
     scalars, labels = _film_verdict(run)
     scalars.update(_temperature_verdict(run))
+    scalars.update(_scuffing_verdict(run.case.lubricant, scalars))
     scalars.update(_efficiency_verdict(run.cycle_scalars))
     return replace(run, verdict=scalars, verdict_labels=labels)
 
@@ -81,6 +85,22 @@ def _temperature_verdict(run: RunResult) -> dict[str, tuple[float, str]]:
     return {key: (max(values), "K") for key, values in found.items() if values}
 
 
+def _scuffing_verdict(lubricant: Lubricant, temperatures: Mapping[str, tuple[float, str]]
+                      ) -> dict[str, tuple[float, str]]:
+    """The scuffing safety S_B of the hottest flank against the given scuffing temperature, from the solved and
+    from Blok's contact temperature (scuffing.flash_safety), with theta_oil the inlet temperature."""
+    if lubricant.scuffing_temperature is None:
+        return {}
+    found = {"scuffing_temperature": (lubricant.scuffing_temperature, "K")}
+    for key, name in (("contact_temperature_max", "scuffing_safety"),
+                      ("contact_temperature_blok_max", "scuffing_safety_blok")):
+        safety = flash_safety(lubricant.scuffing_temperature, lubricant.inlet_temperature,
+                              temperatures[key][0]) if key in temperatures else None
+        if safety is not None:
+            found[name] = (safety, "1")
+    return found
+
+
 def _efficiency_verdict(cycle: Mapping[str, tuple[float, str]]) -> dict[str, tuple[float, str]]:
     """The recommended mesh efficiency and power loss (RECOMMENDED), when the cycle has them."""
     suffix = RECOMMENDED[0]
@@ -91,10 +111,11 @@ def _efficiency_verdict(cycle: Mapping[str, tuple[float, str]]) -> dict[str, tup
 
 def verdict_text(result: Result) -> str:
     """The verdict of a result file, a few lines; '' when it has none."""
-    lines = [*_film_lines(result), *_temperature_lines(result), *_efficiency_lines(result)]
+    lines = [*_film_lines(result), *_temperature_lines(result), *_scuffing_lines(result), *_efficiency_lines(result)]
     if not lines:
         return ""
-    lines.append("  not assessed         scuffing (ISO/TS 6336-20, -21) and micropitting (ISO/TS 6336-22)")
+    lines.append("  not assessed         scuffing by ISO/TS 6336-20 (its mean mu, theta_S from the FZG stage) and -21 "
+                 "(integral temperature); micropitting (ISO/TS 6336-22)")
     return "\n".join(["verdict:", *lines])
 
 
@@ -114,6 +135,17 @@ def _temperature_lines(result: Result) -> list[str]:
         ("contact_temperature_max", "solved TEHL (bulk + solved surface rise)"),
         ("contact_temperature_blok_max", "Blok (1937) formula with the film's mu")) if key in v]
     return ["  contact temperature  max " + "; ".join(temperatures)] if temperatures else []
+
+
+def _scuffing_lines(result: Result) -> list[str]:
+    v = result.verdict
+    if "scuffing_temperature" not in v:
+        return []
+    safeties = [f"{v[key]:.2f} {what}" for key, what in (("scuffing_safety", "solved"),
+                                                          ("scuffing_safety_blok", "Blok formula")) if key in v]
+    given = CELSIUS(v["scuffing_temperature"])
+    return [f"  scuffing             S_B {', '.join(safeties) or '-'} against theta_S {given:.0f} °C given (Blok's "
+            "flash-temperature criterion)"]
 
 
 def _efficiency_lines(result: Result) -> list[str]:

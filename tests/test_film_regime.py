@@ -9,6 +9,7 @@ from facegear_tehl.cycle import with_film_parameter
 from facegear_tehl.film_regime import Regime, regime
 from facegear_tehl.points import contact_analysis
 from facegear_tehl.results import RunResult, read_result, write_result
+from facegear_tehl.scuffing import flash_safety
 from facegear_tehl.verdict import assess
 
 import synthetic
@@ -58,7 +59,13 @@ def test_the_verdict_names_the_lowest_film_the_hottest_flank_and_one_efficiency(
                                           "contact_temperature_blok_2": (395.0, "K")})
     cycle = {"mesh_efficiency": (0.99, "1"), "power_loss": (100.0, "W"), "mesh_efficiency_dissipated": (0.97, "1"),
              "power_loss_dissipated": (300.0, "W"), "mesh_efficiency_xu": (0.995, "1"), "power_loss_xu": (50.0, "W")}
+    # theta_S = 300 degC given, theta_oil = the 40 degC inlet: S_B = (573.15 - 313.15)/(410 - 313.15) = 2.6846
+    # solved and (573.15 - 313.15)/(395 - 313.15) = 3.1765 by Blok (the form of DIN 3990-4's S_B)
+    oil = replace(run.case.lubricant, scuffing_temperature=573.15)
+    run = replace(run, case=replace(run.case, lubricant=oil))
     verdict = assess(replace(run, points=(hot,), cycle_scalars=cycle))
+    assert verdict.verdict["scuffing_safety"][0] == pytest.approx(2.6846, rel=1e-4)
+    assert verdict.verdict["scuffing_safety_blok"][0] == pytest.approx(3.1765, rel=1e-4)
     assert verdict.verdict["lambda_min"][0] == pytest.approx(0.6364, rel=1e-3)
     assert verdict.verdict_labels == {"lambda_min_point": hot.name, "regime": "boundary"}
     assert verdict.verdict["contact_temperature_max"] == (410.0, "K")
@@ -73,3 +80,9 @@ def test_the_verdict_names_the_lowest_film_the_hottest_flank_and_one_efficiency(
     assert "max 136.9 °C solved TEHL" in text and "121.9 °C Blok" in text
     assert "99.000 % recommended: film mu (solved) x sliding speed, power loss 100.0 W, an upper bound" in text
     assert "97.000 % film dissipation" in text and "99.500 % Xu et al." in text
+    assert "S_B 2.68 solved, 3.18 Blok formula against theta_S 300 °C given" in text
+
+
+def test_no_scuffing_safety_without_a_temperature_rise():
+    assert flash_safety(573.15, 313.15, 313.15) is None
+    assert flash_safety(573.15, 313.15, 443.15) == pytest.approx(2.0)

@@ -115,7 +115,9 @@ def test_values_the_case_gives_override_the_derived_ones():
 
 def test_a_case_in_pa_s_derives_nothing():
     plain = case("  viscosity: 0.04\n  pressure_viscosity: 2.2e-8\n")
-    assert plain.derived == ()
+    assert plain.derived == () and plain.lubricant.scuffing_temperature is None
+    assert case("  viscosity: 0.04\n  pressure_viscosity: 2.2e-8\n  scuffing_temperature: 300\n"
+                ).lubricant.scuffing_temperature == pytest.approx(573.15)
     assert plain.lubricant.viscosity == 0.04 and plain.lubricant.density == 870.0
 
 
@@ -128,6 +130,8 @@ def test_a_case_in_pa_s_derives_nothing():
     ("  nu40: 100\n  nu100: 120\n  density_15: 880\n", "lubricant.nu100"),
     ("  grade: VG100\n  nu100: 11\n", "lubricant.density_15"),
     ("  grade: VG100\n  nu100: 11\n  density_15: 850\n  oil_type: pao\n", "lubricant.pressure_viscosity"),
+    ("  viscosity: 0.04\n  pressure_viscosity: 2.2e-8\n  inlet_temperature: 90\n  scuffing_temperature: 80\n",
+     "lubricant.scuffing_temperature"),
 ])
 def test_bad_oil_inputs_name_their_key(lines, key):
     with pytest.raises(CaseError) as error:
