@@ -253,7 +253,10 @@ def _oil(block: Block, temperature: float, oil_type: str) -> tuple[dict[str, flo
     check(nu_100 < nu_40, block.key_path("nu100"), nu_100, f"less than nu_40 = {nu_40:g} mm^2/s")
     if nu_100 >= nu_40:
         return {"viscosity": math.nan}, ()
-    oil = derive(nu_40, nu_100, density_15, temperature, oil_type, source)
+    given = block.raw.get("density")  # checked where it is read; a valid one makes the dynamic viscosity
+    valid = isinstance(given, (int, float)) and not isinstance(given, bool) and 0 < given < math.inf
+    density = given if valid else None
+    oil = derive(nu_40, nu_100, density_15, temperature, oil_type, source, density)
     values = {key: getattr(oil, key) for key in ("viscosity", "density", "temperature_viscosity", "thermal_expansion",
                                                  "pressure_viscosity", "thermal_conductivity", "specific_heat")}
     return ({key: value for key, value in values.items() if value is not None},

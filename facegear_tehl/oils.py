@@ -133,13 +133,14 @@ class OilDerivation:
 
 
 def derive(nu_40: float, nu_100: float, density_15: float, temperature: float, oil_type: str,
-           source: str) -> OilDerivation:
+           source: str, density: float | None = None) -> OilDerivation:
     """The SI inputs of an oil of nu_40, nu_100 (mm^2/s) and rho_15 (kg/m^3) at the inlet temperature T (K);
-    `source` says where nu_40 came from (e.g. "ISO VG 100 midpoint"). Mineral oils get alpha (ISO/TR 15144-1)
-    and k, c (Cragoe 1929); the other oil types none of the three."""
+    `source` says where nu_40 came from (e.g. "ISO VG 100 midpoint"); `density` (kg/m^3 at T) replaces the one
+    derived from rho_15 where given. Mineral oils get alpha (ISO/TR 15144-1) and k, c (Cragoe 1929); the other oil
+    types none of the three."""
     line = Walther.through(nu_40, nu_100)
     nu = line.viscosity(temperature)
-    rho = density_at(density_15, temperature)
+    rho = density_at(density_15, temperature) if density is None else density
     eps = thermal_expansion_at(density_15, temperature)
     celsius = temperature - KELVIN
     walther = f"ASTM D341 (Walther) through nu_40 = {nu_40:g} ({source}) and nu_100 = {nu_100:g} mm^2/s"

@@ -113,6 +113,13 @@ def test_values_the_case_gives_override_the_derived_ones():
     assert any(line.startswith("lubricant.viscosity = ") for line in given.derived)
 
 
+def test_a_given_density_makes_the_dynamic_viscosity_with_it():
+    derived = case("  nu40: 100\n  nu100: 11.1\n  density_15: 880\n").lubricant
+    given = case("  nu40: 100\n  nu100: 11.1\n  density_15: 880\n  density: 900\n").lubricant
+    assert given.density == 900.0
+    assert given.viscosity / 900.0 == pytest.approx(derived.viscosity / derived.density, rel=1e-12)  # same nu
+
+
 def test_a_case_in_pa_s_derives_nothing():
     plain = case("  viscosity: 0.04\n  pressure_viscosity: 2.2e-8\n")
     assert plain.derived == () and plain.lubricant.scuffing_temperature is None
