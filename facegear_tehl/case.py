@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Hashable
 from dataclasses import dataclass, replace
+import math
 from pathlib import Path
 import re
 from typing import Any
@@ -20,6 +21,7 @@ import yaml
 from facegear_tehl.gears.spec import GearSpec, parse_gear_block
 from facegear_tehl.lubricant import DENSITY_MODELS, KELVIN, OIL_TYPES, RHEOLOGY_MODELS, VISCOSITY_MODELS, Lubricant
 from facegear_tehl.materials import Solid
+from facegear_tehl.oils import ISO_VG_GRADES, WALTHER_LOWEST, derive, grade_viscosity
 from facegear_tehl.schema import Block, CaseError, attempt, check, collecting, defaults, warn
 from facegear_tehl.settings import (  # also imported from here
     MAX_OUTLET_PATCHES,
@@ -102,6 +104,7 @@ class Case:
     output: OutputSettings
     gear: GearSpec | None = None  # a face gear pair; exactly one of contact and gear is set
     warnings: tuple[str, ...] = ()  # '<key path>: <remark>' for each valid but unusual value
+    derived: tuple[str, ...] = ()  # '<key path> = <value>: <source>' for each input derived from others (oils.py)
 
     def with_grid(self, grid: int) -> Case:
         """The same case on another finest grid (validated like the YAML key solver.grid)."""
@@ -151,31 +154,29 @@ def _materials(block: Block) -> Materials:
     return materials
 
 
-def _lubricant(block: Block) -> Lubricant:
+def _lubricant(block: Block) -> tuple[Lubricant, tuple[str, ...]]:
+    """The lubricant and the lines saying which of its values were derived (from an ISO grade or nu_40, nu_100)."""
     d = _LUBRICANT
     rheology = block.choice("rheology", RHEOLOGY_MODELS, d["rheology"])
     eyring = d["eyring_stress"]
     if rheology == "ree_eyring" or block.has("eyring_stress"):  # required by Ree-Eyring, checked if given
         eyring = block.number("eyring_stress", positive=True, low=1e4, unit="Pa")
-    temperature = d["inlet_temperature"]
-    if block.has("inlet_temperature"):  # degC in the file
-        celsius = block.number("inlet_temperature", low=-100.0, high=400.0, unit="degC")
-        if celsius > OIL_HOTTEST:
-            warn(block.key_path("inlet_temperature"), f"{celsius:g} degC is hotter than an oil bath runs (at most "
-                 f"{OIL_HOTTEST:g} degC); the key is in degC: if {celsius:g} is kelvin, write {celsius - KELVIN:g}")
-        temperature = celsius + KELVIN
-    z = block.number("roelands_z", d["roelands_z"], low=0.0, high=2.0, open_low=True)
+    temperature = _inlet_temperature(block)
+    oil_type = block.choice("oil_type", OIL_TYPES, d["oil_type"])
+    oil, derived = _oil(block, temperature, oil_type)
+    d = {**d, **oil}
     lubricant = Lubricant(
-        viscosity=block.number("viscosity", positive=True, low=1e-6, high=1e6, unit="Pa s", usual=USUAL_VISCOSITY,
-                               hint="the key is in Pa s (a value in mPa s is 1000 times larger)"),
+        viscosity=oil["viscosity"] if oil else block.number(
+            "viscosity", positive=True, low=1e-6, high=1e6, unit="Pa s", usual=USUAL_VISCOSITY,
+            hint="the key is in Pa s (a value in mPa s is 1000 times larger)"),
         inlet_temperature=temperature,
-        pressure_viscosity=block.number("pressure_viscosity", positive=True, high=1e-6, unit="1/Pa"),
+        pressure_viscosity=_pressure_viscosity(block, oil, oil_type),
         density=block.number("density", d["density"], positive=True, low=1.0, high=1e5, unit="kg/m^3"),
         viscosity_model=block.choice("viscosity_model", VISCOSITY_MODELS, d["viscosity_model"]),
         density_model=block.choice("density_model", DENSITY_MODELS, d["density_model"]),
         rheology=rheology,
         eyring_stress=eyring,
-        roelands_z=z,
+        roelands_z=block.number("roelands_z", d["roelands_z"], low=0.0, high=2.0, open_low=True),
         temperature_viscosity=block.number("temperature_viscosity", d["temperature_viscosity"], nonnegative=True,
                                            high=1.0, unit="1/K"),
         thermal_expansion=block.number("thermal_expansion", d["thermal_expansion"], nonnegative=True, high=0.01,
@@ -192,7 +193,8 @@ def _lubricant(block: Block) -> Lubricant:
                                                       high=100.0, unit="1/GPa"),
         specific_heat=block.number("specific_heat", d["specific_heat"], positive=True, low=1.0, high=1e5,
                                    unit="J/(kg K)"),
-        oil_type=block.choice("oil_type", OIL_TYPES, d["oil_type"]),
+        oil_type=oil_type,
+        scuffing_temperature=_scuffing_temperature(block, temperature),
     )
     check(
         lubricant.roelands_log_term > 0.0 or lubricant.viscosity_model != "roelands",
@@ -201,7 +203,85 @@ def _lubricant(block: Block) -> Lubricant:
         "a viscosity above the Roelands asymptote 6.3e-5 Pa s (use viscosity_model: barus otherwise)",
     )
     block.finish()
-    return lubricant
+    return lubricant, tuple(line for line in derived if not block.has(line.split(" = ")[0].split(".")[-1]))
+
+
+def _inlet_temperature(block: Block) -> float:
+    """lubricant.inlet_temperature (degC in the file) in K, with a warning when hotter than an oil bath runs."""
+    if not block.has("inlet_temperature"):
+        return _LUBRICANT["inlet_temperature"]
+    celsius = block.number("inlet_temperature", low=-100.0, high=400.0, unit="degC")
+    if celsius > OIL_HOTTEST:
+        warn(block.key_path("inlet_temperature"), f"{celsius:g} degC is hotter than an oil bath runs (at most "
+             f"{OIL_HOTTEST:g} degC); the key is in degC: if {celsius:g} is kelvin, write {celsius - KELVIN:g}")
+    return celsius + KELVIN
+
+
+def _scuffing_temperature(block: Block, inlet: float) -> float | None:
+    """lubricant.scuffing_temperature (degC in the file) in K, above the inlet temperature; None if not given."""
+    if not block.has("scuffing_temperature"):
+        return None
+    celsius = block.number("scuffing_temperature", low=0.0, high=2000.0, unit="degC")
+    check(celsius + KELVIN > inlet, block.key_path("scuffing_temperature"), celsius,
+          f"a temperature above the inlet's {inlet - KELVIN:g} degC (the oil scuffs above its bath temperature)")
+    return celsius + KELVIN
+
+
+# The keys of an oil given in engineering units (oils.py) instead of viscosity in Pa s.
+_OIL_KEYS = ("grade", "nu40", "nu100", "density_15")
+
+
+def _oil(block: Block, temperature: float, oil_type: str) -> tuple[dict[str, float], tuple[str, ...]]:
+    """The Lubricant values derived from grade or nu40, nu100 and density_15 (oils.derive) with their provenance
+    lines ('lubricant.<key> = ...'); ({}, ()) for an oil given by viscosity in Pa s."""
+    if not any(block.has(key) for key in _OIL_KEYS):
+        return {}, ()
+    check(not block.has("viscosity"), block.key_path("viscosity"), block.raw.get("viscosity"),
+          "no viscosity with grade/nu40/nu100 (the viscosity at the inlet is derived from them)")
+    check(block.has("grade") != block.has("nu40"), block.key_path("nu40"), block.raw.get("nu40"),
+          "exactly one of grade (an ISO 3448 grade, e.g. VG100) or nu40 (mm^2/s at 40 degC)")
+    source = "mm^2/s given"
+    if block.has("grade"):
+        grade = _grade(block)
+        nu_40, source = grade_viscosity(grade), f"the ISO 3448 VG {grade} midpoint"
+    else:
+        nu_40 = block.number("nu40", low=WALTHER_LOWEST, high=1e6, unit="mm^2/s")
+    nu_100 = block.number("nu100", low=WALTHER_LOWEST, high=1e6, unit="mm^2/s (from the oil's datasheet)")
+    density_15 = block.number("density_15", low=500.0, high=2000.0, unit="kg/m^3 (from the oil's datasheet)")
+    if not all(math.isfinite(v) for v in (nu_40, nu_100, density_15)):  # recorded by the readers
+        return {"viscosity": math.nan}, ()
+    check(nu_100 < nu_40, block.key_path("nu100"), nu_100, f"less than nu_40 = {nu_40:g} mm^2/s")
+    if nu_100 >= nu_40:
+        return {"viscosity": math.nan}, ()
+    given = block.raw.get("density")  # checked where it is read; a valid one makes the dynamic viscosity
+    valid = isinstance(given, (int, float)) and not isinstance(given, bool) and 0 < given < math.inf
+    density = given if valid else None
+    oil = derive(nu_40, nu_100, density_15, temperature, oil_type, source, density)
+    values = {key: getattr(oil, key) for key in ("viscosity", "density", "temperature_viscosity", "thermal_expansion",
+                                                 "pressure_viscosity", "thermal_conductivity", "specific_heat")}
+    return ({key: value for key, value in values.items() if value is not None},
+            tuple(f"{block.key_path(line)}" for line in oil.provenance))
+
+
+def _grade(block: Block) -> int:
+    """lubricant.grade: VG100, 'VG 100', 'ISO VG 100' or 100, one of the ISO 3448 grades."""
+    raw = block.get("grade")
+    text = str(raw).upper().replace("ISO", "").replace("VG", "").strip() if not isinstance(raw, bool) else ""
+    grade = int(text) if text.isdigit() else None
+    check(grade in ISO_VG_GRADES, block.key_path("grade"), raw,
+          "an ISO 3448 grade: " + ", ".join(f"VG{g}" for g in ISO_VG_GRADES))
+    return grade if grade in ISO_VG_GRADES else ISO_VG_GRADES[0]
+
+
+def _pressure_viscosity(block: Block, oil: dict[str, float], oil_type: str) -> float:
+    """lubricant.pressure_viscosity, 1/Pa: given, else derived for a mineral oil given in engineering units."""
+    if oil and "pressure_viscosity" not in oil and not block.has("pressure_viscosity"):
+        check(False, block.key_path("pressure_viscosity"), None,
+              f"a value in 1/Pa: none is derived for oil_type {oil_type} (the built-in correlation, ISO/TR 15144-1, "
+              "is for mineral oils)")
+        return math.nan
+    default = [oil["pressure_viscosity"]] if "pressure_viscosity" in oil else []
+    return block.number("pressure_viscosity", *default, positive=True, high=1e-6, unit="1/Pa")
 
 
 def _plain_contact(block: Block) -> PlainContact:
@@ -336,16 +416,19 @@ def _case(raw: Any, text: str, name: str) -> Case:
           "exactly one of a contact: block (one plain elliptical contact) or a gear: block (a face gear pair)")
     contact = attempt(lambda: _plain_contact(top.block("contact"))) if has_contact else None
     gear = attempt(lambda: parse_gear_block(top.block("gear"))) if has_gear else None
+    materials = attempt(lambda: _materials(top.block("materials")))
+    lubricant = attempt(lambda: _lubricant(top.block("lubricant")))
     case = Case(
         name=case_name,
         description=description,
         text=text,
         contact=contact,
-        materials=attempt(lambda: _materials(top.block("materials"))),
-        lubricant=attempt(lambda: _lubricant(top.block("lubricant"))),
+        materials=materials,
+        lubricant=lubricant[0] if lubricant else None,
         solver=attempt(lambda: _solver(top.block("solver", {}))),
         output=attempt(lambda: _output(top.block("output", {}))),
         gear=gear,
+        derived=lubricant[1] if lubricant else (),
     )
     top.finish()
     return case

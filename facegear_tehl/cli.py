@@ -46,6 +46,7 @@ from facegear_tehl.tables import (
 )
 from facegear_tehl.templates import case_template
 from facegear_tehl.units import CELSIUS, MILLIMETRE, PERCENT, Unit, display
+from facegear_tehl.verdict import assess, verdict_text
 
 EXIT_ERROR, EXIT_BAD_INPUT, EXIT_NOT_CONVERGED = 1, 2, 3
 
@@ -127,7 +128,7 @@ def run(
     # Imported once the input is checked: only this command needs the solver (Numba kernels).
     from facegear_tehl.run import run_case
 
-    run_result = run_case(case, grid=grid, points=names, progress=_report_progress, jobs=workers)
+    run_result = assess(run_case(case, grid=grid, points=names, progress=_report_progress, jobs=workers))
     if thermal is not None:  # recorded in the file like the other options that change the case
         run_result = replace(run_result, overrides={**run_result.overrides, "thermal": thermal})
     for warning in run_result.warnings:
@@ -142,15 +143,20 @@ def run(
     if result.cycle:
         click.echo(cycle_table(result))
         click.echo(cycle_summary(result))
+    if result.verdict:
+        click.echo(verdict_text(result))
     click.echo(f"result: {target} (status {result.status})")
     _exit_on_status(ctx, result)
 
 
 def _load_case(case_file: str) -> Case:
-    """The validated case; its warnings (valid but unusual values) on stderr."""
+    """The validated case; its warnings (valid but unusual values) and the inputs it derived (an oil given by
+    grade or nu40, nu100) on stderr."""
     case = load_case(case_file)
     for warning in case.warnings:
         click.echo(f"warning: {warning}", err=True)
+    for line in case.derived:
+        click.echo(f"derived: {line}", err=True)
     return case
 
 
@@ -387,7 +393,8 @@ def plot(result_file: str, what: str, points: str | None, output: str | None, fm
 
 def info_json(result: Result) -> dict[str, Any]:
     """{'case', 'status', 'message', 'format_version', 'points': {name: {scalar: SI value, 'converged',
-    'message'}}, 'units': {name: {scalar: unit}}, 'solve': {name: the solve record (record.record_to_dict)}}."""
+    'message'}}, 'units': {name: {scalar: unit}}, 'solve': {name: the solve record (record.record_to_dict)}}, and
+    'cycle' and 'verdict' where the file has them."""
     return {
         "case": result.case_name,
         "status": result.status,
@@ -401,6 +408,8 @@ def info_json(result: Result) -> dict[str, Any]:
         **({"cycle": {**result.cycle_scalars, "units": dict(result.cycle_units),
                       "columns": {name: column.values.tolist() for name, column in result.cycle.items()}}}
            if result.cycle else {}),
+        **({"verdict": {**result.verdict, "units": dict(result.verdict_units), "labels": dict(result.verdict_labels)}}
+           if result.verdict else {}),
     }
 
 
@@ -422,6 +431,7 @@ def info_text(result: Result, si: bool = False) -> str:
             header.append((table_name, f"{len(table)} columns: {', '.join(table)}"))
     if result.message:
         header.append(("message", result.message.replace("\n", "; ")))
+    header += [("derived", line) for line in result.derived]
     header += [("warning", warning) for warning in result.warnings]
     points = list(result.points.values())
     names = list(dict.fromkeys(key for p in points for key in p.scalars))
@@ -441,6 +451,8 @@ def info_text(result: Result, si: bool = False) -> str:
         lines += ["", "heat budget:", heat_budget_table(result)]
     if result.cycle:
         lines += ["", "meshing cycle:", cycle_table(result), cycle_summary(result)]
+    if result.verdict:
+        lines += ["", verdict_text(result)]
     for p in points:
         if p.record is not None:
             lines += ["", *record_lines(p.name, p.record)]

@@ -62,6 +62,7 @@ class Lubricant:
     conductivity_pressure_saturation: float = 0.0  # b, 1/GPa
     specific_heat: float = 2000.0  # c_f, J/(kg K)
     oil_type: str = "mineral"  # base oil, one of OIL_TYPES: only ISO/TR 14179-2's friction coefficient reads it
+    scuffing_temperature: float | None = None  # theta_S, K, of the oil on the flanks (scuffing.py); None: not given
 
     @property
     def roelands_log_term(self) -> float:

@@ -4,7 +4,8 @@ Layout (format 1.x; docs/cli.md describes it for readers):
 
     /                   attrs: filetype, format_version, tehl_version, created, case_name, case_yaml,
                         status (ok | not_converged | failed), message, warnings (JSON list),
-                        models (JSON), overrides (JSON)
+                        models (JSON), overrides (JSON), derived (JSON list: the case's inputs derived
+                        from others, '<key path> = <value>: <source>', e.g. an oil given by ISO grade)
     /points/<name>/     attrs: one per scalar (SI), units (JSON: scalar -> unit), converged, outcome (from 1.1:
                         converged | not converged | diverged | film closed | failed), message,
                         models (JSON); datasets x, y (kind 'axis'), fields (ny, nx) (kind 'field'),
@@ -18,6 +19,8 @@ Layout (format 1.x; docs/cli.md describes it for readers):
     /heat/              table over points, written if given
     /cycle/             meshing cycle of a gear case (cycle.py), written if given: one dataset per column along
                         the path (kind 'table'); attrs: power_loss, mesh_efficiency, ... and their units (JSON)
+    /verdict/           the case's verdict (verdict.py), written if given: attrs lambda_min, contact_temperature_max,
+                        mesh_efficiency, ... (SI) and their units (JSON), labels (JSON: lambda_min_point, regime)
     /sweep/             grid-convergence table of `tehl sweep` (sweep.py), written if given: one dataset
                         per column (kind 'table'), one row per grid; its derived columns hold NaN where a
                         value is not defined (e.g. the order on the two coarsest grids), never Inf;
@@ -62,7 +65,7 @@ FILETYPE = "facegear_tehl result"
 FORMAT_VERSION = "1.3"
 STATUSES = ("ok", "not_converged", "failed")
 # Group attributes that are not scalars.
-_RESERVED_ATTRS = ("units", "converged", "outcome", "message", "models")
+_RESERVED_ATTRS = ("units", "converged", "outcome", "message", "models", "labels")
 _RECORD_LISTS = ("plan", "stages", "retries", "notes")  # the solve record's attributes held as JSON
 # The 2-D numeric datasets (the points' fields, the tables' vectors) are stored with HDF5's shuffle and deflate filters
 # at this zlib level, one chunk per dataset: any HDF5 reader (h5py, xarray, HDFView) inflates them. The chunks are
@@ -107,6 +110,7 @@ class RunResult:
     sweep: grid-convergence table (one row per grid), name -> column; sweep_scalars: name -> (value, units).
     warnings: remarks on the run that are not failures (e.g. from the contact analysis).
     overrides: command-line options that changed the case (e.g. grid, points).
+    verdict: the case's verdict (verdict.py), name -> (value, units); verdict_labels: its words, name -> text.
     """
 
     case: Case
@@ -123,6 +127,8 @@ class RunResult:
     cycle_scalars: Mapping[str, tuple[float, str]] = field(default_factory=dict)
     warnings: tuple[str, ...] = ()
     overrides: Mapping[str, Any] = field(default_factory=dict)
+    verdict: Mapping[str, tuple[float, str]] = field(default_factory=dict)
+    verdict_labels: Mapping[str, str] = field(default_factory=dict)
 
     @property
     def status(self) -> str:
@@ -184,6 +190,10 @@ class Result:
     contact_units: Mapping[str, str]
     heat: Mapping[str, Field]
     sweep: Mapping[str, Field] = field(default_factory=dict)
+    derived: tuple[str, ...] = ()  # the case's inputs derived from others (Case.derived)
+    verdict: Mapping[str, float | int] = field(default_factory=dict)
+    verdict_units: Mapping[str, str] = field(default_factory=dict)
+    verdict_labels: Mapping[str, str] = field(default_factory=dict)
     sweep_scalars: Mapping[str, float | int] = field(default_factory=dict)
     sweep_units: Mapping[str, str] = field(default_factory=dict)
     cycle: Mapping[str, Field] = field(default_factory=dict)
@@ -215,6 +225,9 @@ def write_result(run: RunResult, path: str | Path) -> Path:
             _write_table(h5, "heat", run.heat, {}, chunks)
             _write_table(h5, "sweep", run.sweep, run.sweep_scalars, chunks)
             _write_table(h5, "cycle", run.cycle, run.cycle_scalars, chunks)
+            _write_table(h5, "verdict", {}, run.verdict, chunks)
+            if run.verdict_labels:
+                h5["verdict"].attrs["labels"] = json.dumps(dict(run.verdict_labels))
             h5.flush()
         _fsync(temporary)
         os.replace(temporary, target)
@@ -279,6 +292,7 @@ def _write_root(h5: h5py.File, run: RunResult) -> None:
     h5.attrs["models"] = json.dumps(run.models)
     h5.attrs["overrides"] = json.dumps(dict(run.overrides))
     h5.attrs["convergence_bands"] = json.dumps(dict(run.convergence_bands))
+    h5.attrs["derived"] = json.dumps(list(run.case.derived))
 
 
 def _write_point(points: h5py.Group, solution: PointSolution, chunks: _Chunks) -> None:
@@ -421,6 +435,7 @@ def _check_run(run: RunResult) -> None:
     _check_scalars("/contact", run.contact_scalars)
     _check_scalars("/sweep", run.sweep_scalars)
     _check_scalars("/cycle", run.cycle_scalars)
+    _check_scalars("/verdict", run.verdict)
     for table_name, table in (("contact", run.contact), ("heat", run.heat), ("sweep", run.sweep),
                               ("cycle", run.cycle)):
         for name, column in table.items():
@@ -513,6 +528,8 @@ def read_result(path: str | Path, fields: bool = True) -> Result:
             sweep_scalars, sweep_units = _read_scalars(sweep) if sweep is not None else ({}, {})
             cycle = h5.get("cycle")
             cycle_scalars, cycle_units = _read_scalars(cycle) if cycle is not None else ({}, {})
+            verdict = h5.get("verdict")
+            verdict_scalars, verdict_units = _read_scalars(verdict) if verdict is not None else ({}, {})
             return Result(
                 path=path,
                 format_version=version,
@@ -525,6 +542,10 @@ def read_result(path: str | Path, fields: bool = True) -> Result:
                 warnings=tuple(json.loads(attrs["warnings"])),
                 models=json.loads(attrs["models"]),
                 overrides=json.loads(attrs["overrides"]),
+                derived=tuple(json.loads(attrs.get("derived", "[]"))),
+                verdict=verdict_scalars,
+                verdict_units=verdict_units,
+                verdict_labels=json.loads(verdict.attrs.get("labels", "{}")) if verdict is not None else {},
                 points={name: _read_point(name, group, fields) for name, group in h5["points"].items()},
                 contact=_read_table(contact),
                 contact_scalars=contact_scalars,

@@ -69,8 +69,8 @@ COST = (Column("cycles", "iterations", spec=".0f"), Column("work units", "work_u
 
 # `tehl info`: the per-point scalars by theme, in this order; a scalar of none of them is listed under "other".
 SCALAR_GROUPS = (
-    ("film", ("h_c", "h_min", "x_h_min", "y_h_min", "inlet_gap_ratio", "error_estimate_h_c",
-              "error_estimate_h_min")),
+    ("film", ("h_c", "h_min", "film_parameter", "film_parameter_central", "x_h_min", "y_h_min", "inlet_gap_ratio",
+              "error_estimate_h_c", "error_estimate_h_min")),
     ("pressure", ("p_max", "p_hertz", "load", "a", "b", "ellipticity", "radius_x", "radius_y", "moes_m",
                   "moes_l", "path_coordinate")),
     ("temperature", ("dT_max", "dT_min", "x_dT_min", "y_dT_min", "dT_mid_max", "dT_surface_1_max",

@@ -62,9 +62,13 @@ materials:                    # body_1: {body_1}, body_2: {body_2}; {steel}
     # density: {density}         # kg/m^3
     # thermal_conductivity: {thermal_conductivity}  # W/(m K)
     # specific_heat: {specific_heat}     # J/(kg K)
-    # roughness: {roughness}          # m, RMS (enters the empirical friction coefficient only)
-  body_2: {{elastic_modulus: {modulus}, poisson_ratio: 0.3}}
+    {roughness_line}
+  body_2: {{elastic_modulus: {modulus}, poisson_ratio: 0.3{body_2_roughness}}}
 """
+
+# The flanks' roughness: the film parameter lambda = h_min/sigma, the regime and the friction correlations read it.
+_GEAR_ROUGHNESS = "roughness: 3.0e-7            # m, RMS R_q: a ground flank (R_a 0.24 um); lambda = h_min/sigma"
+_CONTACT_ROUGHNESS = "# roughness: {roughness}          # m, RMS R_q: the film parameter lambda = h_min/sigma"
 
 _CONTACT_LUBRICANT = """\
 lubricant:                    # the mineral oil of Venner & Lubrecht (2000)
@@ -77,16 +81,12 @@ lubricant:                    # the mineral oil of Venner & Lubrecht (2000)
 """
 
 _GEAR_LUBRICANT = """\
-lubricant:                    # ISO VG 32 synthetic ester gear oil, typical properties
-  viscosity: 0.0287           # Pa s at 40 degC: 32 mm^2/s (ISO 3448 VG 32) x 898 kg/m^3
-  inlet_temperature: 40.0     # degC (not kelvin)
-  pressure_viscosity: 2.123e-8  # 1/Pa: the alpha of Roelands z = 0.68 at this viscosity (Roelands 1966)
-  roelands_z: 0.68            # Roelands (1966)
-  density: 898.0              # kg/m^3 at 40 degC
-  thermal_expansion: 7.4e-4   # 1/K
-  temperature_viscosity: 0.040  # 1/K, -d ln(eta)/dT at 40 degC (ASTM D341 through 32 and 6.0 mm^2/s)
-  thermal_conductivity: 0.131 # W/(m K)
-  specific_heat: 2000.0       # J/(kg K)
+lubricant:                    # an ISO VG 100 mineral gear oil, given as its datasheet gives it: tehl validate prints
+  grade: VG100                # the SI values derived from it (docs/verdict.md); or nu40: in mm^2/s at 40 degC
+  nu100: 11.1                 # mm^2/s at 100 degC (datasheet; VG 100 mineral oils of viscosity index ~97)
+  density_15: 880.0           # kg/m^3 at 15 degC (datasheet)
+  oil_type: mineral           # mineral | pao | ester | pag (not mineral: give pressure_viscosity, 1/Pa)
+  inlet_temperature: 80.0     # degC (not kelvin)
   viscosity_model: roelands   # {viscosity_models}
   density_model: dowson_higginson  # {density_models}
   rheology: ree_eyring        # {rheology_models}
@@ -128,7 +128,8 @@ def case_template(kind: str, file_name: str) -> str:
         head = _GEAR_BLOCK.format(file=file_name, points=", ".join(_GEAR["points"]),
                                   load_sharing=_GEAR["load_sharing"], transition_side=_GEAR["transition_side"])
         materials = _MATERIALS.format(body_1="pinion", body_2="face gear", modulus="2.06e11",
-                                      steel="case-carburised gear steel, nominal values", **_SOLID)
+                                      steel="case-carburised gear steel, nominal values", **_SOLID,
+                                      roughness_line=_GEAR_ROUGHNESS, body_2_roughness=", roughness: 3.0e-7")
         lubricant = _GEAR_LUBRICANT.format(**models)
         # a long contact ellipse: 4 times fewer nodes along its major axis; the full thermal model
         solver.update(grid_y_line="grid_y: 65                  # nodes along the major axis y (default: as grid)",
@@ -136,7 +137,8 @@ def case_template(kind: str, file_name: str) -> str:
     else:
         head = _CONTACT.format(file=file_name)
         materials = _MATERIALS.format(body_1="ball", body_2="disc", modulus="2.0e11",
-                                      steel="bearing steel as Venner & Lubrecht (2000): E' = 2.198e11 Pa", **_SOLID)
+                                      steel="bearing steel as Venner & Lubrecht (2000): E' = 2.198e11 Pa", **_SOLID,
+                                      roughness_line=_CONTACT_ROUGHNESS.format(**_SOLID), body_2_roughness="")
         lubricant = _CONTACT_LUBRICANT.format(**models) + _OPTIONAL_LUBRICANT.format(
             **{**_LUBRICANT, "inlet_temperature": _LUBRICANT["inlet_temperature"] - KELVIN})
         solver.update(grid_y_line="# grid_y: null              # nodes along the major axis y (default: as grid)")

@@ -39,10 +39,12 @@ def test_the_gear_template_validates_and_every_default_is_stated(tmp_path):
     case = tmp_path / "gear.yaml"
     assert _invoke("init", "-o", case).exit_code == 0  # --gear is the default
     checked = _invoke("validate", case)
-    assert checked.exit_code == 0 and checked.stderr == ""
+    assert checked.exit_code == 0
+    assert all(line.startswith("derived: lubricant.") for line in checked.stderr.splitlines())  # the oil's SI values
     assert checked.stdout.startswith("ok: facegear: face gear pair (5 points S1..S5")
     loaded = load_case(case)
     assert loaded.solver.thermal == "full" and loaded.lubricant.rheology == "ree_eyring"
+    assert loaded.materials.body_1.roughness == loaded.materials.body_2.roughness == 3.0e-7
     assert _invoke("contact", case).exit_code == 0
     # the commented-out optional keys, uncommented, give back the defaults: the same case
     text = case.read_text()
@@ -69,3 +71,29 @@ def test_init_does_not_overwrite_without_force(tmp_path, monkeypatch, options):
     assert Path("case.yaml").read_text() == "mine\n"
     assert _invoke("init", *options, "--force").exit_code == 0
     assert load_case("case.yaml").name in ("ball_on_disc", "facegear")
+
+
+# The 90 deg design: 22/25/70 teeth, m 4 mm, 25 deg, 200 N m at 3000 rpm, VG 100 mineral oil at 80 degC
+# (the template's oil), ground flanks R_q 0.3 um; the face width inside its undercut and pointing limits
+# [0.13124, 0.15781] m that tehl validate names.
+DESIGN_90 = {"pinion_teeth": "22", "shaper_teeth": "25", "face_gear_teeth": "70", "module": "0.004",
+             "shaft_angle": "90.0", "pinion_addendum": "0.004", "face_gear_addendum": "0.004", "inner_radius": "0.133",
+             "outer_radius": "0.155", "pinion_torque": "200.0", "pinion_speed": "3000.0"}
+
+
+def test_the_gear_template_made_into_the_90_degree_design_runs_to_a_verdict(tmp_path):
+    case = tmp_path / "design.yaml"
+    assert _invoke("init", "-o", case).exit_code == 0
+    lines = case.read_text().splitlines()
+    for key, value in DESIGN_90.items():
+        index = next(i for i, line in enumerate(lines) if line.startswith(f"  {key}:"))
+        lines[index] = f"  {key}: {value}"
+    case.write_text("\n".join(lines) + "\n")
+    assert _invoke("validate", case).exit_code == 0
+    solved = _invoke("run", case, "--grid", "33", "--thermal", "off", "--points", "S1,S5", "--jobs", "1")
+    assert solved.exit_code in (0, 3), solved.output
+    assert "warning: film parameter lambda = h_min/sigma below 1 at S1" in solved.stderr
+    assert "verdict:\n  film                 lambda_min" in solved.stdout and ": boundary (full film" in solved.stdout
+    assert "% recommended: film mu (solved) x sliding speed" in solved.stdout
+    result = read_result(tmp_path / "design.h5", fields=False)
+    assert result.verdict["lambda_min"] < 1.0 and result.verdict_labels["regime"] == "boundary"

@@ -1,0 +1,172 @@
+"""Lubricant inputs in engineering units: an ISO 3448 grade or kinematic viscosities in mm^2/s turned into the
+SI properties of `Lubricant` at the inlet temperature (docs/verdict.md, "Oil inputs").
+
+  grade             nu_40 = the ISO 3448 midpoint of the grade, mm^2/s (ISO 3448:1992, VG 22 .. VG 1000)
+  viscosity-temp.   log10 log10(nu + 0.7) = A - B log10 T   (ASTM D341, Walther; nu in mm^2/s >= 2, T in K),
+                    A and B through (313.15 K, nu_40) and (373.15 K, nu_100)
+  density           rho(t) = rho_15 exp[-a_15 dt (1 + 0.8 a_15 dt)],  a_15 = K_1/rho_15,  dt = t - 15 degC
+                    (API MPMS 11.1 (1980) / ASTM D1250, Table 54D lubricating oils: K_0 = 0, K_1 = 0.6278 kg/(m^3 K))
+  dynamic visc.     eta_0 = nu(T_0) rho(T_0)
+  beta              -d ln(eta)/dT at T_0 = B (nu + 0.7) ln(nu + 0.7)/(nu T) - d ln(rho)/dT  (Walther, differentiated)
+  thermal exp.      eps_T = -d ln(rho)/dT at T_0 = a_15 (1 + 1.6 a_15 dt)
+  alpha (mineral)   alpha_38 = 2.657e-8 eta_38^0.1348 (eta_38 in Pa s, alpha in 1/Pa),
+                    alpha(T) = alpha_38 [1 + 516 (1/T - 1/311.15)]  (ISO/TR 15144-1:2014, mineral oils)
+  conductivity      k = 0.1172 (1 - 5.4e-4 t)/s_15 W/(m K)        (Cragoe 1929, US Bureau of Standards Misc.
+  heat capacity     c = (1685 + 3.39 t)/sqrt(s_15) J/(kg K)         Publ. 97; petroleum oils; s_15 = rho_15/1000)
+
+Each derived value is recorded with its source (`OilDerivation.provenance`); a value the case gives itself wins.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+import math
+
+from facegear_tehl.lubricant import KELVIN
+
+# ISO 3448:1992 viscosity grades: the grade number is the midpoint kinematic viscosity at 40 degC in mm^2/s
+# (limits +-10 %); VG 22 to VG 1000 are the gear and bearing oils.
+ISO_VG_GRADES = (22, 32, 46, 68, 100, 150, 220, 320, 460, 680, 1000)
+NU40_TEMPERATURE = 40.0 + KELVIN  # K, ISO 3448 reference temperature
+NU100_TEMPERATURE = 100.0 + KELVIN  # K, the second point of ASTM D341 as datasheets give it
+# ASTM D341: Z = nu + 0.7 holds for nu >= 2 mm^2/s (below it the standard adds terms of its own).
+WALTHER_SHIFT = 0.7  # mm^2/s
+WALTHER_LOWEST = 2.0  # mm^2/s
+# API MPMS 11.1 (1980) / ASTM D1250 Table 54D (lubricating oils): a_15 = K_0/rho_15^2 + K_1/rho_15, K_0 = 0.
+API_LUBE_K1 = 0.6278  # kg/(m^3 K)
+DENSITY_REFERENCE = 15.0  # degC
+# ISO/TR 15144-1:2014 pressure-viscosity coefficient of mineral oils: alpha_38 = C eta_38^X at 38 degC (311.15 K),
+# its temperature factor 1 + 516 K (1/T - 1/311.15 K).
+ALPHA_38_COEFFICIENT = 2.657e-8  # 1/Pa at eta_38 = 1 Pa s
+ALPHA_38_EXPONENT = 0.1348
+ALPHA_REFERENCE_TEMPERATURE = 38.0 + KELVIN  # K
+ALPHA_TEMPERATURE_CONSTANT = 516.0  # K
+# Cragoe (1929), US Bureau of Standards Misc. Publ. 97, for petroleum oils (t in degC, s_15 specific gravity):
+CRAGOE_CONDUCTIVITY = 0.1172  # W/(m K): 0.813 Btu in/(h ft^2 degF)
+CRAGOE_CONDUCTIVITY_SLOPE = 5.4e-4  # 1/degC: 0.0003 per degF
+CRAGOE_HEAT_CAPACITY = 1685.0  # J/(kg K): 0.4024 Btu/(lb degF) at 0 degC
+CRAGOE_HEAT_CAPACITY_SLOPE = 3.39  # J/(kg K degC): 0.00045 Btu/(lb degF^2)
+WATER_DENSITY = 1000.0  # kg/m^3, to turn rho_15 into the specific gravity s_15 of Cragoe's formulas
+
+
+def grade_viscosity(grade: int) -> float:
+    """nu_40 of an ISO 3448 grade, mm^2/s (its midpoint, the grade number); ValueError for another number."""
+    if grade not in ISO_VG_GRADES:
+        raise ValueError(f"ISO VG {grade} is not one of the grades {ISO_VG_GRADES}")
+    return float(grade)
+
+
+@dataclass(frozen=True)
+class Walther:
+    """ASTM D341 viscosity-temperature line log10 log10(nu + 0.7) = a - b log10 T (nu in mm^2/s, T in K)."""
+
+    a: float
+    b: float
+
+    @classmethod
+    def through(cls, nu_40: float, nu_100: float) -> Walther:
+        """The line through nu_40 at 40 degC and nu_100 at 100 degC (mm^2/s, nu_40 > nu_100 >= 2)."""
+        w40, w100 = (math.log10(math.log10(nu + WALTHER_SHIFT)) for nu in (nu_40, nu_100))
+        b = (w40 - w100) / math.log10(NU100_TEMPERATURE / NU40_TEMPERATURE)
+        return cls(w40 + b * math.log10(NU40_TEMPERATURE), b)
+
+    def viscosity(self, temperature: float) -> float:
+        """nu(T), mm^2/s; T in K."""
+        return 10.0 ** (10.0 ** (self.a - self.b * math.log10(temperature))) - WALTHER_SHIFT
+
+    def log_slope(self, temperature: float) -> float:
+        """-d ln(nu)/dT = b (nu + 0.7) ln(nu + 0.7)/(nu T), 1/K; T in K."""
+        nu = self.viscosity(temperature)
+        return self.b * (nu + WALTHER_SHIFT) * math.log(nu + WALTHER_SHIFT) / (nu * temperature)
+
+
+def expansion_15(density_15: float) -> float:
+    """a_15 = K_1/rho_15, 1/K (API MPMS 11.1 Table 54D, lubricating oils); rho_15 in kg/m^3."""
+    return API_LUBE_K1 / density_15
+
+
+def density_at(density_15: float, temperature: float) -> float:
+    """rho(T) = rho_15 exp[-a_15 dt (1 + 0.8 a_15 dt)], kg/m^3; dt = T - 15 degC, T in K."""
+    a15, dt = expansion_15(density_15), temperature - KELVIN - DENSITY_REFERENCE
+    return density_15 * math.exp(-a15 * dt * (1.0 + 0.8 * a15 * dt))
+
+
+def thermal_expansion_at(density_15: float, temperature: float) -> float:
+    """eps_T = -d ln(rho)/dT = a_15 (1 + 1.6 a_15 dt), 1/K, of `density_at`; T in K."""
+    a15, dt = expansion_15(density_15), temperature - KELVIN - DENSITY_REFERENCE
+    return a15 * (1.0 + 1.6 * a15 * dt)
+
+
+def mineral_pressure_viscosity(eta_38: float, temperature: float) -> float:
+    """alpha(T) = 2.657e-8 eta_38^0.1348 [1 + 516 (1/T - 1/311.15)], 1/Pa (ISO/TR 15144-1:2014, mineral oils);
+    eta_38 the dynamic viscosity at 38 degC in Pa s, T in K."""
+    alpha_38 = ALPHA_38_COEFFICIENT * eta_38**ALPHA_38_EXPONENT
+    return alpha_38 * (1.0 + ALPHA_TEMPERATURE_CONSTANT * (1.0 / temperature - 1.0 / ALPHA_REFERENCE_TEMPERATURE))
+
+
+def cragoe_conductivity(density_15: float, temperature: float) -> float:
+    """k = 0.1172 (1 - 5.4e-4 t)/s_15, W/(m K) (Cragoe 1929; petroleum oils); t in degC from T in K."""
+    return CRAGOE_CONDUCTIVITY * (1.0 - CRAGOE_CONDUCTIVITY_SLOPE * (temperature - KELVIN)) / (
+        density_15 / WATER_DENSITY)
+
+
+def cragoe_heat_capacity(density_15: float, temperature: float) -> float:
+    """c = (1685 + 3.39 t)/sqrt(s_15), J/(kg K) (Cragoe 1929; petroleum oils); t in degC from T in K."""
+    return (CRAGOE_HEAT_CAPACITY + CRAGOE_HEAT_CAPACITY_SLOPE * (temperature - KELVIN)) / math.sqrt(
+        density_15 / WATER_DENSITY)
+
+
+@dataclass(frozen=True)
+class OilDerivation:
+    """The `Lubricant` values derived from nu_40, nu_100 and rho_15 at the inlet temperature (SI), each with the
+    line that says where it came from (`provenance`). `pressure_viscosity`, `thermal_conductivity` and
+    `specific_heat` are None where no correlation for the oil type is used."""
+
+    viscosity: float  # eta_0, Pa s
+    density: float  # rho_0, kg/m^3
+    temperature_viscosity: float  # beta, 1/K
+    thermal_expansion: float  # eps_T, 1/K
+    pressure_viscosity: float | None  # alpha, 1/Pa
+    thermal_conductivity: float | None  # W/(m K)
+    specific_heat: float | None  # J/(kg K)
+    provenance: tuple[str, ...]
+
+
+def derive(nu_40: float, nu_100: float, density_15: float, temperature: float, oil_type: str,
+           source: str, density: float | None = None) -> OilDerivation:
+    """The SI inputs of an oil of nu_40, nu_100 (mm^2/s) and rho_15 (kg/m^3) at the inlet temperature T (K);
+    `source` says where nu_40 came from (e.g. "ISO VG 100 midpoint"); `density` (kg/m^3 at T) replaces the one
+    derived from rho_15 where given. Mineral oils get alpha (ISO/TR 15144-1) and k, c (Cragoe 1929); the other oil
+    types none of the three."""
+    line = Walther.through(nu_40, nu_100)
+    nu = line.viscosity(temperature)
+    rho = density_at(density_15, temperature) if density is None else density
+    eps = thermal_expansion_at(density_15, temperature)
+    celsius = temperature - KELVIN
+    walther = f"ASTM D341 (Walther) through nu_40 = {nu_40:g} ({source}) and nu_100 = {nu_100:g} mm^2/s"
+    provenance = [
+        f"viscosity = {nu * 1e-6 * rho:.4g} Pa s: nu = {nu:.4g} mm^2/s at {celsius:g} degC by {walther} "
+        f"(B = {line.b:.4g}), times the density",
+        f"density = {rho:.4g} kg/m^3 at {celsius:g} degC from rho_15 = {density_15:g} kg/m^3 "
+        "(API MPMS 11.1 / ASTM D1250 Table 54D, lubricating oils)",
+        f"temperature_viscosity = {line.log_slope(temperature) + eps:.4g} 1/K: -d ln(eta)/dT at {celsius:g} degC "
+        "of the Walther line and the density",
+        f"thermal_expansion = {eps:.4g} 1/K: -d ln(rho)/dT at {celsius:g} degC (API MPMS 11.1 Table 54D)",
+    ]
+    alpha = conductivity = heat_capacity = None
+    if oil_type == "mineral":
+        eta_38 = line.viscosity(ALPHA_REFERENCE_TEMPERATURE) * 1e-6 * density_at(density_15,
+                                                                                ALPHA_REFERENCE_TEMPERATURE)
+        alpha = mineral_pressure_viscosity(eta_38, temperature)
+        conductivity = cragoe_conductivity(density_15, temperature)
+        heat_capacity = cragoe_heat_capacity(density_15, temperature)
+        provenance += [
+            f"pressure_viscosity = {alpha:.4g} 1/Pa: ISO/TR 15144-1 (mineral oils) at eta_38 = {eta_38:.4g} Pa s "
+            f"and {celsius:g} degC",
+            f"thermal_conductivity = {conductivity:.4g} W/(m K): Cragoe (1929), petroleum oils",
+            f"specific_heat = {heat_capacity:.4g} J/(kg K): Cragoe (1929), petroleum oils",
+        ]
+    beta = line.log_slope(temperature) + eps
+    return OilDerivation(viscosity=nu * 1e-6 * rho, density=rho, temperature_viscosity=beta, thermal_expansion=eps,
+                         pressure_viscosity=alpha, thermal_conductivity=conductivity, specific_heat=heat_capacity,
+                         provenance=tuple(provenance))

@@ -1,0 +1,158 @@
+"""Oil inputs in engineering units (oils.py) against published numbers and the user's hand computation."""
+
+import math
+
+from click.testing import CliRunner
+import pytest
+
+from facegear_tehl.case import parse_case
+from facegear_tehl.cli import info_text, tehl
+from facegear_tehl.lubricant import KELVIN
+from facegear_tehl.oils import Walther, density_at, derive, mineral_pressure_viscosity
+from facegear_tehl.results import read_result, write_result
+from facegear_tehl.schema import CaseError
+
+from synthetic import run_result
+
+CONTACT = """\
+name: oil
+contact: {radius_x: 0.0127, radius_y: 0.0127, load: 6.272, entrainment_speed: 0.6383}
+materials:
+  body_1: {elastic_modulus: 2.0e11, poisson_ratio: 0.3}
+  body_2: {elastic_modulus: 2.0e11, poisson_ratio: 0.3}
+lubricant:
+"""
+
+
+def case(lubricant: str):
+    return parse_case(CONTACT + lubricant)
+
+
+# ISO 3448:1992, table 1: midpoint kinematic viscosity at 40 degC (mm^2/s) of each grade, limits +-10 %.
+ISO_3448_MIDPOINTS = {"VG22": 22.0, "VG32": 32.0, "VG46": 46.0, "VG68": 68.0, "VG100": 100.0, "VG150": 150.0,
+                      "VG220": 220.0, "VG320": 320.0, "VG460": 460.0, "VG680": 680.0, "VG1000": 1000.0}
+
+
+@pytest.mark.parametrize("grade, midpoint", ISO_3448_MIDPOINTS.items())
+def test_grade_gives_the_iso_3448_midpoint_at_40_degc(grade, midpoint):
+    lubricant = case(f"  grade: {grade}\n  nu100: {midpoint / 9:g}\n  density_15: 880\n  inlet_temperature: 40\n"
+                     ).lubricant
+    nu_40 = lubricant.viscosity / lubricant.density * 1e6  # mm^2/s
+    assert nu_40 == pytest.approx(midpoint, rel=0.02)
+
+
+def test_the_users_hand_value_of_issue_45():
+    # The issue's user: VG 100 mineral oil at 80 degC, nu_80 = 19.5 mm^2/s -> eta = 0.0164 Pa s, beta = 0.032 1/K
+    # from the Walther equation. nu_100 = 11.1 mm^2/s is what a VG 100 mineral gear oil of viscosity index ~ 97
+    # has; rho_15 = 880 kg/m^3 a mineral gear oil's (0.87-0.90 on datasheets).
+    lubricant = case("  grade: VG100\n  oil_type: mineral\n  nu100: 11.1\n  density_15: 880\n"
+                     "  inlet_temperature: 80\n").lubricant
+    assert lubricant.viscosity / lubricant.density * 1e6 == pytest.approx(19.5, rel=0.01)
+    assert lubricant.viscosity == pytest.approx(0.0164, rel=0.01)
+    assert lubricant.temperature_viscosity == pytest.approx(0.032, rel=0.02)
+
+
+# Stachowiak & Batchelor, Engineering Tribology (2nd ed. 2001), table 2.3 from the ASME Pressure-Viscosity Report
+# (1953): dynamic viscosity (mPa s) and pressure-viscosity coefficient (1/GPa) of mineral oils at 30, 60, 100 degC.
+ASME_1953 = {
+    "heavy machine oil": ((153.0, 34.0, 9.1), (23.7, 20.5, 15.8)),
+    "cylinder oil": ((810.0, 135.0, 26.8), (34.0, 28.0, 22.0)),
+    "spindle oil": ((18.6, 6.3, 2.4), (20.0, 16.0, 13.0)),
+    "medicinal white oil": ((107.0, 23.3, 6.4), (29.6, 22.8, 17.8)),
+}
+ASME_TEMPERATURES = (30.0 + KELVIN, 60.0 + KELVIN, 100.0 + KELVIN)
+
+
+def _walther_through_30_and_100(eta_mpas):
+    """The Walther line through the kinematic viscosities at 30 and 100 degC (rho_15 = 880 kg/m^3 assumed)."""
+    nu = [eta * 1e-3 / density_at(880.0, t) * 1e6 for eta, t in zip(eta_mpas, ASME_TEMPERATURES)]
+    w = [math.log10(math.log10(n + 0.7)) for n in nu]
+    b = (w[0] - w[2]) / math.log10(ASME_TEMPERATURES[2] / ASME_TEMPERATURES[0])
+    return Walther(w[0] + b * math.log10(ASME_TEMPERATURES[0]), b), nu
+
+
+@pytest.mark.parametrize("oil", ASME_1953)
+def test_walther_line_predicts_the_measured_viscosity_between_its_points(oil):
+    line, nu = _walther_through_30_and_100(ASME_1953[oil][0])
+    assert line.viscosity(ASME_TEMPERATURES[1]) == pytest.approx(nu[1], rel=0.03)  # measured at 60 degC
+
+
+@pytest.mark.parametrize("oil", ASME_1953)
+def test_mineral_pressure_viscosity_against_measured_values(oil):
+    # ISO/TR 15144-1's correlation fits secant coefficients; the ASME (1953) values are initial slopes, higher:
+    # over these oils the correlation lies 11-39 % below them (docs/verdict.md), never above.
+    eta, alpha = ASME_1953[oil]
+    line, _ = _walther_through_30_and_100(eta)
+    eta_38 = line.viscosity(38.0 + KELVIN) * 1e-6 * density_at(880.0, 38.0 + KELVIN)
+    for t, measured in zip(ASME_TEMPERATURES, alpha):
+        assert 0.6 < mineral_pressure_viscosity(eta_38, t) / (measured * 1e-9) < 0.95
+
+
+def test_beta_and_expansion_are_the_derivatives_of_the_laws():
+    oil = derive(320.0, 24.0, 895.0, 70.0 + KELVIN, "mineral", "given")
+    line = Walther.through(320.0, 24.0)
+
+    def ln_eta(t):
+        return math.log(line.viscosity(t) * density_at(895.0, t))
+
+    dt = 1e-3
+    t = 70.0 + KELVIN
+    assert oil.temperature_viscosity == pytest.approx(-(ln_eta(t + dt) - ln_eta(t - dt)) / (2 * dt), rel=1e-6)
+    numeric = -(math.log(density_at(895.0, t + dt)) - math.log(density_at(895.0, t - dt))) / (2 * dt)
+    assert oil.thermal_expansion == pytest.approx(numeric, rel=1e-6)
+    assert line.viscosity(40.0 + KELVIN) == pytest.approx(320.0, rel=1e-12)
+    assert line.viscosity(100.0 + KELVIN) == pytest.approx(24.0, rel=1e-12)
+
+
+def test_values_the_case_gives_override_the_derived_ones():
+    given = case("  nu40: 100\n  nu100: 11.1\n  density_15: 880\n  pressure_viscosity: 2.0e-8\n"
+                 "  thermal_conductivity: 0.14\n")
+    assert given.lubricant.pressure_viscosity == 2.0e-8
+    assert given.lubricant.thermal_conductivity == 0.14
+    assert not any("pressure_viscosity" in line or "thermal_conductivity" in line for line in given.derived)
+    assert any(line.startswith("lubricant.viscosity = ") for line in given.derived)
+
+
+def test_a_given_density_makes_the_dynamic_viscosity_with_it():
+    derived = case("  nu40: 100\n  nu100: 11.1\n  density_15: 880\n").lubricant
+    given = case("  nu40: 100\n  nu100: 11.1\n  density_15: 880\n  density: 900\n").lubricant
+    assert given.density == 900.0
+    assert given.viscosity / 900.0 == pytest.approx(derived.viscosity / derived.density, rel=1e-12)  # same nu
+
+
+def test_a_case_in_pa_s_derives_nothing():
+    plain = case("  viscosity: 0.04\n  pressure_viscosity: 2.2e-8\n")
+    assert plain.derived == () and plain.lubricant.scuffing_temperature is None
+    assert case("  viscosity: 0.04\n  pressure_viscosity: 2.2e-8\n  scuffing_temperature: 300\n"
+                ).lubricant.scuffing_temperature == pytest.approx(573.15)
+    assert plain.lubricant.viscosity == 0.04 and plain.lubricant.density == 870.0
+
+
+@pytest.mark.parametrize("lines, key", [
+    ("  grade: VG90\n  nu100: 10\n  density_15: 880\n", "lubricant.grade"),
+    ("  grade: VG100\n  viscosity: 0.04\n  nu100: 11\n  density_15: 880\n  pressure_viscosity: 2e-8\n",
+     "lubricant.viscosity"),
+    ("  grade: VG100\n  nu40: 100\n  nu100: 11\n  density_15: 880\n", "lubricant.nu40"),
+    ("  grade: VG100\n  density_15: 880\n", "lubricant.nu100"),
+    ("  nu40: 100\n  nu100: 120\n  density_15: 880\n", "lubricant.nu100"),
+    ("  grade: VG100\n  nu100: 11\n", "lubricant.density_15"),
+    ("  grade: VG100\n  nu100: 11\n  density_15: 850\n  oil_type: pao\n", "lubricant.pressure_viscosity"),
+    ("  viscosity: 0.04\n  pressure_viscosity: 2.2e-8\n  inlet_temperature: 90\n  scuffing_temperature: 80\n",
+     "lubricant.scuffing_temperature"),
+])
+def test_bad_oil_inputs_name_their_key(lines, key):
+    with pytest.raises(CaseError) as error:
+        case(lines)
+    assert str(error.value).startswith(key + ":")
+
+
+def test_derived_values_are_printed_and_stored(tmp_path):
+    path = tmp_path / "oil.yaml"
+    path.write_text(CONTACT + "  grade: VG100\n  nu100: 11.1\n  density_15: 880\n  inlet_temperature: 80\n")
+    checked = CliRunner().invoke(tehl, ["validate", str(path)])
+    assert checked.exit_code == 0
+    assert "derived: lubricant.viscosity = 0.01633 Pa s: nu = 19.47 mm^2/s at 80 degC" in checked.output
+    oil_case = parse_case(path.read_text(), "oil")
+    result = read_result(write_result(run_result(oil_case), tmp_path / "oil.h5"), fields=False)
+    assert result.derived == oil_case.derived
+    assert "lubricant.pressure_viscosity = " in info_text(result)
