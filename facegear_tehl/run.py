@@ -10,7 +10,7 @@ from typing import Sequence
 from facegear_tehl.case import Case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.cycle import MeshCycle, mesh_cycle, with_film_parameter
-from facegear_tehl.ehl.domain import MIN_LENGTHENED_NODES, solution_domain
+from facegear_tehl.ehl.domain import solution_domain
 from facegear_tehl.ehl.retry import POLICY, estimates
 from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.ehl.tuning import TUNING, convergence_bands
@@ -112,7 +112,7 @@ def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
     refined: dict[str, Refinement] = {}
     asked = {task.point.name: _shape(task.settings) for task in tasks}
     # points whose converged solution stays as it is: asked on a trial grid, or a finer grid failed after it
-    kept = {i for i, task in enumerate(tasks) if task.settings.grid < MIN_LENGTHENED_NODES}
+    kept = {i for i, task in enumerate(tasks) if task.settings.grid < TUNING.min_lengthened_nodes}
     while True:
         next_grids = {i: _next_grid(tasks[i], s) for i, s in enumerate(solved)
                       if POLICY.unresolved(s) or (POLICY.coarse(s) and i not in kept)}

@@ -79,7 +79,8 @@ def frozen_map(case, point_name: str, perturbation: float) -> None:
         print(f"| {label} | {', '.join(f'{e:.3f}' for e in errors)} | {', '.join(f'{r:.2f}' for r in ratios)} |")
 
     thermal.rheology.shear_state = holding
-    sweeps = thermal.ENERGY_SWEEPS
+    tuning = thermal.TUNING
+    sweeps = tuning.energy_sweeps
     try:
         run(f"as solved ({sweeps} sweeps per update)")
         model._surface = lambda flux, index, speed: reference[0 if index == 0 else -1]
@@ -94,10 +95,10 @@ def frozen_map(case, point_name: str, perturbation: float) -> None:
         run("velocities and dissipation held")
         held.clear()
         for more in (2 * sweeps, 4 * sweeps):
-            thermal.ENERGY_SWEEPS = more
+            thermal.TUNING = replace(tuning, energy_sweeps=more)
             run(f"{more} sweeps per update")
     finally:
-        thermal.rheology.shear_state, model._surface, thermal.ENERGY_SWEEPS = shear_state, surface, sweeps
+        thermal.rheology.shear_state, model._surface, thermal.TUNING = shear_state, surface, tuning
 
 
 def forcing_table(case, values: list[float]) -> None:

@@ -1,5 +1,7 @@
 """Anderson acceleration (ehl/anderson.py) against exact fixed points."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -100,12 +102,13 @@ def test_anderson_leaves_out_components_that_stayed_zero_and_grows_its_support(m
     # An isothermal Ree-Eyring film's Newtonian columns keep ln(eta*/eta) = 0 and a zero step: the history is kept on
     # the other components only. The iterates must be those of the history kept whole (the normal equations formed
     # anew above), to summation order, the zero components exactly zero, also as components join (the support grows)
-    # and once more than SUPPORT_SHARE of them are active (the support taken whole).
+    # and once more than support_share of them are active (the support taken whole).
     n = 60
     a, b = _linear_map(n, 0.9, seed=11)
     order = np.random.default_rng(12).permutation(n)  # components join in this order, between the kept ones
 
-    monkeypatch.setattr(anderson, "GROWTH", np.inf)  # no restarts: the history is kept as components join
+    # no restarts: the history is kept as components join
+    monkeypatch.setattr(anderson, "TUNING", replace(anderson.TUNING, anderson_growth=np.inf))
 
     def run(joined):
         x, restricted, whole = np.zeros((3, n // 3)), Anderson(3), Anderson(3)
@@ -114,7 +117,8 @@ def test_anderson_leaves_out_components_that_stayed_zero_and_grows_its_support(m
             flat = x.ravel()
             f = np.where(active, 0.5 * (a @ np.where(active, flat, 0.0) + b - flat), 0.0).reshape(x.shape)
             with monkeypatch.context() as patch:
-                patch.setattr(anderson, "SUPPORT_SHARE", -1.0)  # every support taken whole
+                # every support taken whole
+                patch.setattr(anderson, "TUNING", replace(anderson.TUNING, support_share=-1.0))
                 expected = whole.step(x, f, (1.0, 0.5))
             got = restricted.step(x, f, (1.0, 0.5))  # two blocks: their bounds on the support
             assert np.allclose(got, expected, rtol=1e-10, atol=1e-12)  # the normal equations' round-off, amplified
@@ -124,5 +128,5 @@ def test_anderson_leaves_out_components_that_stayed_zero_and_grows_its_support(m
             x = got
         return restricted
 
-    assert run((10, 20, 25))._support is not None  # 25 of 60 stay under SUPPORT_SHARE
+    assert run((10, 20, 25))._support is not None  # 25 of 60 stay under support_share
     assert run((10, 25, 45))._support is None

@@ -7,9 +7,10 @@ from dataclasses import replace
 import pytest
 
 from facegear_tehl.case import load_case
-from facegear_tehl.ehl.domain import INLET_GAP_TARGET, rigid_gap_ratio, solution_domain, venner_lubrecht_domain
+from facegear_tehl.ehl.domain import rigid_gap_ratio, solution_domain, venner_lubrecht_domain
 from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.ehl.staged import solve_point
+from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.points import contact_analysis, select_points
 
 
@@ -34,7 +35,7 @@ def test_a_thick_film_gets_its_inlet_doubled_at_the_spacing_asked():
     before = rigid_gap_ratio(x0, y0, scaling, *radii, 1e-6)
     after = rigid_gap_ratio(domain.x, domain.y, scaling, *radii, 1e-6)
     assert after / before == pytest.approx((domain.x[0] / x0[0]) ** 2, rel=2e-3)  # entrainment 0.3 deg off x
-    assert before * 1e-6 / (INLET_GAP_TARGET * 1e-6) < 1.0 < domain.predicted_gap_ratio / INLET_GAP_TARGET
+    assert before * 1e-6 / (TUNING.inlet_gap_target * 1e-6) < 1.0 < domain.predicted_gap_ratio / TUNING.inlet_gap_target
     assert "inlet lengthened" in domain.note(case.solver)
 
 

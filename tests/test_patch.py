@@ -272,7 +272,7 @@ def test_the_face_gear_spike_on_an_outlet_patch_is_the_fine_grid_spike():
 @pytest.mark.parametrize("name", ["S2", "S4"])
 def test_patches_ending_on_the_inlet_side_of_the_hertz_zone_converge(name):
     """Upstream ends X_a in [-1.1, -0.6] b cross the inlet side of the Hertzian zone, where one V-cycle of the grid
-    below per coarse-grid correction ran away (patch.COARSE_CYCLES): every one converges, with p_max within a tenth of
+    below per coarse-grid correction ran away (patch_coarse_cycles): every one converges, with p_max within a tenth of
     what 513 x 65 misses of 1025 x 65's (measured: within 0.0027 p_h; 513 x 65 misses by 0.16 and 0.096 p_h)."""
     point, lubricant, settings, coarse, fine = _face_gear(name)
     p_coarse, _ = _spike(coarse)

@@ -186,14 +186,13 @@ def _thermal_solve(name: str, grid: int, grid_y: int, attempt: int):
     it (ehl.solve.StagedSolver.begin)."""
     from test_envelope_cases import envelope
 
-    from facegear_tehl.ehl.domain import RETRY_INLET_DOUBLINGS
     from facegear_tehl.ehl.retry import ATTEMPTS
     from facegear_tehl.ehl.solve import PointSolve
 
     case = next(c for c in envelope.envelope_cases() if c.name == name)
     chosen = ATTEMPTS[attempt - 1]
     return PointSolve(case.point(), case.lubricant(), case.settings(grid, grid_y), chosen.relaxation,
-                      escalate_start=attempt > 1, attempt=attempt, max_doublings=RETRY_INLET_DOUBLINGS,
+                      escalate_start=attempt > 1, attempt=attempt, max_doublings=TUNING.retry_inlet_doublings,
                       load_continuation=chosen.load_continuation)
 
 

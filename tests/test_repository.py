@@ -156,3 +156,18 @@ def test_code_map_names_every_module():
     missing = [name for name in modules
                if not re.search(rf"(?<![\w/.]){re.escape(name)}(?!\w)", section)]
     assert not missing, f"docs/method.md ({CODE_MAP}) does not name: {', '.join(missing)}"
+
+
+def test_every_solver_constant_has_its_reason_in_the_tuning_ledger():
+    """Every field of ehl.tuning.Tuning is named in docs/tuning.md (the one place its rationale is found), and the
+    ledger names no field the object does not have."""
+    from dataclasses import fields
+    import re
+
+    from facegear_tehl.ehl.tuning import Tuning
+
+    ledger = (ROOT / "docs" / "tuning.md").read_text(encoding="utf-8")
+    names = {f.name for f in fields(Tuning)}
+    assert sorted(name for name in names if f"`{name}`" not in ledger) == []
+    entries = set(re.findall(r"\*\*`([a-z_0-9]+)`", ledger)) | set(re.findall(r", `([a-z_0-9]+)` =", ledger))
+    assert sorted(entries - names) == []

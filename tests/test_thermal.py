@@ -18,7 +18,6 @@ from facegear_tehl.ehl.energy import energy_budget
 from facegear_tehl.ehl.flow import temperature_factors
 from facegear_tehl.ehl.staged import solve_point
 from facegear_tehl.ehl.thermal import (
-    MAX_TEMPERATURE_STEP,
     FilmState,
     FilmThermalModel,
     gupta_reduction,
@@ -504,7 +503,8 @@ def test_accelerated_temperatures_move_by_at_most_the_continuation_step():
 
     def steps(limited: bool) -> list[float]:
         accelerator, temperature, factor, jumps = Anderson(3), np.full(shape, t_in), np.ones(shape), []
-        for held in (MAX_TEMPERATURE_STEP, 0.99 * MAX_TEMPERATURE_STEP):  # the updates, each at (or by) the limit
+        step = TUNING.max_temperature_step
+        for held in (step, 0.99 * step):  # the updates, each at (or by) the limit
             if limited:
                 new, _, _, _ = next_film_state(accelerator, temperature, factor, update(temperature, held), 1.0,
                                                       max(float(temperature.max()) - t_in, 1.0))
@@ -520,9 +520,10 @@ def test_accelerated_temperatures_move_by_at_most_the_continuation_step():
         return jumps
 
     free, limited = steps(False), steps(True)
-    assert free[0] == limited[0] == pytest.approx(TUNING.thermal_relaxation * MAX_TEMPERATURE_STEP)  # no history yet
-    assert free[1] > 10.0 * MAX_TEMPERATURE_STEP  # the secant through two nearly equal steps
-    assert limited[1] == pytest.approx(MAX_TEMPERATURE_STEP)
+    # no history yet
+    assert free[0] == limited[0] == pytest.approx(TUNING.thermal_relaxation * TUNING.max_temperature_step)
+    assert free[1] > 10.0 * TUNING.max_temperature_step  # the secant through two nearly equal steps
+    assert limited[1] == pytest.approx(TUNING.max_temperature_step)
 
 
 @pytest.mark.parametrize("law", ["roelands", "barus"])

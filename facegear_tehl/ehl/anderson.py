@@ -10,9 +10,9 @@ with dX, dF the columns x_i+1 - x_i, f_i+1 - f_i of the last m pairs and W a dia
 components comparable: one scale per block of components (the thermal loop's temperatures and ln(eta*/eta)), so that
 the inner products are kept per block and unweighted, each formed once, when its column enters, however the scales
 move (the thermal loop's 1/rise moves at every update). For a linear map Anderson's iterates are those of GMRES on it
-(Walker & Ni 2011, theorem 2.2). The history restarts when a step grows (GROWTH). The m x m least-squares problem is
-solved through its normal equations (m <= 5 here: the vectors are long, the system tiny), dropping directions whose
-singular value is below GRAM_CUTOFF of the largest.
+(Walker & Ni 2011, theorem 2.2). The history restarts when a step grows (TUNING.anderson_growth). The m x m
+least-squares problem is solved through its normal equations (m <= 5 here: the vectors are long, the system tiny),
+dropping directions whose singular value is below TUNING.gram_cutoff of the largest.
 
 Components that were zero in every x and f so far take no part: x + f and every column of dX and dF are zero
 there, so the iterate is exact (0) and the least squares the same to the summation order of the inner products. The
@@ -28,17 +28,7 @@ import math
 from numba import njit
 import numpy as np
 
-# Relative cutoff of the normal equations' singular values (their squares: 1e-10 drops columns of dF that are
-# parallel to the others to 1e-5, where gamma would only amplify noise).
-GRAM_CUTOFF = 1e-10
-# The history is dropped when the weighted step grew against the last one (the restart safeguard of restarted
-# Anderson methods, e.g. Walker & Ni 2011 sec. 5): at 1.0, S3 of the face gear case (a period-2 flicker of a few
-# nodes on 257 x 65) converges in 35 outer iterations; without it the accelerated loop locked into the flicker
-# and ended unconverged after 40 on the finest grid.
-GROWTH = 1.0
-# A support above this share of the components is taken whole: gathering the rest would cost more than it saves
-# (a thermal film's temperatures are never zero, so its support is all of them from the first step).
-SUPPORT_SHARE = 0.5
+from facegear_tehl.ehl.tuning import TUNING
 
 
 @njit(cache=True)
@@ -93,7 +83,7 @@ class Anderson:
 
     def _gather(self, x: np.ndarray, f: np.ndarray) -> None:
         """Extend the support by the components where x or f is non-zero (the history is zero at the new ones) or
-        take it whole once it exceeds SUPPORT_SHARE of them."""
+        take it whole once it exceeds TUNING.support_share of them."""
         if self._whole:
             return
         active = (x.ravel() != 0.0) | (f.ravel() != 0.0)
@@ -102,7 +92,7 @@ class Anderson:
                 return
             active |= self._mask
         support = np.flatnonzero(active)
-        whole = support.size > SUPPORT_SHARE * x.size
+        whole = support.size > TUNING.support_share * x.size
         old = self._support
         if old is not None:  # the history kept on the old support moves to the new one
             places = old if whole else np.searchsorted(support, old)
@@ -148,7 +138,7 @@ class Anderson:
             return np.array([np.dot(a[block], b[block]) for block in blocks])
 
         norm = math.sqrt(float(squares @ products(f, f)))
-        if self._last is not None and norm > GROWTH * self._norm:
+        if self._last is not None and norm > TUNING.anderson_growth * self._norm:
             self._forget()
         self._norm = norm
         if self._last is not None:
@@ -173,7 +163,7 @@ class Anderson:
         if not (np.isfinite(gram).all() and np.isfinite(rhs).all()):  # a runaway iterate: the plain step shows it
             self._forget()
             return x + f
-        gamma = np.linalg.lstsq(gram, rhs, rcond=GRAM_CUTOFF)[0]
+        gamma = np.linalg.lstsq(gram, rhs, rcond=TUNING.gram_cutoff)[0]
         result = np.empty_like(x)
         _combine(x, f, gamma, tuple(self._dg), result)
         return result

@@ -21,7 +21,7 @@ from facegear_tehl.ehl import rheology
 from facegear_tehl.ehl.anderson import Anderson
 from facegear_tehl.ehl.convergence import History, stalled
 from facegear_tehl.ehl.pressure import PressureIteration
-from facegear_tehl.ehl.thermal import MAX_TEMPERATURE_STEP, FilmState, FilmThermalModel, relaxed_steps
+from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel, relaxed_steps
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.solution import Outcome, Status
 
@@ -102,7 +102,7 @@ def next_film_state(accelerator: Anderson, temperature: np.ndarray, factor: np.n
     them, and the largest changes of the plain step (K; of ln(eta*/eta)). The plain step is under-relaxed
     (thermal_relaxation and viscosity_relaxation times `scale`; eyring_relaxation without the energy equation;
     eta*/eta in log space) and Anderson-accelerated, the temperatures weighted by 1/rise (K) against ln(eta*/eta);
-    the accelerated temperatures move by at most MAX_TEMPERATURE_STEP, as a plain update does. rise None: no energy
+    the accelerated temperatures move by at most max_temperature_step, as a plain update does. rise None: no energy
     equation (the temperatures stay)."""
     if rise is None:  # the change judged stays viscosity_relaxation times the residual: the tolerance keeps its meaning
         log_factor, residual = np.empty(factor.shape), np.empty(factor.shape)
@@ -118,7 +118,8 @@ def next_film_state(accelerator: Anderson, temperature: np.ndarray, factor: np.n
                                                      scale * TUNING.viscosity_relaxation, x, f)
     x = accelerator.step(x, f, (1.0 / rise, 1.0))
     accelerated = x[:size].reshape(temperature.shape)
-    np.clip(accelerated, temperature - MAX_TEMPERATURE_STEP, temperature + MAX_TEMPERATURE_STEP, out=accelerated)
+    step = TUNING.max_temperature_step
+    np.clip(accelerated, temperature - step, temperature + step, out=accelerated)
     return accelerated, np.exp(x[size:]).reshape(temperature.shape), thermal_change, viscosity_change
 
 

@@ -10,8 +10,8 @@ that law: on the face gear points (isothermal Newtonian, fixed spacing) it is 14
 
 When the case gives no `solver.domain`, the domain is therefore lengthened upstream along the axis through which
 the entrainment line leaves it, doubling that length together with its node count (the spacing of the grid asked
-for is kept, and the grid stays 2^n + 1; from MIN_LENGTHENED_NODES up), until the inlet gap ratio predicted with
-Hamrock & Dowson's (1977) central film reaches INLET_GAP_TARGET (at most MAX_INLET_DOUBLINGS times). The isothermal
+for is kept, and the grid stays 2^n + 1; from TUNING.min_lengthened_nodes up), until the inlet gap ratio predicted with
+Hamrock & Dowson's (1977) central film reaches inlet_gap_target (at most max_inlet_doublings times). The isothermal
 formula over-predicts a heated film, so the ratio of the solved film is larger still (a conservative choice).
 """
 
@@ -21,29 +21,9 @@ from dataclasses import dataclass, replace
 import math
 
 from facegear_tehl.ehl.scaling import Scaling
+from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.film_formulas import hamrock_dowson_central
 from facegear_tehl.settings import SolverSettings
-
-DOMAIN_HALF_WIDTH = 3.0  # default domain: a square of +-3 semi-axes (Venner & Lubrecht 2000) ...
-DOMAIN_UPSTREAM_SHIFT = 1.5  # ... shifted 1.5 semi-axes upstream: 4.5 upstream, 1.5 downstream of the centre
-# Inlet gap ratio the lengthened domain must reach: 140-200 G^(-3/2) percent (module docstring) is 0.55-0.8 % of h_c
-# at G = 40 for an isothermal film and less for a heated one (the face gear S5, thermal: 0.34 % at its solved
-# G = 50); the next doubling (G = 160) would cost twice the nodes again for another 0.4 %.
-INLET_GAP_TARGET = 40.0
-# Smallest node count along an axis from which it is lengthened: trial grids are left as they are, their own error
-# is as large as the inlet's (S1 of the face gear case: h_c -1.5 % on 65 x 17, -5.8 % on 33 x 17 against the
-# extrapolated value, docs/accuracy.md), and on 129 x 17 (65 x 17 lengthened) S2 ends on a period-2 load flicker.
-MIN_LENGTHENED_NODES = 129
-# Doublings at most: a light load (Moes M ~ 3-20, a circle or an a/b = 5 ellipse at 0.3 GPa, 2 m/s) needs two (an inlet
-# of 22.5 semi-axes, 4x the nodes) to reach the target; a third has not been needed in the envelope suite.
-MAX_INLET_DOUBLINGS = 2
-# Doublings of a retry after a solve ran away: an a/b = 100 ellipse at 0.3 GPa, 30 m/s, eta_0 = 0.1 Pa s (a 10 µm
-# film, G = 19 even at 22.5 b) runs away in the full-multigrid start on 22.5 b from every coarsest grid and converges
-# on 10.5 b (h_c 9.80 µm; 4.76 µm on 4.5 b).
-RETRY_INLET_DOUBLINGS = 1
-# Largest node count of a lengthened axis: beyond it the lengthened domain keeps this many nodes (a coarser spacing
-# than asked, said in the note), so that its length never depends on the grid (tehl sweep, solver-chosen grids).
-MAX_LENGTHENED_NODES = 2049
 
 
 @dataclass(frozen=True)
@@ -56,7 +36,7 @@ class Domain:
     ny: int
     doublings: int  # times the inlet was lengthened (0: the domain of the settings, or the default one)
     predicted_gap_ratio: float  # inlet gap ratio with the Hamrock & Dowson central film (nan: domain given)
-    capped: bool = False  # the lengthened axis kept MAX_LENGTHENED_NODES nodes, fewer than the spacing asked needs
+    capped: bool = False  # the lengthened axis kept max_lengthened_nodes nodes, fewer than the spacing asked needs
 
     def settings(self, settings: SolverSettings) -> SolverSettings:
         """`settings` with this domain and its nodes."""
@@ -66,10 +46,11 @@ class Domain:
         """What the lengthening did, for the result's solver description ('' if nothing)."""
         if self.doublings == 0:
             return ""
-        capped = f" (capped at {MAX_LENGTHENED_NODES} nodes: a coarser spacing)" if self.capped else ""
+        capped = f" (capped at {TUNING.max_lengthened_nodes} nodes: a coarser spacing)" if self.capped else ""
         return (f"inlet lengthened by the solver to X in [{self.x[0]:g}, {self.x[1]:g}], Y in [{self.y[0]:g}, "
                 f"{self.y[1]:g}] on {self.nx} x {self.ny} nodes at the spacing of {asked.grid} x {asked.nodes_y}"
-                f"{capped} (predicted inlet gap ratio {self.predicted_gap_ratio:.0f}, target {INLET_GAP_TARGET:g})")
+                f"{capped} (predicted inlet gap ratio {self.predicted_gap_ratio:.0f}, "
+                f"target {TUNING.inlet_gap_target:g})")
 
 
 def venner_lubrecht_domain(scaling: Scaling) -> tuple[tuple[float, float], tuple[float, float]]:
@@ -79,8 +60,9 @@ def venner_lubrecht_domain(scaling: Scaling) -> tuple[tuple[float, float], tuple
     """
     dx, dy = scaling.wedge_x, scaling.wedge_y
     norm = math.hypot(dx, dy)
-    cx, cy = -DOMAIN_UPSTREAM_SHIFT * dx / norm, -DOMAIN_UPSTREAM_SHIFT * dy / norm
-    return (cx - DOMAIN_HALF_WIDTH, cx + DOMAIN_HALF_WIDTH), (cy - DOMAIN_HALF_WIDTH, cy + DOMAIN_HALF_WIDTH)
+    shift, half = TUNING.domain_upstream_shift, TUNING.domain_half_width
+    cx, cy = -shift * dx / norm, -shift * dy / norm
+    return (cx - half, cx + half), (cy - half, cy + half)
 
 
 def inlet_exit(x: tuple[float, float], y: tuple[float, float], scaling: Scaling) -> tuple[str, float, float]:
@@ -109,7 +91,8 @@ def predicted_central_film(scaling: Scaling) -> float:
     return hamrock_dowson_central(s.hamrock_u, s.hamrock_g, s.hamrock_w, s.ellipticity) * s.hertz.radius_x
 
 
-def solution_domain(scaling: Scaling, settings: SolverSettings, max_doublings: int = MAX_INLET_DOUBLINGS) -> Domain:
+def solution_domain(scaling: Scaling, settings: SolverSettings,
+                    max_doublings: int = TUNING.max_inlet_doublings) -> Domain:
     """The domain the point is solved on: the settings' own if they give one, else Venner & Lubrecht's with its
     inlet lengthened (module docstring), at most `max_doublings` times."""
     if settings.domain_x is not None and settings.domain_y is not None:
@@ -118,16 +101,16 @@ def solution_domain(scaling: Scaling, settings: SolverSettings, max_doublings: i
     nx, ny, doublings, capped = settings.grid, settings.nodes_y, 0, False
     radii, h_c = (scaling.hertz.radius_x, scaling.hertz.radius_y), predicted_central_film(scaling)
     ratio = rigid_gap_ratio(x, y, scaling, *radii, h_c)
-    while ratio < INLET_GAP_TARGET and doublings < max_doublings:
+    while ratio < TUNING.inlet_gap_target and doublings < max_doublings:
         axis, _, _ = inlet_exit(x, y, scaling)
-        if (nx if axis == "x" else ny) < MIN_LENGTHENED_NODES:
+        if (nx if axis == "x" else ny) < TUNING.min_lengthened_nodes:
             break
         nodes = 2 * (nx if axis == "x" else ny) - 1
-        capped = capped or nodes > MAX_LENGTHENED_NODES
+        capped = capped or nodes > TUNING.max_lengthened_nodes
         if axis == "x":
-            x, nx = _lengthened(x, scaling.wedge_x), min(nodes, MAX_LENGTHENED_NODES)
+            x, nx = _lengthened(x, scaling.wedge_x), min(nodes, TUNING.max_lengthened_nodes)
         else:
-            y, ny = _lengthened(y, scaling.wedge_y), min(nodes, MAX_LENGTHENED_NODES)
+            y, ny = _lengthened(y, scaling.wedge_y), min(nodes, TUNING.max_lengthened_nodes)
         doublings += 1
         ratio = rigid_gap_ratio(x, y, scaling, *radii, h_c)
     return Domain(x, y, nx, ny, doublings, ratio, capped)

@@ -54,23 +54,13 @@ import numpy as np
 
 from facegear_tehl.ehl.film_state import FilmState
 from facegear_tehl.ehl.layers import simpson_weights
+from facegear_tehl.ehl.tuning import TUNING
 
-# Largest cell Péclet number across the film at which the face temperature is the central (linear) one: the
-# three-point convection-diffusion scheme stays monotone up to 2 (e.g. Patankar 1980, §5.2); the correction
-# towards it is scaled by 2/Pe beyond.
-CENTRAL_PECLET = 2.0
-
-
-# Column sweeps after the first solve only the columns next to one that moved (sweep_columns): a column is solved again
-# when one within ACTIVE_REACH columns along x or y (the limited face values read two upstream nodes) changed by more
-# than ACTIVE_SHARE of the sweeps' tolerance since it was last solved. Its own nonlinear terms (limiters, linearised
-# heating) move it a little more on a second solve, which the outer loop's next update picks up: the fixed point is
-# the same. Most of a film settles in the first sweeps while the columns around the outlet spike take all of them:
-# S1-S5 of the default case 46.3 -> 43.8 s CPU (136 -> 139 outer iterations; the pressure's truncated correction
-# switched on below 10x its tolerance), the three outlet stages of the 41-point cycle's P21 22.4 -> 19.6 s, figures
-# within their flicker (docs/benchmarks.md).
-ACTIVE_REACH = 2
-ACTIVE_SHARE = 0.1
+# Module globals from TUNING: Numba kernels read globals when they compile (central_peclet: the three-point
+# convection-diffusion scheme stays monotone up to a cell Peclet number of 2, Patankar 1980, sec. 5.2).
+CENTRAL_PECLET = TUNING.central_peclet
+ACTIVE_REACH = TUNING.active_reach
+ACTIVE_SHARE = TUNING.active_share
 
 
 @njit(cache=True)

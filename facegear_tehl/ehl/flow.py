@@ -29,6 +29,7 @@ from numba import njit
 import numpy as np
 
 from facegear_tehl.ehl.layers import cumulative_stencil, simpson_weight
+from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.lubricant_constants import ROELANDS
 from facegear_tehl.lubricant_laws import (
     density_pressure_factor_at,
@@ -177,13 +178,7 @@ def temperature_factors(temperature, law):
 # (`_pressure_variable`), that variable, the density's pressure factor and the spread of the layers' slopes of ln(eta).
 POISEUILLE, COUETTE, MEAN_DENSITY, POISEUILLE_SLOPE, COUETTE_SLOPE, VARIABLE, COMPRESSION, SPREAD = range(8)
 FROZEN_ROWS = 8
-# A column whose layers' ln(eta) moved apart by more than this since it was frozen (the spread of their slopes times the
-# change of the pressure variable) is frozen again at its pressure (`frozen_layered_coefficients`): the shapes' error
-# is second order in that product, 5e-5 relative at 0.06 (tests/test_flow.py: a 20 MPa change, 20-60 K across the
-# film), about 1.5e-4 at 0.1. Without it, the envelope's thermal a/b = 30, 1.5 GPa, 10 m/s, SRR 2 contact (its film
-# heated by about 200 K, its last attempt starting at a fraction of its load) ran away in its coarse stage: the
-# pressure moves by much of p_h between two film-state updates there.
-REFREEZE_SPREAD = 0.1
+REFREEZE_SPREAD = TUNING.refreeze_spread  # a module global: Numba kernels read globals when they compile
 
 
 @njit(cache=True, error_model="numpy", inline="always")

@@ -30,15 +30,7 @@ import numpy as np
 from facegear_tehl.ehl import flow, grid
 from facegear_tehl.ehl.elastic import DeflectionOperator
 from facegear_tehl.ehl.multigrid import Level, MultigridSolver, Problem, Relaxation, corrected_nodes
-
-# V-cycles of the uniform hierarchy per coarse-grid correction of the patch. One (a plain V-cycle) leaves the grid
-# below's composite problem (its own equations outside the patch, the FAS ones inside) too far from solved near the
-# patch's upstream end: the correction alternates in sign there and the iteration ran away for 18 of 55 starts X_a in
-# [-1.5, 0] b at S1-S5 of the default face gear case (513 x 65 + patch, isothermal Newtonian; an end in [-1.1, -0.6]
-# b, where it crosses the inlet side of the Hertzian zone); two left 4 runaways, three none (the one start not
-# converged, S5 at X_a = 0, lies 0.12 b upstream of its spike: a limit cycle). More patch sweeps instead (4 + 3) did
-# not help; damping every level's relaxation (0.15/0.1) kept it bounded but flickering at 5e-4 per cycle.
-COARSE_CYCLES = 3
+from facegear_tehl.ehl.tuning import TUNING
 
 
 @dataclass(frozen=True)
@@ -87,7 +79,7 @@ class PatchedSolver(MultigridSolver):
     over a span of it; the patches are the last levels (the last one `levels[-1]`, the finest)."""
 
     def __init__(self, problem: Problem, shapes: list[tuple[int, int]], span: tuple[float, float],
-                 relaxation: Relaxation = Relaxation(), coarse_cycles: int = COARSE_CYCLES):
+                 relaxation: Relaxation = Relaxation(), coarse_cycles: int = TUNING.patch_coarse_cycles):
         """`shapes`: (nx, ny) of the uniform levels, coarsest first (grid.hierarchy_shapes); `coarse_cycles`: V-cycles
         of the grid below per coarse-grid correction of a patch."""
         super().__init__(problem, shapes, relaxation)
@@ -98,7 +90,7 @@ class PatchedSolver(MultigridSolver):
 
     @classmethod
     def over(cls, solver: MultigridSolver, span: tuple[float, float],
-             coarse_cycles: int = COARSE_CYCLES) -> PatchedSolver:
+             coarse_cycles: int = TUNING.patch_coarse_cycles) -> PatchedSolver:
         """A patch over `span` (X) on top of a solved hierarchy (uniform, or patched already: then the new patch lies
         over the last one): its levels (the same objects, which the composite cycles go on changing), H_0 and work
         count are taken over."""
@@ -283,7 +275,7 @@ class PatchedSolver(MultigridSolver):
         return self.composite_integral(index) + level.force_rhs
 
     def coarse_cycles(self, index: int) -> int:
-        """`patch_coarse_cycles` (default COARSE_CYCLES) under a patch, one elsewhere."""
+        """`patch_coarse_cycles` (default TUNING.patch_coarse_cycles) under a patch, one elsewhere."""
         return self.patch_coarse_cycles if self._place(index) is not None else 1
 
     def coarsen(self, index: int) -> None:

@@ -22,7 +22,7 @@ from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import grid
 from facegear_tehl.ehl.convergence import History, at_thermal_floor, h_c_error, h_c_steady, pressure_settled, stalled
 from facegear_tehl.ehl.coupled import CoupledLoop, Ending, LoopState
-from facegear_tehl.ehl.domain import MAX_INLET_DOUBLINGS, solution_domain, venner_lubrecht_domain
+from facegear_tehl.ehl.domain import solution_domain, venner_lubrecht_domain
 from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem, Relaxation
 from facegear_tehl.ehl.outlet import Composite, needs_outlet_patch, outlet_stages
 from facegear_tehl.ehl.plan import SolvePlan, plan_for
@@ -65,7 +65,7 @@ class PointSolve:
 
     def __init__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
                  relaxation: Relaxation = Relaxation(), elapsed: float = 0.0, escalate_start: bool = False,
-                 attempt: int = 1, max_doublings: int = MAX_INLET_DOUBLINGS, load_continuation: bool = False):
+                 attempt: int = 1, max_doublings: int = TUNING.max_inlet_doublings, load_continuation: bool = False):
         """`elapsed`: s already spent on this point (earlier attempts), counted in its wall time; `escalate_start`:
         a start that runs away begins again from a finer coarsest grid (start.py); `attempt`: which attempt at the
         point this is (1: the first); `max_doublings`: of the inlet (domain.py); `load_continuation`: above Moes M =

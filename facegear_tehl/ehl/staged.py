@@ -8,9 +8,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from facegear_tehl.contact import ContactPoint
-from facegear_tehl.ehl.domain import RETRY_INLET_DOUBLINGS
 from facegear_tehl.ehl.retry import POLICY
 from facegear_tehl.ehl.solve import PointSolve
+from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.record import Action, RetryRecord
 from facegear_tehl.settings import SolverSettings
@@ -50,7 +50,7 @@ class StagedSolver:
             chosen = POLICY.attempts[attempt - 1]
             solve = PointSolve(point, lubricant, settings, chosen.relaxation,
                                elapsed=retry_after.scalar("wall_time"), escalate_start=POLICY.escalates_start(attempt),
-                               attempt=attempt, max_doublings=RETRY_INLET_DOUBLINGS,
+                               attempt=attempt, max_doublings=TUNING.retry_inlet_doublings,
                                load_continuation=chosen.load_continuation)
             previous = () if retry_after.record is None else retry_after.record.retries
             solve.retries.extend(previous)

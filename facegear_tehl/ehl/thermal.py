@@ -11,7 +11,7 @@ equation needs (temperature and eta*/eta per layer, flow.py):
    x with the x component of each surface's velocity (face gear surfaces move within 2 deg of x). A surface
    nearly at rest (Pe < 1) is given the effusivity of Pe = 1, where the high-Péclet kernel would otherwise
    diverge: a bounded, conservative estimate.
-The surfaces (under-relaxed) and then the film's interior layers are iterated INNER_ITERATIONS times, so that
+The surfaces (under-relaxed) and then the film's interior layers are iterated TUNING.inner_iterations times, so that
 the state returned solves the film's discrete energy equation for its own surfaces (its energy budget closes,
 energy.energy_budget).
 
@@ -30,6 +30,7 @@ import numpy as np
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import energy, jaeger, rheology
 from facegear_tehl.ehl.film_state import FilmState
+from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.lubricant_constants import ROELANDS
 from facegear_tehl.lubricant_laws import (
@@ -42,34 +43,6 @@ from facegear_tehl.lubricant_laws import (
     viscosity_temperature_coefficient_at,
 )
 from facegear_tehl.materials import Solid
-
-# Continuation in temperature: a Newtonian film under heavy sliding would otherwise overshoot by thousands of
-# kelvin in its first update, before the viscosity has dropped; with 50 K the face gear points (rises of
-# 15-100 K) need at most two limited updates.
-MAX_TEMPERATURE_STEP = 50.0  # K, largest temperature change of one update
-# Surface and film-interior passes per update: the outer loop iterates them again anyway. One pass per update
-# was 20 % faster than two on the default face gear case (257 x 65; 1-3 more outer iterations at S2-S5, 3 fewer at
-# S1; h_c equal to 2e-4, dT_max to 6e-4, h_min to 1e-3) and converged the thermal hard cases in fewer iterations
-# (srr2_one_at_rest 24 instead of 56, opposite_sliding 31 instead of 43). A Newtonian face gear film heated by
-# ~360 K on 33 x 9 (tests/test_option_matrix.py) closes during the temperature continuation with one pass and ends
-# unconverged with two: neither is a result.
-INNER_ITERATIONS = 1
-# Under-relaxation of the surface temperatures between inner passes: they follow the wall heat flux of the same
-# pass through the Jaeger kernel, whose gain grows as the solid slows (~ 1/sqrt(speed)); 0.6 is the value the
-# thermal model was built and validated with. Swept at 09f080f: S1-S5 of the default case (513 x 65) took 134 / 134 /
-# 128 outer iterations at 0.6 / 0.8 / 1.0, h_c within 2e-5, within the loop's noise (docs/benchmarks.md).
-SURFACE_RELAXATION = 0.6
-# Column sweeps of the energy equation per pass: at least ENERGY_MIN_SWEEPS, then on to ENERGY_SWEEPS until a sweep
-# changes the temperatures by less than the tolerance the caller gives (the outer loop: a share of its last change,
-# solve.ENERGY_FORCING) or ENERGY_SWEEP_TOLERANCE. On S1 of the face gear case (257 x 65, thermal full) a fixed 2
-# sweeps took as many outer iterations as 8 (22) in 25 % less time and 1 took 36; h_c, dT_max and mu within 2e-4 of
-# 8 sweeps' (30 sweeps had given S1 to 1e-4 in h_c and dT_max).
-ENERGY_MIN_SWEEPS = 2
-ENERGY_SWEEPS = 8
-ENERGY_SWEEP_TOLERANCE = 1e-3  # K, largest change between sweeps at which a pass stops sweeping
-# Updates whose deferred wall heat fluxes are kept (`FilmThermalModel.completed`): the last, and the one before it,
-# which an outer loop that runs away goes back to (solve.PointSolve._last_finite).
-DEFERRED_UPDATES = 2
 
 
 @njit(cache=True)
@@ -206,7 +179,7 @@ class FilmThermalModel:
         self.newtonian_below = newtonian_below
         self.matrix = jaeger.influence_matrix(x.size, self.dx)
         self._stress = None  # surface-1 shear stress of the last update: the warm start of the next
-        # the inputs of the wall heat fluxes of the last DEFERRED_UPDATES updates made without them (`completed`):
+        # the inputs of the wall heat fluxes of the last deferred_updates updates made without them (`completed`):
         # (the update's dissipation, its temperatures, the energy kernels' arguments; without the energy equation
         # the film and the conductivity)
         self._deferred: list[tuple[np.ndarray, np.ndarray, tuple]] = []
@@ -228,15 +201,15 @@ class FilmThermalModel:
                                                               matrix=self.matrix, reverse=speed < 0.0)
 
     def update(self, pressure: np.ndarray, film: np.ndarray, temperature: np.ndarray,
-               sweep_tolerance: float = ENERGY_SWEEP_TOLERANCE, wall_fluxes: bool = True,
+               sweep_tolerance: float = TUNING.energy_sweep_tolerance, wall_fluxes: bool = True,
                temperature_factor: np.ndarray | None = None) -> FilmState:
         """The film state for pressure (Pa) and film (m) starting from the layer temperatures (K).
 
-        The temperature moves by at most MAX_TEMPERATURE_STEP per update (a continuation in temperature:
+        The temperature moves by at most TUNING.max_temperature_step per update (a continuation in temperature:
         a Newtonian film under heavy sliding would otherwise overshoot by thousands of kelvin before the
         viscosity has dropped). `sweep_tolerance` (K): the energy equation's sweeps stop once one changes the
-        temperatures by less (at least ENERGY_MIN_SWEEPS, at most ENERGY_SWEEPS, never below
-        ENERGY_SWEEP_TOLERANCE). `wall_fluxes` False: the wall heat fluxes of the result are left out (None) until
+        temperatures by less (at least TUNING.energy_min_sweeps, at most TUNING.energy_sweeps, never below
+        energy_sweep_tolerance). `wall_fluxes` False: the wall heat fluxes of the result are left out (None) until
         `completed` asks for them: an outer loop needs them only for the state it ends on, and they cost a sweep
         (on the 513 x 65 finest grid of S3 of the default face gear case 1.9 of its 8.2 s). `temperature_factor`:
         the Roelands temperature factors of `temperature` if known (`layer_viscosity`), of its shape."""
@@ -311,21 +284,23 @@ class FilmThermalModel:
 
     def _film_passes(self, temperature: np.ndarray, start: np.ndarray, kernel_args: tuple,
                      sweep_tolerance: float) -> float:
-        """INNER_ITERATIONS passes (in place on `temperature`, K): the surfaces from the heat fluxes of the film as
+        """inner_iterations passes (in place on `temperature`, K): the surfaces from the heat fluxes of the film as
         it stands, then the film's interior for them, so that the state returned solves the film's discrete energy
-        equation for its own surfaces; within MAX_TEMPERATURE_STEP of `start`. Returns the last pass's largest
+        equation for its own surfaces; within TUNING.max_temperature_step of `start`. Returns the last pass's largest
         change (K)."""
         q1, q2 = np.empty(temperature.shape[1:]), np.empty(temperature.shape[1:])
-        w = SURFACE_RELAXATION
+        w = TUNING.surface_relaxation
         change = 0.0
-        for _ in range(INNER_ITERATIONS):
+        for _ in range(TUNING.inner_iterations):
             before = temperature.copy()
             energy.wall_fluxes(temperature, *kernel_args, q1, q2)
             temperature[0] += w * (self._surface(q1, 0, float(self.velocity_1[0])) - temperature[0])
             temperature[-1] += w * (self._surface(q2, 1, float(self.velocity_2[0])) - temperature[-1])
-            energy.sweep_columns(temperature, *kernel_args, ENERGY_SWEEPS, max(sweep_tolerance, ENERGY_SWEEP_TOLERANCE),
-                                 ENERGY_MIN_SWEEPS, self.first_column)
-            np.clip(temperature, start - MAX_TEMPERATURE_STEP, start + MAX_TEMPERATURE_STEP, out=temperature)
+            energy.sweep_columns(temperature, *kernel_args, TUNING.energy_sweeps,
+                                 max(sweep_tolerance, TUNING.energy_sweep_tolerance), TUNING.energy_min_sweeps,
+                                 self.first_column)
+            step = TUNING.max_temperature_step
+            np.clip(temperature, start - step, start + step, out=temperature)
             change = float(np.abs(temperature - before).max())
         return change
 
@@ -335,7 +310,7 @@ class FilmThermalModel:
         kept for `completed` (`kernel_args`: the energy kernels' arguments, or (film, conductivity) without the
         energy equation)."""
         if not now:
-            self._deferred = self._deferred[1 - DEFERRED_UPDATES:] + [(dissipation, temperature, kernel_args)]
+            self._deferred = self._deferred[1 - TUNING.deferred_updates:] + [(dissipation, temperature, kernel_args)]
             return None, None
         return self._fluxes(temperature, kernel_args)
 
@@ -349,7 +324,7 @@ class FilmThermalModel:
 
     def completed(self, state: FilmState | None) -> FilmState | None:
         """`state` (or a state replaced from it) with the wall heat fluxes of the update it came from, for an update
-        made with `wall_fluxes=False` (one of the last DEFERRED_UPDATES); as it is when it has them."""
+        made with `wall_fluxes=False` (one of the last TUNING.deferred_updates); as it is when it has them."""
         if state is None or state.heat_flux_1 is not None:
             return state
         for dissipation, temperature, kernel_args in self._deferred:
@@ -375,11 +350,9 @@ def gupta_reduction(point: ContactPoint, lubricant: Lubricant) -> float:
     return numerator / (1.0 + 0.213 * (1.0 + 2.23 * srr**0.83) * loading**0.64)
 
 
-# `auto`: predicted error of each model relative to `full`, as a share of the Gupta film reduction 1 - phi_T
-# (`off` neglects all of it; `reduced` came within 0.1-0.4 % of `full` in h_c and h_min on the face gear
-# points where the thermal reduction is 11-18 %, i.e. ~2 % of it: 5 % is taken, scripts/bench_thermal.py).
-AUTO_ERROR_SHARE = {"off": 1.0, "reduced": 0.05}
-AUTO_TOLERANCE = 0.01  # accept a model whose predicted h_c error is below 1 %
+# `auto`: the predicted h_c error of each model against `full`, as a share of Gupta's reduction 1 - phi_T (`off`
+# neglects all of it)
+AUTO_ERROR_SHARE = {"off": 1.0, "reduced": TUNING.auto_error_share_reduced}
 
 
 def thermal_choice(mode: str, point: ContactPoint, lubricant: Lubricant) -> tuple[str, str]:
@@ -389,11 +362,12 @@ def thermal_choice(mode: str, point: ContactPoint, lubricant: Lubricant) -> tupl
     reduction = 1.0 - gupta_reduction(point, lubricant)
     for candidate in ("off", "reduced"):
         predicted = AUTO_ERROR_SHARE[candidate] * reduction
-        if predicted < AUTO_TOLERANCE:
+        if predicted < TUNING.auto_tolerance:
             return candidate, (f"auto: Gupta thermal reduction {100 * reduction:.2f} % (L_th = "
                                f"{thermal_loading(point, lubricant):.3g}, SRR = {point.slide_roll_ratio:.3f}); "
-                               f"predicted error of {candidate} {100 * predicted:.2f} % < {100 * AUTO_TOLERANCE:g} %")
+                               f"predicted error of {candidate} {100 * predicted:.2f} % < "
+                               f"{100 * TUNING.auto_tolerance:g} %")
     return "full", (f"auto: Gupta thermal reduction {100 * reduction:.2f} % (L_th = "
                     f"{thermal_loading(point, lubricant):.3g}, SRR = {point.slide_roll_ratio:.3f}); "
                     f"reduced predicted {100 * AUTO_ERROR_SHARE['reduced'] * reduction:.2f} % >= "
-                    f"{100 * AUTO_TOLERANCE:g} %")
+                    f"{100 * TUNING.auto_tolerance:g} %")

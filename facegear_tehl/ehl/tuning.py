@@ -12,8 +12,16 @@ from dataclasses import dataclass
 
 @dataclass(frozen=True)
 class Tuning:
-    """The solver driver's numerical constants (dimensionless unless a unit is given)."""
+    """The solver's numerical constants (dimensionless unless a unit is given)."""
 
+    # --- the solution domain (domain.py)
+    domain_half_width: float = 3.0  # default domain: +-3 semi-axes (Venner & Lubrecht 2000) ...
+    domain_upstream_shift: float = 1.5  # ... shifted 1.5 semi-axes upstream: 4.5 upstream, 1.5 downstream
+    inlet_gap_target: float = 40.0  # inlet gap ratio the lengthened inlet must reach (h_c starved by 0.55-0.8 %)
+    min_lengthened_nodes: int = 129  # nodes along an axis from which the inlet is lengthened (trial grids are not)
+    max_inlet_doublings: int = 2  # doublings of the inlet at most (a light load needs two)
+    retry_inlet_doublings: int = 1  # ... on a retry after a solve ran away (a long inlet can be the cause)
+    max_lengthened_nodes: int = 2049  # nodes of a lengthened axis at most (its length then never depends on the grid)
     # --- full-multigrid start and load continuation
     diverged_load_error: float = 0.5  # |load error| after a full cycle beyond which the iteration is running away
     eyring_start_cycles: int = 1  # V-cycles of an isothermal Ree-Eyring film's finest start grid: its loop follows
@@ -48,6 +56,25 @@ class Tuning:
     thermal_floor_h_c: float = 5e-4  # largest relative spread of h_c at a floor (its grid error: 1e-3 to 6e-3)
     thermal_floor_error_share: float = 0.5  # ... or this share of h_c's own error estimate, if larger
     min_relaxation_scale: float = 0.125  # a loop stalled above its floor halves its relaxation down to this scale
+    # --- one update of the film state (thermal.py, energy.py, anderson.py, flow.py)
+    max_temperature_step: float = 50.0  # K: largest temperature change of one update (a continuation in temperature)
+    inner_iterations: int = 1  # surface and film-interior passes per update (the outer loop iterates them anyway)
+    surface_relaxation: float = 0.6  # under-relaxation of the surface temperatures between inner passes
+    energy_min_sweeps: int = 2  # column sweeps of the energy equation per pass at least ...
+    energy_sweeps: int = 8  # ... and at most, until a sweep changes the temperatures by less than the tolerance ...
+    energy_sweep_tolerance: float = 1e-3  # K: ... the caller gives, or this
+    deferred_updates: int = 2  # updates whose deferred wall heat fluxes are kept (the last, and the one a loop
+    # that runs away goes back to)
+    central_peclet: float = 2.0  # cell Peclet number across the film up to which the face value is central (monotone)
+    active_reach: int = 2  # after the first sweep a column is solved again when one within this many columns ...
+    active_share: float = 0.1  # ... changed by more than this share of the sweeps' tolerance
+    refreeze_spread: float = 0.1  # a column whose layers' ln(eta) moved apart by this is frozen again (error ~1e-4)
+    gram_cutoff: float = 1e-10  # Anderson: relative cutoff of the normal equations' singular values
+    anderson_growth: float = 1.0  # Anderson: the history is dropped when the weighted step grew by this factor
+    support_share: float = 0.5  # Anderson: a support above this share of the components is taken whole
+    auto_error_share_reduced: float = 0.05  # `auto`: h_c error of `reduced` as a share of Gupta's reduction 1 - phi_T
+    auto_tolerance: float = 0.01  # `auto`: the cheapest model predicted within 1 % of `full` in h_c
+    patch_coarse_cycles: int = 3  # grid-below V-cycles per coarse-grid correction of a patch started cold
     # --- the thermal full multigrid's stages
     min_coarse_thermal_grid: int = 65  # the coupled problem is solved one grid coarser first from this grid up
     coarse_stage_tolerance: float = 5.0  # the coarse stage stops at this multiple of the thermal tolerance ...
@@ -61,7 +88,8 @@ class Tuning:
     auto_dt_max_error: float = 0.02  # `auto` patches where the grid's dT_max estimate misses 2 % ...
     auto_mu_error: float = 0.01  # ... or its mu estimate misses 1 %
     max_entrainment_angle: float = 45.0  # deg: beyond it the spike lies across the patch's rows; no stage runs
-    stage_coarse_cycles: tuple[int, ...] = (1, 3)  # grid-below V-cycles per patch correction, by attempt
+    stage_coarse_cycles: tuple[int, ...] = (1, 3)  # grid-below V-cycles per patch correction, by attempt (3 the cold
+    # start's, patch_coarse_cycles)
     stage_cycles_per_update: int = 1  # V-cycles of a stage's composite per update of its film state
     figure_window: int = 4  # a stage also stops once its hottest rise settled over this many updates ...
     figure_spread: float = 0.005  # ... spanning at most this share of its mean (a quarter of auto_dt_max_error) ...
