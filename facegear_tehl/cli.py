@@ -11,7 +11,6 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import replace
 import json
-import os
 from pathlib import Path
 import signal
 import traceback
@@ -25,6 +24,7 @@ from facegear_tehl.case import Case, load_case
 from facegear_tehl.cycle import COARSE_POINT_COUNT, QUADRATURE
 from facegear_tehl.gears.analysis import analyse_gear_pair
 from facegear_tehl.gears.report import contact_table
+from facegear_tehl.output_path import checked_output, inside_case_folder, starts_with, writable_location
 from facegear_tehl.parallel import worker_count
 from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.results import PointResult, Result, ResultFileError, read_result, write_result
@@ -94,6 +94,7 @@ Examples:
 @click.option("--points", help="Comma-separated point names to solve (e.g. S1,S3); default all.")
 @click.option("--thermal", help="Thermal model, overrides solver.thermal: off | reduced | full | auto.")
 @click.option("--jobs", type=int, help="Worker processes solving points side by side (default: all cores).")
+@click.option("--force", is_flag=True, help="Overwrite an existing output file that tehl did not write.")
 @click.pass_context
 def run(
     ctx: click.Context,
@@ -103,6 +104,7 @@ def run(
     points: str | None,
     thermal: str | None,
     jobs: int | None,
+    force: bool,
 ) -> None:
     """Solve CASE and write the result file."""
     case = _load_case(case_file)
@@ -113,7 +115,7 @@ def run(
     names = _point_names(points)
     analysis = contact_analysis(case)
     selected = analysis.points if names is None else select_points(analysis.points, names)
-    target = _output_path(Path(case_file), case, output)
+    target = _output_path(Path(case_file), case, output, force)
     processes = min(workers, len(selected))
     click.echo(
         f"tehl run: {case.name}: {', '.join(p.name for p in selected)} on a {solver.grid}x{solver.nodes_y} grid, "
@@ -177,6 +179,7 @@ Examples:
 @click.option("-o", "--output",
               help="Sweep file, HDF5 (default: <case name>_sweep_<point>.h5); the CSV goes next to it.")
 @click.option("--jobs", type=int, help="Worker processes solving grids side by side (default: all cores).")
+@click.option("--force", is_flag=True, help="Overwrite existing output files that tehl did not write.")
 @click.pass_context
 def sweep(
     ctx: click.Context,
@@ -187,6 +190,7 @@ def sweep(
     tolerance: float,
     output: str | None,
     jobs: int | None,
+    force: bool,
 ) -> None:
     """Solve one point of CASE on a sequence of grids and print its mesh-independence table (change per
     grid, observed order, Richardson extrapolation with its GCI uncertainty); writes HDF5 (/sweep) and CSV."""
@@ -197,9 +201,12 @@ def sweep(
     model = case.solver.thermal if thermal is None else with_thermal(case, thermal).solver.thermal
     points = contact_analysis(case).points
     name = points[0].name if point is None else select_points(points, [point], key="--point")[0].name
-    target = _writable("--output", Path(output if output is not None else f"{case.name}_sweep_{name}.h5"))
+    target = Path(output if output is not None else f"{case.name}_sweep_{name}.h5")
     if target.suffix.lower() == ".csv":
         raise CaseError("--output", str(target), "an HDF5 file name (the CSV is written next to it)")
+    checked_output("--output", target, inputs=[Path(case_file)], force=force)
+    checked_output("--output", target.with_suffix(".csv"), inputs=[Path(case_file)], force=force,
+                   ours=starts_with("grid ["), what="a sweep CSV")
     click.echo(
         f"tehl sweep: {case.name}: {name} on grids {','.join(map(str, grid_list))}, thermal {model}"
         + (f", {min(workers, len(grid_list))} worker processes" if workers > 1 else ""),
@@ -231,7 +238,7 @@ Examples:
 def study(ctx: click.Context, study_file: str, output: str | None, workers: int | None, scheduler: str | None) -> None:
     """Run every variant of STUDY (a base case and the keys it varies) on a Dask cluster: one result file per
     variant, named by the hash of its case, and index.csv; variants already finished are skipped."""
-    from facegear_tehl.study import run_study
+    from facegear_tehl.study import check_folder, run_study
     from facegear_tehl.study_file import load_study
 
     plan = load_study(study_file)
@@ -239,6 +246,7 @@ def study(ctx: click.Context, study_file: str, output: str | None, workers: int 
         raise CaseError("--workers", workers, "no --workers with --scheduler (the cluster has its own workers)")
     count = worker_count(workers, "--workers")
     folder = Path(output if output is not None else f"{Path(study_file).stem}_study")
+    check_folder(folder)
     where = f"the Dask cluster at {scheduler}" if scheduler else f"a local Dask cluster of {count} worker processes"
     click.echo(f"tehl study: {len(plan.variants)} variants of {plan.base.name} over {', '.join(plan.keys)} "
                f"on {where}", err=True)
@@ -315,7 +323,7 @@ Examples:
 @click.option("--force", is_flag=True, help="Overwrite OUTPUT if it exists.")
 def init(kind: str, output: str, force: bool) -> None:
     """Write a commented case template (valid as written); edit it, then validate and run it."""
-    target = _writable("--output", Path(output))
+    target = writable_location("--output", Path(output))
     if target.exists() and not force:
         raise CaseError("--output", output, "a file that does not exist yet (--force overwrites it)")
     target.parent.mkdir(parents=True, exist_ok=True)
@@ -363,6 +371,8 @@ def plot(result_file: str, what: str, points: str | None, output: str | None, fm
     from facegear_tehl.plots import figure_types, plot_result
 
     source = Path(result_file)
+    if output is not None:
+        _check_figure_folder(Path(output), source)
     if source.is_dir():  # a study folder: maps over its varied keys
         from facegear_tehl.plots.study_maps import plot_study
 
@@ -607,31 +617,26 @@ def _point_names(option: str | None) -> list[str] | None:
     return list(dict.fromkeys(name.strip() for name in option.split(",") if name.strip()))
 
 
-def _output_path(case_file: Path, case: Case, option: str | None) -> Path:
-    """-o, else output.file of the case (relative to the case file), else <case name>.h5 here.
-
-    Checked before solving (CaseError): not a directory, and its nearest existing folder is writable.
-    """
+def _output_path(case_file: Path, case: Case, option: str | None, force: bool) -> Path:
+    """-o, else output.file of the case (inside the case file's folder), else <case name>.h5 here; checked
+    before solving by the output-path policy (output_path.py): never the case file, never a file tehl did not
+    write unless `force`."""
     if option is not None:
         key, target = "--output", Path(option)
     elif case.output.file is not None:
-        key, target = "output.file", case_file.parent / case.output.file
+        key, target = "output.file", inside_case_folder("output.file", case_file, case.output.file)
     else:
         key, target = "name", Path(f"{case.name}.h5")
-    return _writable(key, target)
+    return checked_output(key, target, inputs=[case_file], force=force)
 
 
-def _writable(key: str, target: Path) -> Path:
-    """`target`, checked before solving (CaseError under `key`): not a directory, and its nearest existing
-    folder is writable."""
-    if target.is_dir():
-        raise CaseError(key, str(target), "a file path, not a directory")
-    folder = target.absolute().parent
-    while not folder.exists():
-        folder = folder.parent
-    if not folder.is_dir() or not os.access(folder, os.W_OK):
-        raise CaseError(key, str(target), f"a path under a writable directory ({folder} is not)")
-    return target
+def _check_figure_folder(folder: Path, source: Path) -> None:
+    """`tehl plot -o`: a folder (existing or new) under a writable directory, not an existing file (the file
+    plotted among them)."""
+    if folder.exists() and not folder.is_dir():
+        what = "the file plotted" if folder.resolve() == source.resolve() else "an existing file"
+        raise CaseError("--output", str(folder), f"a folder for the figures, not {what}")
+    writable_location("--output", folder / "figure")
 
 
 def _terminate(signum: int, frame: object) -> None:

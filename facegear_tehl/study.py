@@ -30,11 +30,13 @@ import time
 
 import h5py
 
+from facegear_tehl.output_path import starts_with
 from facegear_tehl.results import ResultFileError, RunResult, read_result, write_result
 from facegear_tehl.schema import CaseError
 from facegear_tehl.study_file import Study, Variant, digest, value_text
 
 INDEX = "index.csv"
+INDEX_HEADER = "variant,"  # how every index.csv begins (write_index): what marks one as ours
 FAILURES = "failures.txt"
 # Dask starts worker processes with MALLOC_TRIM_THRESHOLD_=65536 (its distributed.nanny.pre-spawn-environ), which
 # fixes glibc's mmap threshold: every array above 128 KiB is then mapped and unmapped anew, and a 257^2 solve of
@@ -115,9 +117,14 @@ def finished(path: Path, variant: Variant) -> bool:
 
 
 def check_folder(folder: Path) -> None:
-    """CaseError under -o unless `folder` is a directory or can be made one under a writable directory."""
+    """CaseError under -o unless `folder` is a directory or can be made one under a writable directory, and any
+    index.csv in it is one tehl study wrote (a file, its header starting with INDEX_HEADER)."""
     if folder.exists() and not folder.is_dir():
         raise CaseError("-o", str(folder), "a directory for the study's files, not a file")
+    index = folder / INDEX
+    if index.exists() and not starts_with(INDEX_HEADER)(index):
+        raise CaseError("-o", str(folder), f"a study folder whose {INDEX} tehl study wrote, or a new one ({index} "
+                                           "is not one: its index would be overwritten)")
     existing = folder.absolute()
     while not existing.exists():
         existing = existing.parent
