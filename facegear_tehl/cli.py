@@ -24,7 +24,13 @@ from facegear_tehl.case import Case, load_case
 from facegear_tehl.cycle import COARSE_POINT_COUNT, QUADRATURE
 from facegear_tehl.gears.analysis import analyse_gear_pair
 from facegear_tehl.gears.report import contact_table
-from facegear_tehl.output_path import checked_output, inside_case_folder, starts_with, writable_location
+from facegear_tehl.output_path import (
+    checked_output,
+    inside_case_folder,
+    keeping_the_better,
+    starts_with,
+    writable_location,
+)
 from facegear_tehl.parallel import worker_count
 from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.results import PointResult, Result, ResultFileError, read_result, write_result
@@ -134,6 +140,9 @@ def run(
     for warning in run_result.warnings:
         if warning not in analysis.warnings:  # what the run found (a grid the solver chose, ...)
             click.echo(f"warning: {warning}", err=True)
+    target, kept = keeping_the_better(target, sum(p.converged for p in run_result.points))
+    if kept:
+        click.echo(f"warning: {kept}", err=True)
     target.parent.mkdir(parents=True, exist_ok=True)
     write_result(run_result, target)
     result = read_result(target, fields=False)  # the tables print what the file holds

@@ -9,16 +9,19 @@ that named it, exit 2, no file):
   carries the attribute filetype = results.FILETYPE; a CSV or other text file when `ours` says so;
 - never a directory, and only under a writable directory;
 - a case's `output.file` is resolved against the case file's folder and must stay inside it (no `..` or absolute
-  path that leads elsewhere): a case received from someone else cannot write over files outside its own folder.
+  path that leads elsewhere): a case received from someone else cannot write over files outside its own folder;
+- `tehl run` never replaces a result file with one holding fewer converged points (a run that lost points to a
+  killed worker or a failed solve): its result goes beside it, named by the time, with a warning.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
+from datetime import datetime
 import os
 from pathlib import Path
 
-from facegear_tehl.results import FILETYPE
+from facegear_tehl.results import FILETYPE, ResultFileError, read_result
 from facegear_tehl.schema import CaseError
 
 HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"  # the HDF5 format signature at offset 0 (HDF5 File Format Specification 3.0)
@@ -99,3 +102,28 @@ def inside_case_folder(key: str, case_file: Path, value: str) -> Path:
         raise CaseError(key, value, f"a path inside the case's folder {folder} (a case may not write elsewhere; "
                                     "give -o to write there)")
     return case_file.parent / value
+
+
+def converged_points(path: Path) -> int:
+    """Converged points of the result file at `path`; 0 when there is none or it cannot be read."""
+    try:
+        return sum(point.converged for point in read_result(path, fields=False).points.values())
+    except ResultFileError:
+        return 0
+
+
+def keeping_the_better(target: Path, converged: int) -> tuple[Path, str]:
+    """Where a result with `converged` converged points goes: `target`, unless the result file there holds more
+    converged points (an earlier, better run); then a new file beside it, named by the time, and a sentence
+    saying so. A worse run never replaces a better file."""
+    kept = converged_points(target) if target.exists() else 0
+    if kept <= converged:
+        return target, ""
+    stamp = datetime.now().strftime("%Y%m%dT%H%M%S")
+    beside = target.with_name(f"{target.stem}.{stamp}{target.suffix}")
+    counter = 1
+    while beside.exists():
+        beside = target.with_name(f"{target.stem}.{stamp}-{counter}{target.suffix}")
+        counter += 1
+    return beside, (f"{target} holds {kept} converged points and this run {converged}: kept it, and wrote this run's "
+                    f"result to {beside}")

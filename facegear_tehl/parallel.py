@@ -17,6 +17,9 @@ the workers open no HDF5 file, so forking is safe. Elsewhere workers are spawned
 from the on-disk cache (`cache=True`; its files are written by rename, so workers compiling at the same
 time do not corrupt it).
 
+A worker that dies (SIGKILL, the out-of-memory killer) breaks the pool: its solves and those of the other workers
+are submitted once more to a fresh pool (supervision.py), so that a lost worker costs no point.
+
 Every solve, in this process or a worker, runs with one BLAS thread: OpenBLAS adds in another order with
 more threads, so this keeps the results bit-identical whatever `jobs` (and whatever the machine's core
 count), and workers that already fill the cores do not also spin BLAS threads against each other.
@@ -25,7 +28,7 @@ Each solve is then the same deterministic computation wherever it runs.
 
 from __future__ import annotations
 
-from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from concurrent.futures import Future, ProcessPoolExecutor
 import concurrent.futures.process
 from contextlib import closing
 from dataclasses import dataclass, replace
@@ -43,6 +46,7 @@ from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.schema import check
 from facegear_tehl.settings import SolverSettings
 from facegear_tehl.solution import Outcome, PointSolution
+from facegear_tehl.supervision import LOST_MESSAGE, SupervisedPool, WorkerLost, worker_lost
 
 Solver = Callable[[ContactPoint, Lubricant, SolverSettings], PointSolution]
 """A whole solve: `ehl.solve.solve_point` or a stand-in with its signature (module-level, so that it can be
@@ -150,28 +154,32 @@ def solve_each(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
     context = _context()
     if context.get_start_method() == "fork":
         _warm_up(solver, tasks[0])
-    executor = ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=_init_worker)
+    pool = SupervisedPool(workers, context, _init_worker)  # a lost worker's solves are retried once
     try:
         # per future: (task index, first attempt when this is a retry)
         pending: dict[Future, tuple[int, PointSolution | None]] = {}
 
         def submit(index: int, first: PointSolution | None, function: Callable, *args: object) -> None:
             with _DeferredSignals():
-                pending[executor.submit(_stage_task, function, tasks[index].point.name, *args)] = (index, first)
+                pending[pool.submit(index, _stage_task, function, tasks[index].point.name, *args)] = (index, first)
 
         for i, task in enumerate(tasks):
             if staged:
                 submit(i, None, solver.begin, task.point, task.lubricant, task.settings, None)
             else:
                 with _DeferredSignals():
-                    pending[executor.submit(_solve_task, solver, task)] = (i, None)
+                    pending[pool.submit(i, _solve_task, solver, task)] = (i, None)
         while pending:
             with _DeferredSignals() as signals:
                 finished: set[Future] = set()
                 while not finished and not signals.received:
-                    finished, _ = wait(pending, timeout=0.2, return_when=FIRST_COMPLETED)
+                    finished = pool.wait(pending, timeout=0.2)
             for future in sorted(finished, key=lambda f: pending[f][0]):
                 index, first = pending.pop(future)
+                again = pool.resubmitted(future)
+                if again is not None:
+                    pending[again] = (index, first)
+                    continue
                 outcome = _outcome(future, tasks[index])
                 if not staged or isinstance(outcome, Solved):
                     yield index, outcome
@@ -183,9 +191,9 @@ def solve_each(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
                 else:
                     yield index, Solved(outcome if first is None else solver.with_retry(first, outcome), failed=False)
     except BaseException:
-        _stop_workers(executor)
+        _stop_workers(pool.executor)
         raise
-    executor.shutdown()
+    pool.executor.shutdown()
 
 
 class _DeferredSignals:
@@ -247,6 +255,8 @@ def _outcome(future: Future, task: SolveTask) -> object:
     """The worker's result (a Solved, or with stages a solution or an intermediate), or a failed record if the
     worker could not deliver one (e.g. it was killed)."""
     error = future.exception()
+    if worker_lost(future):
+        return Solved(failed_solution(task.point.name, WorkerLost(LOST_MESSAGE)), failed=True)
     return future.result() if error is None else Solved(failed_solution(task.point.name, error), failed=True)
 
 
