@@ -259,7 +259,8 @@ def study(ctx: click.Context, study_file: str, output: str | None, workers: int 
     where = f"the Dask cluster at {scheduler}" if scheduler else f"a local Dask cluster of {count} worker processes"
     click.echo(f"tehl study: {len(plan.variants)} variants of {plan.base.name} over {', '.join(plan.keys)} "
                f"on {where}", err=True)
-    report = run_study(plan, folder, workers=count, scheduler=scheduler, progress=_study_progress)
+    report = run_study(plan, folder, workers=count, scheduler=scheduler, progress=_study_progress,
+                       notice=lambda line: click.echo(f"warning: {line}", err=True))
     skipped = len(report.outcomes) - report.computed
     not_converged = sum(o.status == "not_converged" for o in report.outcomes)
     click.echo(f"{report.computed} variants computed, {skipped} already finished, {len(report.failed)} failed, "

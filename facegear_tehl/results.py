@@ -46,6 +46,7 @@ import numpy as np
 
 from facegear_tehl import __version__
 from facegear_tehl.case import Case
+from facegear_tehl.h5_guard import ResultFileError, check_layout
 from facegear_tehl.solution import Field, PointSolution
 
 if TYPE_CHECKING:  # h5py is imported where a file is written or read: `tehl validate` does not need it
@@ -77,10 +78,6 @@ _CYCLE_INDEX = ("cycle", "entry of the per-cycle histories, in the order they we
 # The column each table's rows are keyed by (its coordinate in xarray).
 _TABLE_KEYS = {"contact": "s", "heat": "point", "sweep": "grid"}
 _COMPONENTS = {2: ("xy", ("x", "y")), 3: ("xyz", ("x", "y", "z"))}  # a vector column's components (see its description)
-
-
-class ResultFileError(Exception):
-    """A file that is not a readable tehl result (missing, not HDF5, other program, other format)."""
 
 
 class NonFiniteError(ValueError):
@@ -456,11 +453,12 @@ def read_result(path: str | Path, fields: bool = True) -> Result:
         raise ResultFileError(f"{path}: cannot open as an HDF5 file ({_reason(exc)})") from None
     with h5:
         attrs = h5.attrs
-        if attrs.get("filetype") != FILETYPE or "format_version" not in attrs:
+        if not isinstance(attrs.get("filetype"), str) or attrs["filetype"] != FILETYPE or "format_version" not in attrs:
             raise ResultFileError(f"{path}: not a tehl result file (no filetype '{FILETYPE}' attribute)")
         version = str(attrs["format_version"])
         if version.split(".")[0] != FORMAT_VERSION.split(".")[0]:
             raise ResultFileError(f"{path}: result format {version}; this tehl reads format {FORMAT_VERSION}")
+        check_layout(h5, path)
         try:
             status = str(attrs["status"])
             if status not in STATUSES:
@@ -495,8 +493,9 @@ def read_result(path: str | Path, fields: bool = True) -> Result:
                 cycle_scalars=cycle_scalars,
                 cycle_units=cycle_units,
             )
-        except (KeyError, ValueError, TypeError) as exc:
-            raise ResultFileError(f"{path}: damaged tehl result ({_reason(exc)})") from None
+        except (KeyError, ValueError, TypeError, OSError) as exc:  # OSError: data HDF5 cannot read (a bad chunk)
+            raise ResultFileError(f"{path}: damaged tehl result ({_reason(exc)}); write it again with tehl run") \
+                from None
 
 
 def _reason(exc: Exception) -> str:

@@ -110,10 +110,30 @@ def solve_variant(text: str) -> VariantRun:
 
 def finished(path: Path, variant: Variant) -> bool:
     """The variant's file exists, reads back as a complete result and holds the resolved case that names it."""
+    return unfinished_reason(path, variant) is None
+
+
+def unfinished_reason(path: Path, variant: Variant) -> str | None:
+    """None when `finished`; else why not: the reader's sentence (missing, damaged, not a result) or another case."""
     try:
-        return digest(read_result(path).case_yaml) == variant.digest
-    except ResultFileError:
-        return False
+        held = digest(read_result(path).case_yaml)
+    except ResultFileError as exc:
+        return str(exc)
+    return None if held == variant.digest else f"{path}: holds another case than the variant's"
+
+
+def _resumed(study: Study, folder: Path, notice: Callable[[str], None] | None) -> dict[int, VariantOutcome]:
+    """The outcomes of the variants whose files are finished; each file that exists but is not finished (damaged,
+    another case) is named to `notice`: the study runs its variant again."""
+    outcomes = {}
+    for variant in study.variants:
+        path = folder / variant.file_name
+        reason = unfinished_reason(path, variant) if path.exists() or path.is_symlink() else "missing"
+        if reason is None:
+            outcomes[variant.index] = _read_outcome(folder, variant)
+        elif reason != "missing" and notice is not None:
+            notice(f"variant {variant.index + 1} ({variant.label}): {reason}; running it again")
+    return outcomes
 
 
 def check_folder(folder: Path) -> None:
@@ -133,12 +153,13 @@ def check_folder(folder: Path) -> None:
 
 
 def run_study(study: Study, folder: Path, *, workers: int = 1, scheduler: str | None = None,
-              progress: StudyProgress | None = None) -> StudyReport:
+              progress: StudyProgress | None = None, notice: Callable[[str], None] | None = None) -> StudyReport:
     """Run every variant of `study` whose file in `folder` is not already finished, on a local Dask cluster of
     `workers` processes or on the cluster whose scheduler is at `scheduler`; write index.csv (and failures.txt
-    when a variant failed). Bad `folder` or an unreachable scheduler raise CaseError before anything is written."""
+    when a variant failed). Bad `folder` or an unreachable scheduler raise CaseError before anything is written.
+    `notice` is told of each existing file that is run again (damaged, or another case)."""
     check_folder(folder)
-    outcomes = {v.index: _read_outcome(folder, v) for v in study.variants if finished(folder / v.file_name, v)}
+    outcomes = _resumed(study, folder, notice)
     todo = [v for v in study.variants if v.index not in outcomes]
     start, started = time.perf_counter(), False
     try:

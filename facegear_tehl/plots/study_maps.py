@@ -12,6 +12,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 import csv
 from dataclasses import dataclass
+import io
 import itertools
 import math
 from pathlib import Path
@@ -64,13 +65,20 @@ def read_index(folder: Path) -> StudyIndex:
     """The index of the study folder `folder`; ResultFileError if it has none or it is not a study index."""
     path = folder / INDEX
     try:
-        with path.open(encoding="utf-8", newline="") as stream:
-            table = list(csv.reader(stream))
+        text = path.read_text(encoding="utf-8")
+        table = list(csv.reader(io.StringIO(text, newline="")))
     except OSError as exc:
         raise ResultFileError(f"{folder}: not a study folder ({INDEX}: {exc.strerror})") from None
+    except (UnicodeDecodeError, csv.Error) as exc:
+        raise ResultFileError(f"{path}: not a readable study index ({exc}); run tehl study again to rewrite it") \
+            from None
     header = table[0] if table else []
     if header[:1] != ["variant"] or "point" not in header:
         raise ResultFileError(f"{path}: not a study index (no variant and point columns)")
+    if not text.endswith("\n"):  # write_index ends every row, the last one included, with a newline
+        raise ResultFileError(f"{path}: its last line is cut short (a truncated index); run tehl study again to "
+                              "rewrite it")
+    _check_rows(path, header, table[1:])
     keys = tuple(header[1:header.index("point")])
     units = {}
     for column in header:
@@ -79,6 +87,27 @@ def read_index(folder: Path) -> StudyIndex:
             units[match.group(1)] = match.group(2)
     names = [re.sub(r" \[.*\]$", "", column) for column in header]
     return StudyIndex(keys, tuple(dict(zip(names, row)) for row in table[1:]), units)
+
+
+def _check_rows(path: Path, header: list[str], rows: list[list[str]]) -> None:
+    """ResultFileError naming the line of the first row of `rows` that has not a cell per column (a truncated or
+    edited index) or holds a scalar of COLUMNS that is neither empty nor a finite number."""
+    numeric = [i for i, column in enumerate(header) if re.sub(r" \[.*\]$", "", column) in COLUMNS]
+    for line, row in enumerate(rows, start=2):
+        if len(row) != len(header):
+            raise ResultFileError(f"{path}: line {line} has {len(row)} cells, the header {len(header)} (a truncated "
+                                  "or damaged index); run tehl study again to rewrite it")
+        for i in numeric:
+            if row[i] and not _finite(row[i]):
+                raise ResultFileError(f"{path}: line {line}, column {header[i]}: {row[i]!r} is not a number; run "
+                                      "tehl study again to rewrite the index")
+
+
+def _finite(text: str) -> bool:
+    try:
+        return math.isfinite(float(text))
+    except ValueError:
+        return False
 
 
 def map_grids(index: StudyIndex, z: str = "h_min", x: str | None = None, y: str | None = None,
