@@ -21,7 +21,7 @@ import re
 import numpy as np
 
 from facegear_tehl.plots import FORMATS
-from facegear_tehl.plots.common import Output, PlotReport, figure
+from facegear_tehl.plots.common import Output, PlotReport, figure, plain
 from facegear_tehl.results import ResultFileError
 from facegear_tehl.schema import CaseError
 from facegear_tehl.study import COLUMNS, INDEX
@@ -206,15 +206,15 @@ def draw_map(grid: MapGrid, out: Output) -> None:
             text = "–" if math.isnan(value) else f"{value:.3g}" + ("*" if grid.not_converged[i, j] else "")
             ax.text(xs[j], ys[i], text, ha="center", va="center", fontsize="x-small", color="black",
                     bbox={"facecolor": "white", "alpha": 0.6, "linewidth": 0, "pad": 1})
-    ax.set_xticks(xs, grid.x_values if not x_numeric else None)
-    ax.set_xlabel(grid.x)
+    ax.set_xticks(xs, [plain(v) for v in grid.x_values] if not x_numeric else None)
+    ax.set_xlabel(plain(grid.x))
     if grid.y is None:
         ax.set_yticks([])
     else:
-        ax.set_yticks(ys, grid.y_values if not y_numeric else None)
-        ax.set_ylabel(grid.y)
-    where = "worst point" if grid.point == WORST else f"point {grid.point}"
-    pinned = "".join(f", {key} = {value}" for key, value in grid.fixed)
+        ax.set_yticks(ys, [plain(v) for v in grid.y_values] if not y_numeric else None)
+        ax.set_ylabel(plain(grid.y))
+    where = "worst point" if grid.point == WORST else f"point {plain(grid.point)}"
+    pinned = plain("".join(f", {key} = {value}" for key, value in grid.fixed))
     flagged = "; * not converged" if grid.not_converged.any() else ""
     ax.set_title(f"{label}, {where}{pinned}{flagged}", fontsize="medium")
     out.save(fig, _stem(grid))
