@@ -19,7 +19,7 @@ from typing import Any
 import click
 import numpy as np
 
-from facegear_tehl import __version__
+from facegear_tehl import __version__, kernel_cache
 from facegear_tehl.case import Case, load_case
 from facegear_tehl.cycle import COARSE_POINT_COUNT, QUADRATURE
 from facegear_tehl.gears.analysis import analyse_gear_pair
@@ -113,7 +113,7 @@ def run(
     force: bool,
 ) -> None:
     """Solve CASE and write the result file."""
-    case = _load_case(case_file)
+    case = _load_case(case_file, solves=True)
     if thermal is not None:
         case = with_thermal(case, thermal)
     workers = worker_count(jobs)
@@ -156,9 +156,12 @@ def run(
     _exit_on_status(ctx, result)
 
 
-def _load_case(case_file: str) -> Case:
-    """The validated case; its warnings (valid but unusual values) on stderr."""
+def _load_case(case_file: str, solves: bool = False) -> Case:
+    """The validated case; its warnings (valid but unusual values) on stderr, and for a command that `solves`
+    the kernel cache's (kernel_cache.py)."""
     case = load_case(case_file)
+    if solves and kernel_cache.WARNING:
+        click.echo(f"warning: {kernel_cache.WARNING}", err=True)
     for warning in case.warnings:
         click.echo(f"warning: {warning}", err=True)
     return case
@@ -203,7 +206,7 @@ def sweep(
 ) -> None:
     """Solve one point of CASE on a sequence of grids and print its mesh-independence table (change per
     grid, observed order, Richardson extrapolation with its GCI uncertainty); writes HDF5 (/sweep) and CSV."""
-    case = _load_case(case_file)
+    case = _load_case(case_file, solves=True)
     grid_list = parse_grids(grids, case)
     check_tolerance(tolerance)
     workers = worker_count(jobs)
@@ -251,6 +254,8 @@ def study(ctx: click.Context, study_file: str, output: str | None, workers: int 
     from facegear_tehl.study_file import load_study
 
     plan = load_study(study_file)
+    if kernel_cache.WARNING:
+        click.echo(f"warning: {kernel_cache.WARNING}", err=True)
     if scheduler is not None and workers is not None:
         raise CaseError("--workers", workers, "no --workers with --scheduler (the cluster has its own workers)")
     count = worker_count(workers, "--workers")
