@@ -32,6 +32,7 @@ import h5py
 
 from facegear_tehl.output_path import starts_with
 from facegear_tehl.results import ResultFileError, RunResult, read_result, write_result
+from facegear_tehl.scheduler_probe import probe
 from facegear_tehl.schema import CaseError
 from facegear_tehl.study_file import Study, Variant, digest, value_text
 
@@ -183,6 +184,7 @@ def _client(workers: int, scheduler: str | None) -> Iterator[object]:
     from distributed import Client, LocalCluster
 
     if scheduler is not None:
+        probe(scheduler)  # a server that never answers, or is not Dask's: CaseError, not a hang
         try:
             client = Client(scheduler, timeout=CONNECT_TIMEOUT)
         except (OSError, ValueError, TypeError) as exc:
