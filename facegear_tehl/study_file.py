@@ -29,6 +29,7 @@ import yaml
 
 from facegear_tehl.case import Case, _Loader, parse_case, read_input
 from facegear_tehl.schema import Block, CaseError, check
+from facegear_tehl.yaml_bounds import check_expansion
 
 HASH_DIGITS = 16  # hex digits of the SHA-256 kept in a file name: 64 bits, no collision among 1e9 variants
 RESERVED_BLOCK = "output"  # not a study key: each variant's file is named by its hash
@@ -145,6 +146,7 @@ def _yaml(text: str, key: str, expected: str) -> Any:
         raise CaseError(key, "a value YAML cannot read", "valid YAML") from None
     if raw is None:
         raise CaseError(key, "an empty document", expected)
+    check_expansion(raw, key)  # an alias bomb: refused before it is copied and written out per variant
     return raw
 
 
