@@ -18,7 +18,8 @@ from the on-disk cache (`cache=True`; its files are written by rename, so worker
 time do not corrupt it).
 
 A worker that dies (SIGKILL, the out-of-memory killer) breaks the pool: its solves and those of the other workers
-are submitted once more to a fresh pool (supervision.py), so that a lost worker costs no point.
+are submitted again to a fresh pool, and a solve lost twice is run alone (supervision.py), so that a lost worker
+costs no point.
 
 Every solve, in this process or a worker, runs with one BLAS thread: OpenBLAS adds in another order with
 more threads, so this keeps the results bit-identical whatever `jobs` (and whatever the machine's core
@@ -46,7 +47,7 @@ from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.schema import check
 from facegear_tehl.settings import SolverSettings
 from facegear_tehl.solution import Outcome, PointSolution
-from facegear_tehl.supervision import LOST_MESSAGE, SupervisedPool, WorkerLost, worker_lost
+from facegear_tehl.supervision import LOST_MESSAGE, SupervisedPool, WorkerLost, die_with_parent, worker_lost
 
 Solver = Callable[[ContactPoint, Lubricant, SolverSettings], PointSolution]
 """A whole solve: `ehl.solve.solve_point` or a stand-in with its signature (module-level, so that it can be
@@ -191,9 +192,10 @@ def solve_each(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
                 else:
                     yield index, Solved(outcome if first is None else solver.with_retry(first, outcome), failed=False)
     except BaseException:
-        _stop_workers(pool.executor)
+        for executor in pool.executors:
+            _stop_workers(executor)
         raise
-    pool.executor.shutdown()
+    pool.shared.shutdown()
 
 
 class _DeferredSignals:
@@ -264,11 +266,13 @@ def _context() -> multiprocessing.context.BaseContext:
     return multiprocessing.get_context("fork" if sys.platform.startswith("linux") else "spawn")
 
 
-def _init_worker() -> None:
-    """Workers leave Ctrl-C to the parent (which stops them), end on SIGTERM without cleanup handlers
+def _init_worker(parent: int) -> None:
+    """Workers end with their parent `parent` (supervision.die_with_parent: a killed `tehl run` leaves no worker),
+    leave Ctrl-C to the parent (which stops them), end on SIGTERM without cleanup handlers
     inherited from the CLI, and use one BLAS thread (see the module: same results as in this process; and
     S1-S5 of the face gear case, thermal full, on 2 cores: 15.3 s with OpenBLAS's default threads in both
     workers, 13.1 s with one)."""
+    die_with_parent(parent)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     threadpool_limits(limits=1)
