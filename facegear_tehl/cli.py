@@ -258,7 +258,7 @@ def study(ctx: click.Context, study_file: str, output: str | None, workers: int 
         click.echo(f"warning: {kernel_cache.WARNING}", err=True)
     if scheduler is not None and workers is not None:
         raise CaseError("--workers", workers, "no --workers with --scheduler (the cluster has its own workers)")
-    count = worker_count(workers, "--workers")
+    count = min(worker_count(workers, "--workers"), len(plan.variants))  # a worker per variant at most, as --jobs
     folder = Path(output if output is not None else f"{Path(study_file).stem}_study")
     check_folder(folder)
     where = f"the Dask cluster at {scheduler}" if scheduler else f"a local Dask cluster of {count} worker processes"

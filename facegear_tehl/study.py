@@ -156,15 +156,16 @@ def check_folder(folder: Path) -> None:
 def run_study(study: Study, folder: Path, *, workers: int = 1, scheduler: str | None = None,
               progress: StudyProgress | None = None, notice: Callable[[str], None] | None = None) -> StudyReport:
     """Run every variant of `study` whose file in `folder` is not already finished, on a local Dask cluster of
-    `workers` processes or on the cluster whose scheduler is at `scheduler`; write index.csv (and failures.txt
-    when a variant failed). Bad `folder` or an unreachable scheduler raise CaseError before anything is written.
-    `notice` is told of each existing file that is run again (damaged, or another case)."""
+    `workers` processes (at most one per variant to run) or on the cluster whose scheduler is at `scheduler`; write
+    index.csv (and failures.txt when a variant failed). Bad `folder` or an unreachable scheduler raise CaseError
+    before anything is written. `notice` is told of each existing file that is run again (damaged, or another
+    case)."""
     check_folder(folder)
     outcomes = _resumed(study, folder, notice)
     todo = [v for v in study.variants if v.index not in outcomes]
     start, started = time.perf_counter(), False
     try:
-        with _client(workers, scheduler) if todo else nullcontext() as client:
+        with _client(min(workers, len(todo)), scheduler) if todo else nullcontext() as client:  # as --jobs
             folder.mkdir(parents=True, exist_ok=True)  # the cluster is there: from here on the index is written
             start, started = time.perf_counter(), True
             if todo:

@@ -5,6 +5,7 @@ never replaces a result file holding more converged points; killing the parent e
 
 from __future__ import annotations
 
+from contextlib import contextmanager
 import os
 from pathlib import Path
 import signal
@@ -147,3 +148,21 @@ def test_killing_the_parent_of_tehl_run_ends_its_workers(tmp_path):
     for pid in survivors:  # before the fix they ran on for minutes: end them, then fail
         os.kill(pid, signal.SIGKILL)
     assert survivors == []
+
+
+def test_study_workers_are_capped_at_the_variants_to_run(tmp_path, monkeypatch):
+    """`tehl study --workers 1000` on two variants starts two worker processes (it started 254 and took 8.6 GB)."""
+    started: list[int] = []
+
+    @contextmanager
+    def recording_client(workers, scheduler):
+        started.append(workers)
+        raise KeyboardInterrupt  # stop before any cluster starts
+        yield
+
+    monkeypatch.setattr("facegear_tehl.study._client", recording_client)
+    study = tmp_path / "study.yaml"
+    study.write_text(f"base: {synthetic.BALL_ON_DISC}\nvary:\n  contact.load: [4.0, 9.0]\n", encoding="utf-8")
+    result = CliRunner().invoke(tehl, ["study", str(study), "--workers", "1000", "-o", str(tmp_path / "out")])
+    assert started == [2]
+    assert "on a local Dask cluster of 2 worker processes" in result.stderr
