@@ -33,6 +33,7 @@ from facegear_tehl.output_path import (
 )
 from facegear_tehl.parallel import worker_count
 from facegear_tehl.points import contact_analysis, select_points
+from facegear_tehl.resources import check_fits, estimate, machine_memory
 from facegear_tehl.results import PointResult, Result, ResultFileError, read_result, write_result
 from facegear_tehl.schema import CaseError
 from facegear_tehl.solution import PointSolution
@@ -53,6 +54,7 @@ from facegear_tehl.templates import case_template
 from facegear_tehl.units import CELSIUS, MILLIMETRE, PERCENT, Unit, display
 
 EXIT_ERROR, EXIT_BAD_INPUT, EXIT_NOT_CONVERGED = 1, 2, 3
+BIG_RUN_SECONDS = 600.0  # a run estimated longer than this says so before it starts
 
 
 class _Tehl(click.Group):
@@ -100,7 +102,8 @@ Examples:
 @click.option("--points", help="Comma-separated point names to solve (e.g. S1,S3); default all.")
 @click.option("--thermal", help="Thermal model, overrides solver.thermal: off | reduced | full | auto.")
 @click.option("--jobs", type=int, help="Worker processes solving points side by side (default: all cores).")
-@click.option("--force", is_flag=True, help="Overwrite an existing output file that tehl did not write.")
+@click.option("--force", is_flag=True, help="Overwrite an existing output file that tehl did not write; run even "
+                                           "when the memory estimate passes this machine's memory.")
 @click.pass_context
 def run(
     ctx: click.Context,
@@ -123,6 +126,8 @@ def run(
     selected = analysis.points if names is None else select_points(analysis.points, names)
     target = _output_path(Path(case_file), case, output, force)
     processes = min(workers, len(selected))
+    _guard([(p, case.lubricant, solver) for p in selected], processes, ("--grid", grid) if grid else
+           ("solver.grid", case.solver.grid), force)
     click.echo(
         f"tehl run: {case.name}: {', '.join(p.name for p in selected)} on a {solver.grid}x{solver.nodes_y} grid, "
         f"thermal {solver.thermal}"
@@ -167,6 +172,15 @@ def _load_case(case_file: str, solves: bool = False) -> Case:
     return case
 
 
+def _guard(tasks: list, processes: int, setting: tuple[str, Any], force: bool) -> None:
+    """The resource guard (resources.py): refuse a run above this machine's memory unless `force` (CaseError under
+    the option or key that set the grid); print the estimate when it takes half the memory or ten minutes."""
+    found = estimate(tasks, processes)
+    check_fits(found, *setting, force)
+    if found.memory > 0.5 * machine_memory() or found.seconds > BIG_RUN_SECONDS:
+        click.echo(f"note: {found.text()}", err=True)
+
+
 def _exit_on_status(ctx: click.Context, result: Result) -> None:
     """Exit 1 if a point failed, 3 if one did not converge (the file is written either way)."""
     if result.status == "failed":
@@ -191,7 +205,8 @@ Examples:
 @click.option("-o", "--output",
               help="Sweep file, HDF5 (default: <case name>_sweep_<point>.h5); the CSV goes next to it.")
 @click.option("--jobs", type=int, help="Worker processes solving grids side by side (default: all cores).")
-@click.option("--force", is_flag=True, help="Overwrite existing output files that tehl did not write.")
+@click.option("--force", is_flag=True, help="Overwrite existing output files that tehl did not write; run even "
+                                           "when the memory estimate passes this machine's memory.")
 @click.pass_context
 def sweep(
     ctx: click.Context,
@@ -219,6 +234,10 @@ def sweep(
     checked_output("--output", target, inputs=[Path(case_file)], force=force)
     checked_output("--output", target.with_suffix(".csv"), inputs=[Path(case_file)], force=force,
                    ours=starts_with("grid ["), what="a sweep CSV")
+    point_of = next(p for p in points if p.name == name)
+    swept_case = case if thermal is None else with_thermal(case, thermal)
+    _guard([(point_of, case.lubricant, swept_case.with_grid(g).solver) for g in grid_list], workers,
+           ("--grids", grids), force)
     click.echo(
         f"tehl sweep: {case.name}: {name} on grids {','.join(map(str, grid_list))}, thermal {model}"
         + (f", {min(workers, len(grid_list))} worker processes" if workers > 1 else ""),
