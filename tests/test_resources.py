@@ -68,3 +68,35 @@ def test_a_sweep_above_the_machine_memory_is_refused(tmp_path, monkeypatch, smal
     assert result.stderr.strip().splitlines()[-1].startswith("error: --grids: got '1025,2049,4097'; expected a run "
                                                              "that fits this machine's memory")
     assert small_machine == []
+
+
+def _study(tmp_path, values: int, keys: int = 1):
+    study = tmp_path / "study.yaml"
+    vary = "".join(f"  {key}: [{', '.join(str(1.0 + i) for i in range(values))}]\n"
+                   for key in ("contact.load", "contact.entrainment_speed", "contact.slide_roll_ratio")[:keys])
+    study.write_text(f"base: {synthetic.BALL_ON_DISC}\nvary:\n{vary}", encoding="utf-8")
+    return study
+
+
+def test_a_huge_study_is_refused_at_once_with_its_size(tmp_path):
+    """10^3 x 10^3 x 10^2 = 10^8 variants: refused before any is built (it printed nothing for 90 s)."""
+    study = tmp_path / "study.yaml"
+    study.write_text(f"base: {synthetic.BALL_ON_DISC}\nvary:\n"
+                     f"  contact.load: [{', '.join(str(1.0 + i) for i in range(1000))}]\n"
+                     f"  contact.entrainment_speed: [{', '.join(str(0.1 + i) for i in range(1000))}]\n"
+                     f"  contact.slide_roll_ratio: [{', '.join(str(i / 100) for i in range(100))}]\n",
+                     encoding="utf-8")
+    result = CliRunner().invoke(tehl, ["study", str(study), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 2, result.output
+    assert result.stderr.strip() == ("error: vary: got '100000000 variants'; expected at most 10000 variants (the "
+                                     "product of the lengths of the vary lists): split the study")
+
+
+def test_a_large_study_says_its_size_before_validating(tmp_path, monkeypatch):
+    monkeypatch.setattr("facegear_tehl.study.run_study", _stop)
+    result = CliRunner().invoke(tehl, ["study", str(_study(tmp_path, 10, keys=2)), "-o", str(tmp_path / "out")])
+    assert result.stderr.splitlines()[0] == "tehl study: 100 variants: validating each case (about 2 s)"
+
+
+def _stop(*args, **kwargs):
+    raise KeyboardInterrupt
