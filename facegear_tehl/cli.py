@@ -2,7 +2,8 @@
 
 Exit codes: 0 ok; 1 unexpected error (or a point whose solve failed; its result is still written);
 2 bad input (case file, options, not a result file): one line `error: <key path>: ...` per problem, no
-output file; 3 not converged (result written, flagged), or a variant of a study that failed (the others written).
+output file; 3 not converged (result written, flagged), or a variant of a study that failed (the others written);
+130 interrupted by Ctrl-C, 143 by SIGTERM (docs/guarantees.md).
 Warnings (valid but unusual input) go to stderr.
 """
 
@@ -54,6 +55,7 @@ from facegear_tehl.templates import case_template
 from facegear_tehl.units import CELSIUS, MILLIMETRE, PERCENT, Unit, display
 
 EXIT_ERROR, EXIT_BAD_INPUT, EXIT_NOT_CONVERGED = 1, 2, 3
+EXIT_INTERRUPTED = 128 + signal.SIGINT  # 130
 BIG_RUN_SECONDS = 600.0  # a run estimated longer than this says so before it starts
 ANNOUNCED_VARIANTS = 100  # a study of this many variants says its size before validating them (2 s or more) ...
 VALIDATION_SECONDS = 0.02  # ... at about this many seconds a variant (1000 face gear variants validated in 20 s)
@@ -67,6 +69,9 @@ class _Tehl(click.Group):
             return super().invoke(ctx)
         except (click.ClickException, click.exceptions.Exit, click.Abort):
             raise
+        except KeyboardInterrupt:  # Ctrl-C: the shell's convention, 128 + SIGINT; files as SIGTERM leaves them
+            click.echo("interrupted", err=True)
+            ctx.exit(EXIT_INTERRUPTED)
         except (CaseError, ResultFileError) as exc:
             for line in str(exc).splitlines():  # one line per problem (CaseErrors holds several)
                 click.echo(f"error: {line}", err=True)

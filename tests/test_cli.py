@@ -439,7 +439,7 @@ def test_info_rejects_what_is_not_a_result(tmp_path, content):
 
 # -------------------------------------------------------------------------------- interrupted runs
 
-@pytest.mark.parametrize("signum, code", [(signal.SIGTERM, 128 + signal.SIGTERM), (signal.SIGINT, 1)])
+@pytest.mark.parametrize("signum, code", [(signal.SIGTERM, 128 + signal.SIGTERM), (signal.SIGINT, 128 + signal.SIGINT)])
 def test_interrupted_run_keeps_the_previous_result(tmp_path, signum, code):
     target = tmp_path / "r.h5"
     write_result(synthetic.run_result(), target)
