@@ -18,7 +18,7 @@ every run, interrupted or not, from the files themselves; `failures.txt` lists t
 from __future__ import annotations
 
 from collections.abc import Callable, Iterator, Sequence
-from contextlib import contextmanager, nullcontext
+from contextlib import ExitStack, contextmanager, nullcontext
 import csv
 from dataclasses import dataclass
 import io
@@ -30,6 +30,7 @@ import time
 
 import h5py
 
+from facegear_tehl.folder_lock import exclusive
 from facegear_tehl.output_path import starts_with
 from facegear_tehl.results import ResultFileError, RunResult, read_result, write_result
 from facegear_tehl.scheduler_probe import probe
@@ -164,17 +165,22 @@ def run_study(study: Study, folder: Path, *, workers: int = 1, scheduler: str | 
     outcomes = _resumed(study, folder, notice)
     todo = [v for v in study.variants if v.index not in outcomes]
     start, started = time.perf_counter(), False
+    lock = ExitStack()
     try:
         with _client(min(workers, len(todo)), scheduler) if todo else nullcontext() as client:  # as --jobs
             folder.mkdir(parents=True, exist_ok=True)  # the cluster is there: from here on the index is written
+            lock.enter_context(exclusive(folder, "-o"))  # by this study alone
+            outcomes.update({v.index: _read_outcome(folder, v) for v in todo if finished(folder / v.file_name, v)})
+            todo = [v for v in todo if v.index not in outcomes]  # less what a study before this one finished
             start, started = time.perf_counter(), True
             if todo:
                 for outcome in _compute(client, todo, folder, progress, start):
                     outcomes[outcome.variant.index] = outcome
     finally:
-        if started:
-            final = tuple(outcomes.get(v.index) or _unrecorded(folder, v) for v in study.variants)
-            index = write_index(study, folder, final)
+        with lock:  # released once the index is written
+            if started:
+                final = tuple(outcomes.get(v.index) or _unrecorded(folder, v) for v in study.variants)
+                index = write_index(study, folder, final)
     return StudyReport(final, time.perf_counter() - start, index)
 
 
