@@ -38,13 +38,13 @@ from datetime import datetime, timezone
 import json
 import os
 from pathlib import Path
-import secrets
 from typing import TYPE_CHECKING, Any, Mapping
 import zlib
 
 import numpy as np
 
 from facegear_tehl import __version__
+from facegear_tehl.atomic_files import remove_stale, temporary_beside
 from facegear_tehl.case import Case
 from facegear_tehl.h5_guard import ResultFileError, check_layout
 from facegear_tehl.solution import Field, PointSolution
@@ -186,7 +186,8 @@ def write_result(run: RunResult, path: str | Path) -> Path:
 
     target = Path(path)
     _check_run(run)
-    temporary = target.with_name(f".{target.name}.{secrets.token_hex(6)}.tmp")
+    remove_stale(target)  # a killed writer's temporary file
+    temporary = temporary_beside(target)
     try:
         with (h5py.File(temporary, "w-", track_order=True) as h5,
               ThreadPoolExecutor(max_workers=_deflate_threads()) as pool):

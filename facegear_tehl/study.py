@@ -30,6 +30,7 @@ import time
 
 import h5py
 
+from facegear_tehl.atomic_files import remove_stale, temporary_beside
 from facegear_tehl.folder_lock import exclusive
 from facegear_tehl.output_path import starts_with
 from facegear_tehl.results import ResultFileError, RunResult, read_result, write_result
@@ -293,7 +294,8 @@ def _number(value: float | None) -> str:
 
 def _write_text(path: Path, text: str) -> Path:
     """`text` written to a temporary file and renamed onto `path` (no partial file ever)."""
-    temporary = path.with_name(f".{path.name}.{secrets.token_hex(6)}.tmp")
+    remove_stale(path)  # a killed writer's temporary file
+    temporary = temporary_beside(path)
     try:
         temporary.write_text(text, encoding="utf-8")
         os.replace(temporary, path)
