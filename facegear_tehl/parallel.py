@@ -175,12 +175,8 @@ def solve_each(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
                 finished: set[Future] = set()
                 while not finished and not signals.received:
                     finished = pool.wait(pending, timeout=0.2)
-            for future in sorted(finished, key=lambda f: pending[f][0]):
+            for future in sorted(pool.retry_lost(finished, pending), key=lambda f: pending[f][0]):
                 index, first = pending.pop(future)
-                again = pool.resubmitted(future)
-                if again is not None:
-                    pending[again] = (index, first)
-                    continue
                 outcome = _outcome(future, tasks[index])
                 if not staged or isinstance(outcome, Solved):
                     yield index, outcome

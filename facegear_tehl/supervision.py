@@ -108,6 +108,18 @@ class SupervisedPool:
             self.shared = ProcessPoolExecutor(max_workers=self._workers, **self._options)
         return set(finished)
 
+    def retry_lost(self, finished: set[Future], pending: dict[Future, object]) -> set[Future]:
+        """`finished` less the futures whose calls were submitted again (`resubmitted`), each new future taking
+        its old one's entry in `pending`."""
+        kept = set()
+        for future in finished:
+            again = self.resubmitted(future)
+            if again is None:
+                kept.add(future)
+            else:
+                pending[again] = pending.pop(future)
+        return kept
+
     def resubmitted(self, future: Future) -> Future | None:
         """The call of `future` submitted again when its worker was lost, as the class says, else None (also for
         every future that did not end by a worker loss). Forgets `future` either way."""
