@@ -56,6 +56,7 @@ from facegear_tehl.units import CELSIUS, MILLIMETRE, PERCENT, Unit, display
 
 EXIT_ERROR, EXIT_BAD_INPUT, EXIT_NOT_CONVERGED = 1, 2, 3
 EXIT_INTERRUPTED = 128 + signal.SIGINT  # 130
+UNEXPECTED = "an unexpected error: tehl --debug with the same arguments shows where; please report it with that output"
 BIG_RUN_SECONDS = 600.0  # a run estimated longer than this says so before it starts
 ANNOUNCED_VARIANTS = 100  # a study of this many variants says its size before validating them (2 s or more) ...
 VALIDATION_SECONDS = 0.02  # ... at about this many seconds a variant (1000 face gear variants validated in 20 s)
@@ -79,7 +80,7 @@ class _Tehl(click.Group):
         except Exception as exc:  # noqa: BLE001 - any other error: one line and exit 1 (--debug: the traceback)
             if ctx.params.get("debug"):
                 traceback.print_exc()
-            click.echo(f"error: {type(exc).__name__}: {exc}", err=True)
+            click.echo(f"error: {type(exc).__name__}: {exc} ({UNEXPECTED})", err=True)
             ctx.exit(EXIT_ERROR)
 
 

@@ -330,6 +330,8 @@ def test_unexpected_error_exits_1_without_a_file(tmp_path, monkeypatch, fake_sol
     assert result.exit_code == 1
     lines = result.stderr.strip().splitlines()
     assert lines[-1].startswith("error: NonFiniteError: /points/contact/pressure: refusing to write 1 NaN")
+    assert lines[-1].endswith("(an unexpected error: tehl --debug with the same arguments shows where; please report "
+                              "it with that output)")
     assert "Traceback" not in result.output
     assert _files(tmp_path) == []
 
