@@ -34,7 +34,7 @@ from facegear_tehl.output_path import (
 )
 from facegear_tehl.parallel import worker_count
 from facegear_tehl.points import contact_analysis, select_points
-from facegear_tehl.resources import check_fits, estimate, machine_memory
+from facegear_tehl.resources import check_fits, estimate, machine_memory, study_estimate
 from facegear_tehl.results import PointResult, Result, ResultFileError, read_result, write_result
 from facegear_tehl.schema import CaseError
 from facegear_tehl.solution import PointSolution
@@ -273,8 +273,11 @@ Examples:
 @click.option("-o", "--output", help="Folder of the study's result files and index.csv (default: <STUDY name>_study).")
 @click.option("--workers", type=int, help="Worker processes of the local Dask cluster (default: all cores).")
 @click.option("--scheduler", help="Address of an existing Dask scheduler (e.g. tcp://host:8786) instead.")
+@click.option("--force", is_flag=True, help="Run even when the memory estimate of the local cluster passes this "
+                                           "machine's memory.")
 @click.pass_context
-def study(ctx: click.Context, study_file: str, output: str | None, workers: int | None, scheduler: str | None) -> None:
+def study(ctx: click.Context, study_file: str, output: str | None, workers: int | None, scheduler: str | None,
+          force: bool) -> None:
     """Run every variant of STUDY (a base case and the keys it varies) on a Dask cluster: one result file per
     variant, named by the hash of its case, and index.csv; variants already finished are skipped."""
     from facegear_tehl.study import check_folder, run_study
@@ -288,6 +291,11 @@ def study(ctx: click.Context, study_file: str, output: str | None, workers: int 
     count = min(worker_count(workers, "--workers"), len(plan.variants))  # a worker per variant at most, as --jobs
     folder = Path(output if output is not None else f"{Path(study_file).stem}_study")
     check_folder(folder)
+    if scheduler is None:  # the local cluster's memory (a remote cluster's machines are not this one)
+        found = study_estimate([v.case for v in plan.variants], count)
+        check_fits(found, "--workers", count, force)
+        if found.memory > 0.5 * machine_memory():
+            click.echo(f"note: {found.text()}", err=True)
     where = f"the Dask cluster at {scheduler}" if scheduler else f"a local Dask cluster of {count} worker processes"
     click.echo(f"tehl study: {len(plan.variants)} variants of {plan.base.name} over {', '.join(plan.keys)} "
                f"on {where}", err=True)

@@ -22,10 +22,12 @@ from dataclasses import dataclass
 import os
 from pathlib import Path
 
+from facegear_tehl.case import Case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.domain import solution_domain
 from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.lubricant import Lubricant
+from facegear_tehl.points import contact_analysis
 from facegear_tehl.schema import CaseError
 from facegear_tehl.settings import SolverSettings
 
@@ -67,6 +69,21 @@ def estimate(tasks: Sequence[tuple[ContactPoint, Lubricant, SolverSettings]], pr
     return Estimate(memory, seconds, max(nodes, default=0))
 
 
+def study_estimate(cases: Sequence[Case], workers: int) -> Estimate:
+    """The Estimate of a study's variants `cases` on `workers` processes, each solving one variant's points in
+    turn: `workers` times the largest variant's. Variants are grouped by grid and thermal model and the first and
+    last of each group estimated (the grid sets the nodes; the load and speed only how far the inlet is lengthened)."""
+    groups: dict[tuple[object, ...], list[Case]] = {}
+    for case in cases:
+        groups.setdefault((case.solver.grid, case.solver.nodes_y, case.solver.thermal), []).append(case)
+    singles = [estimate([(p, c.lubricant, c.solver) for p in contact_analysis(c).points], 1)
+               for group in groups.values() for c in {id(group[0]): group[0], id(group[-1]): group[-1]}.values()]
+    largest = max(singles, key=lambda e: e.memory)
+    count = max(1, min(workers, len(cases)))
+    return Estimate(count * largest.memory, sum(e.seconds for e in singles) / len(singles) * len(cases) / count,
+                    largest.largest)
+
+
 def machine_memory() -> float:
     """Bytes this process may use: the physical memory, or its cgroup's limit when lower."""
     total = float(os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
@@ -83,7 +100,7 @@ def check_fits(found: Estimate, key: str, value: object, force: bool, memory: fl
     available = machine_memory() if memory is None else memory
     if found.memory > available and not force:
         raise CaseError(key, value, f"a run that fits this machine's memory ({found.text()}; this machine has "
-                                    f"{available / 1e9:.1f} GB): a coarser grid, fewer --jobs, or --force")
+                                    f"{available / 1e9:.1f} GB): a coarser grid, fewer worker processes, or --force")
 
 
 def _nodes(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> int:

@@ -100,3 +100,18 @@ def test_a_large_study_says_its_size_before_validating(tmp_path, monkeypatch):
 
 def _stop(*args, **kwargs):
     raise KeyboardInterrupt
+
+
+def test_a_study_above_the_machine_memory_is_refused_unless_forced(tmp_path, monkeypatch, small_machine):
+    """Two variants on 4097^2 nodes, two workers: 2 x 5.5 GB on a 4 GB machine."""
+    monkeypatch.setattr("facegear_tehl.study.run_study", _stop)
+    study = tmp_path / "study.yaml"
+    study.write_text(f"base: {synthetic.BALL_ON_DISC}\nvary:\n  contact.load: [4.0, 9.0]\nset:\n  solver.grid: 4097\n",
+                     encoding="utf-8")
+    result = CliRunner().invoke(tehl, ["study", str(study), "--workers", "2", "-o", str(tmp_path / "out")])
+    assert result.exit_code == 2, result.output
+    line = result.stderr.strip().splitlines()[-1]
+    assert line.startswith("error: --workers: got 2; expected a run that fits this machine's memory (estimated peak "
+                           "memory 11."), line
+    forced = CliRunner().invoke(tehl, ["study", str(study), "--workers", "2", "--force", "-o", str(tmp_path / "out")])
+    assert forced.exit_code == 130 and "note: estimated peak memory 11." in forced.stderr  # then stopped (_stop)
