@@ -4,6 +4,7 @@ A result file may come from anyone: damaged on disk, edited by hand, or made to 
 `check_layout` walks every link of the file and refuses (ResultFileError naming the file and the object):
 
 - a soft or external link: a tehl result holds none, and following one would read another file's data, or loop;
+  likewise a dataset whose data lie in an external raw file or that is a virtual dataset mapping other files;
 - a dangling link, or an object nested deeper than the layout (results.py) nests groups;
 - a dataset that is not numbers or text, has more than two dimensions, or declares more bytes than it stores can
   give: an unfiltered dataset must store at least what it declares (the rest would be fill values), a filtered
@@ -143,8 +144,12 @@ def _check_dataset(dataset: h5py.Dataset, where: str, path: Path) -> None:
         raise _damaged(path, where, f"numbers or text, not {dataset.dtype}")
     if dataset.ndim > MAX_DIMENSIONS:
         raise _damaged(path, where, f"at most {MAX_DIMENSIONS} dimensions, not {dataset.ndim}")
+    layout = dataset.id.get_create_plist()
+    if dataset.is_virtual or layout.get_external_count() > 0:
+        raise _damaged(path, where, "data stored in this file (not in an external raw file, not a virtual dataset "
+                                    "mapping other files)")
     declared = dataset.size * dataset.dtype.itemsize
     stored = dataset.id.get_storage_size()
-    filtered = dataset.id.get_create_plist().get_nfilters() > 0
+    filtered = layout.get_nfilters() > 0
     if declared > stored * (MAX_INFLATION if filtered else 1):
         raise _damaged(path, where, f"the {declared} bytes it declares stored in the file (it stores {stored})")

@@ -106,6 +106,25 @@ def test_an_external_link_is_not_followed(tmp_path, good):
     assert "intruder" in result.stderr and "link" in result.stderr
 
 
+@pytest.mark.parametrize("kind", ["external raw file", "virtual dataset"])
+def test_data_held_in_another_file_is_not_read(tmp_path, good, kind):
+    other = write_result(synthetic.run_result(), tmp_path / "other.h5")
+    with h5py.File(good, "a") as h5:
+        group = h5["points/contact"]
+        if kind == "external raw file":
+            raw = tmp_path / "raw.bin"
+            raw.write_bytes(np.arange(4.0).tobytes())
+            group.create_dataset("residual_external", shape=(4,), dtype="f8", external=[(str(raw), 0, 32)])
+        else:
+            layout = h5py.VirtualLayout(shape=(33,), dtype="f8")
+            layout[:] = h5py.VirtualSource(str(other), "points/contact/x", shape=(33,))
+            group.create_virtual_dataset("residual_external", layout)
+        group["residual_external"].attrs.update(kind="history", units="1", description="")
+    result = _invoke("info", good)
+    _refused(result, good)
+    assert "residual_external" in result.stderr
+
+
 def test_a_damaged_chunk_is_refused_by_plot(good):
     with h5py.File(good, "r") as h5:
         offset = h5["points/contact/pressure"].id.get_chunk_info(0).byte_offset
