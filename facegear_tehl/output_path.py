@@ -7,7 +7,8 @@ that named it, exit 2, no file):
   hard link or a symbolic link to it is), whatever --force says;
 - never an existing file that this program did not write, unless --force: an HDF5 file is ours when its root
   carries the attribute filetype = results.FILETYPE; a CSV or other text file when `ours` says so;
-- never a directory, and only under a writable directory;
+- never a directory, a device, a FIFO or a socket (the result is renamed onto its path, which would replace a
+  device node such as /dev/null with a file), and only under a writable directory;
 - a case's `output.file` is resolved against the case file's folder and must stay inside it (no `..` or absolute
   path that leads elsewhere): a case received from someone else cannot write over files outside its own folder;
 - `tehl run` never replaces a result file with one holding fewer converged points (a run that lost points to a
@@ -72,6 +73,9 @@ def checked_output(key: str, target: Path, *, inputs: Sequence[Path] = (), force
                    ours: Ownership = is_result_file, what: str = "a tehl result") -> Path:
     """`target` if a command may write it (module docstring); CaseError under `key` otherwise."""
     writable_location(key, target)
+    if target.exists() and not target.is_file():  # a device, a FIFO, a socket: renaming onto it would replace it
+        raise CaseError(key, str(target), "a regular file path (this is a device, FIFO or socket; not even --force "
+                                          "writes over it)")
     for source in inputs:
         if same_file(target, source):
             raise CaseError(key, str(target), f"a path other than the input {source} (it would be overwritten)")

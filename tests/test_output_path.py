@@ -72,6 +72,16 @@ def test_run_refuses_an_existing_file_it_did_not_write_unless_forced(tmp_path, m
     assert read_result(notes).status == "ok"
 
 
+def test_run_never_writes_over_a_fifo(tmp_path, monkeypatch, fake_solver):
+    """A FIFO (like a device node) is no file to replace, not even with --force; reading it to see whose file it
+    is would wait for a writer for ever."""
+    monkeypatch.chdir(tmp_path)
+    fifo = tmp_path / "pipe"
+    os.mkfifo(fifo)
+    _refused(_invoke("run", _case(tmp_path), "-o", fifo, "--force"), "--output")
+    assert fifo.is_fifo()
+
+
 def test_run_replaces_a_result_file_of_its_own(tmp_path, monkeypatch, fake_solver):
     monkeypatch.chdir(tmp_path)
     target = write_result(synthetic.run_result(converged=False), tmp_path / "r.h5")
