@@ -448,6 +448,8 @@ def read_result(path: str | Path, fields: bool = True) -> Result:
     import h5py
 
     path = Path(path)
+    if path.exists() and not path.is_file():  # a FIFO would block the open until someone writes to it
+        raise ResultFileError(f"{path}: not a result file (a directory, device or FIFO, not a regular file)")
     try:
         h5 = h5py.File(path, "r")
     except (OSError, ValueError) as exc:

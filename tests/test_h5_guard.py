@@ -5,6 +5,7 @@ damaged file, naming it."""
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 import shutil
 import time
@@ -95,6 +96,12 @@ def test_a_malformed_file_is_refused_naming_it(good, damage, command):
     _refused(_invoke(command, good), good)
     assert time.monotonic() - started < 5.0
     assert not (good.parent / "good_plots").exists()
+
+
+def test_a_fifo_is_refused_at_once(tmp_path):
+    fifo = tmp_path / "r.h5"
+    os.mkfifo(fifo)
+    _refused(_invoke("info", fifo), fifo)  # opening it would wait for a writer for ever
 
 
 def test_an_external_link_is_not_followed(tmp_path, good):
