@@ -172,3 +172,13 @@ def test_a_bad_study_index_is_refused_by_plot(tmp_path, body, expected):
     assert result.exit_code == 2, result.output
     assert expected in result.stderr and "Traceback" not in result.output
     assert not (tmp_path / "maps").exists()
+
+
+def test_an_index_cut_between_rows_is_noticed_by_the_files_it_does_not_name(tmp_path):
+    listed, unlisted = "0123456789abcdef.h5", "fedcba9876543210.h5"
+    (tmp_path / "index.csv").write_text(INDEX_HEADER + f"1,4.0,contact,ok,yes,1e-7,9e-8,{listed},\n")
+    for name in (listed, unlisted):
+        (tmp_path / name).write_bytes(b"")
+    result = _invoke("plot", tmp_path, "--what", "maps", "-o", tmp_path / "maps")
+    assert result.exit_code == 0, result.output
+    assert f"warning: {tmp_path / 'index.csv'} does not name 1 result file(s) of the folder" in result.output

@@ -25,6 +25,7 @@ from facegear_tehl.plots.common import Output, PlotReport, figure, plain
 from facegear_tehl.results import ResultFileError
 from facegear_tehl.schema import CaseError
 from facegear_tehl.study import COLUMNS, INDEX
+from facegear_tehl.study_file import HASH_DIGITS
 from facegear_tehl.units import display
 
 WORST = "worst"
@@ -103,6 +104,13 @@ def _check_rows(path: Path, header: list[str], rows: list[list[str]]) -> None:
                                       "tehl study again to rewrite the index")
 
 
+def _unlisted_files(folder: Path, index: StudyIndex) -> int:
+    """Variant result files in `folder` (named by HASH_DIGITS hex digits) that no row of `index` names."""
+    listed = {row.get("file") for row in index.rows}
+    return sum(bool(re.fullmatch(f"[0-9a-f]{{{HASH_DIGITS}}}\\.h5", path.name)) and path.name not in listed
+               for path in folder.iterdir())
+
+
 def _finite(text: str) -> bool:
     try:
         return math.isfinite(float(text))
@@ -176,8 +184,14 @@ def plot_study(folder: Path, out_folder: Path, *, what: str = "maps", z: str = "
         raise CaseError("--format", fmt, "one of " + ", ".join(FORMATS))
     if dpi <= 0:
         raise CaseError("--dpi", dpi, "a positive number of dots per inch")
-    grids = map_grids(read_index(folder), z, x, y, points)
+    index = read_index(folder)
+    grids = map_grids(index, z, x, y, points)
     out = Output(out_folder, fmt, dpi, PlotReport())
+    unlisted = _unlisted_files(folder, index)
+    if unlisted:
+        out.report.skipped.append(f"warning: {folder / INDEX} does not name {unlisted} result file(s) of the folder "
+                                  "(an index cut short, or files of an earlier study): run tehl study again to "
+                                  "rewrite it")
     for grid in grids:
         if np.isnan(grid.values).all():
             out.skip(f"map {_stem(grid)}", f"no {grid.z} in the index for these variants")
