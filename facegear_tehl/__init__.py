@@ -7,7 +7,10 @@ For notebooks: `from facegear_tehl import load_case, run_case, read_result`.
 
 import importlib
 
+from facegear_tehl import kernel_cache
+
 __version__ = "0.1.0"
+kernel_cache.prepare()  # before any kernel module imports Numba: a writable cache, or a temporary one
 
 # Re-exported on first use, so that importing the package (as every `tehl` command does) stays light.
 _EXPORTS = {"load_case": "facegear_tehl.case", "run_case": "facegear_tehl.run", "read_result": "facegear_tehl.results"}

@@ -13,7 +13,6 @@ from collections.abc import Hashable
 from dataclasses import dataclass, replace
 import math
 from pathlib import Path
-import re
 from typing import Any
 
 import yaml
@@ -30,6 +29,7 @@ from facegear_tehl.settings import (  # also imported from here
     OutputSettings,
     SolverSettings,
 )
+from facegear_tehl.yaml_numbers import Yaml12Loader
 
 MAX_GRID = 4097  # nodes per side: 16.8 million nodes, beyond what one machine solves
 # Ranges of real lubricated contacts: a value outside is accepted with a warning (a unit mistaken, most likely).
@@ -43,10 +43,10 @@ USUAL_SPEED = (1e-3, 100.0)  # m/s: slow-roll tribometer tests up to the pitch-l
 # solver clear of overflow to Inf and underflow to 0.
 
 
-class _Loader(yaml.SafeLoader):
-    """Safe YAML loader that also reads YAML 1.2 floats such as `2.0e11` or `1e-3` as numbers
-    (PyYAML's YAML 1.1 rule wants a dot and a signed exponent and would read them as strings), and refuses a key
-    given twice in one mapping (YAML requires unique keys; PyYAML would keep the last one silently)."""
+class _Loader(Yaml12Loader):
+    """Safe YAML loader reading numbers as YAML 1.2 does (yaml_numbers.py: `040` is 40, `1e-3` a float, `1:30` a
+    string), and refusing a key given twice in one mapping (YAML requires unique keys; PyYAML would keep the last
+    one silently)."""
 
     def construct_mapping(self, node: yaml.MappingNode, deep: bool = False) -> dict:
         first: dict[Any, int] = {}
@@ -58,20 +58,6 @@ class _Loader(yaml.SafeLoader):
             if isinstance(key, Hashable):
                 first[key] = key_node.start_mark.line
         return super().construct_mapping(node, deep)
-
-
-_Loader.add_implicit_resolver(
-    "tag:yaml.org,2002:float",
-    re.compile(
-        r"""^(?:[-+]?(?:[0-9][0-9_]*)\.[0-9_]*(?:[eE][-+]?[0-9]+)?
-        |[-+]?(?:[0-9][0-9_]*)(?:[eE][-+]?[0-9]+)
-        |\.[0-9_]+(?:[eE][-+]?[0-9]+)?
-        |[-+]?\.(?:inf|Inf|INF)
-        |\.(?:nan|NaN|NAN))$""",
-        re.VERBOSE,
-    ),
-    list("-+0123456789."),
-)
 
 
 @dataclass(frozen=True)

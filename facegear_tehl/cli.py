@@ -2,7 +2,8 @@
 
 Exit codes: 0 ok; 1 unexpected error (or a point whose solve failed; its result is still written);
 2 bad input (case file, options, not a result file): one line `error: <key path>: ...` per problem, no
-output file; 3 not converged (result written, flagged), or a variant of a study that failed (the others written).
+output file; 3 not converged (result written, flagged), or a variant of a study that failed (the others written);
+130 interrupted by Ctrl-C, 143 by SIGTERM (docs/guarantees.md).
 Warnings (valid but unusual input) go to stderr.
 """
 
@@ -11,7 +12,6 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import replace
 import json
-import os
 from pathlib import Path
 import signal
 import traceback
@@ -20,14 +20,22 @@ from typing import Any
 import click
 import numpy as np
 
-from facegear_tehl import __version__
+from facegear_tehl import __version__, kernel_cache
 from facegear_tehl.case import Case, load_case
 from facegear_tehl.cycle import COARSE_POINT_COUNT, QUADRATURE
 from facegear_tehl.gears.analysis import analyse_gear_pair
 from facegear_tehl.gears.report import contact_table
+from facegear_tehl.output_path import (
+    checked_output,
+    inside_case_folder,
+    keeping_the_better,
+    starts_with,
+    writable_location,
+)
 from facegear_tehl.parallel import worker_count
 from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.record import record_lines, record_to_dict
+from facegear_tehl.resources import check_fits, estimate, machine_memory, study_estimate
 from facegear_tehl.results import PointResult, Result, ResultFileError, read_result, write_result
 from facegear_tehl.schema import CaseError
 from facegear_tehl.solution import PointSolution
@@ -49,6 +57,11 @@ from facegear_tehl.units import CELSIUS, MILLIMETRE, PERCENT, Unit, display
 from facegear_tehl.verdict import assess, verdict_text
 
 EXIT_ERROR, EXIT_BAD_INPUT, EXIT_NOT_CONVERGED = 1, 2, 3
+EXIT_INTERRUPTED = 128 + signal.SIGINT  # 130
+UNEXPECTED = "an unexpected error: tehl --debug with the same arguments shows where; please report it with that output"
+BIG_RUN_SECONDS = 600.0  # a run estimated longer than this says so before it starts
+ANNOUNCED_VARIANTS = 100  # a study of this many variants says its size before validating them (2 s or more) ...
+VALIDATION_SECONDS = 0.02  # ... at about this many seconds a variant (1000 face gear variants validated in 20 s)
 
 
 class _Tehl(click.Group):
@@ -59,6 +72,9 @@ class _Tehl(click.Group):
             return super().invoke(ctx)
         except (click.ClickException, click.exceptions.Exit, click.Abort):
             raise
+        except KeyboardInterrupt:  # Ctrl-C: the shell's convention, 128 + SIGINT; files as SIGTERM leaves them
+            click.echo("interrupted", err=True)
+            ctx.exit(EXIT_INTERRUPTED)
         except (CaseError, ResultFileError) as exc:
             for line in str(exc).splitlines():  # one line per problem (CaseErrors holds several)
                 click.echo(f"error: {line}", err=True)
@@ -66,7 +82,7 @@ class _Tehl(click.Group):
         except Exception as exc:  # noqa: BLE001 - any other error: one line and exit 1 (--debug: the traceback)
             if ctx.params.get("debug"):
                 traceback.print_exc()
-            click.echo(f"error: {type(exc).__name__}: {exc}", err=True)
+            click.echo(f"error: {type(exc).__name__}: {exc} ({UNEXPECTED})", err=True)
             ctx.exit(EXIT_ERROR)
 
 
@@ -96,6 +112,8 @@ Examples:
 @click.option("--points", help="Comma-separated point names to solve (e.g. S1,S3); default all.")
 @click.option("--thermal", help="Thermal model, overrides solver.thermal: off | reduced | full | auto.")
 @click.option("--jobs", type=int, help="Worker processes solving points side by side (default: all cores).")
+@click.option("--force", is_flag=True, help="Overwrite an existing output file that tehl did not write; run even "
+                                           "when the memory estimate passes this machine's memory.")
 @click.pass_context
 def run(
     ctx: click.Context,
@@ -105,9 +123,10 @@ def run(
     points: str | None,
     thermal: str | None,
     jobs: int | None,
+    force: bool,
 ) -> None:
     """Solve CASE and write the result file."""
-    case = _load_case(case_file)
+    case = _load_case(case_file, solves=True)
     if thermal is not None:
         case = with_thermal(case, thermal)
     workers = worker_count(jobs)
@@ -115,8 +134,10 @@ def run(
     names = _point_names(points)
     analysis = contact_analysis(case)
     selected = analysis.points if names is None else select_points(analysis.points, names)
-    target = _output_path(Path(case_file), case, output)
+    target = _output_path(Path(case_file), case, output, force)
     processes = min(workers, len(selected))
+    _guard([(p, case.lubricant, solver) for p in selected], processes, ("--grid", grid) if grid else
+           ("solver.grid", case.solver.grid), force)
     click.echo(
         f"tehl run: {case.name}: {', '.join(p.name for p in selected)} on a {solver.grid}x{solver.nodes_y} grid, "
         f"thermal {solver.thermal}"
@@ -134,6 +155,9 @@ def run(
     for warning in run_result.warnings:
         if warning not in analysis.warnings:  # what the run found (a grid the solver chose, ...)
             click.echo(f"warning: {warning}", err=True)
+    target, kept = keeping_the_better(target, sum(p.converged for p in run_result.points))
+    if kept:
+        click.echo(f"warning: {kept}", err=True)
     target.parent.mkdir(parents=True, exist_ok=True)
     write_result(run_result, target)
     result = read_result(target, fields=False)  # the tables print what the file holds
@@ -149,15 +173,26 @@ def run(
     _exit_on_status(ctx, result)
 
 
-def _load_case(case_file: str) -> Case:
+def _load_case(case_file: str, solves: bool = False) -> Case:
     """The validated case; its warnings (valid but unusual values) and the inputs it derived (an oil given by
-    grade or nu40, nu100) on stderr."""
+    grade or nu40, nu100) on stderr, and for a command that `solves` the kernel cache's (kernel_cache.py)."""
     case = load_case(case_file)
+    if solves and kernel_cache.WARNING:
+        click.echo(f"warning: {kernel_cache.WARNING}", err=True)
     for warning in case.warnings:
         click.echo(f"warning: {warning}", err=True)
     for line in case.derived:
         click.echo(f"derived: {line}", err=True)
     return case
+
+
+def _guard(tasks: list, processes: int, setting: tuple[str, Any], force: bool) -> None:
+    """The resource guard (resources.py): refuse a run above this machine's memory unless `force` (CaseError under
+    the option or key that set the grid); print the estimate when it takes half the memory or ten minutes."""
+    found = estimate(tasks, processes)
+    check_fits(found, *setting, force)
+    if found.memory > 0.5 * machine_memory() or found.seconds > BIG_RUN_SECONDS:
+        click.echo(f"note: {found.text()}", err=True)
 
 
 def _exit_on_status(ctx: click.Context, result: Result) -> None:
@@ -184,6 +219,8 @@ Examples:
 @click.option("-o", "--output",
               help="Sweep file, HDF5 (default: <case name>_sweep_<point>.h5); the CSV goes next to it.")
 @click.option("--jobs", type=int, help="Worker processes solving grids side by side (default: all cores).")
+@click.option("--force", is_flag=True, help="Overwrite existing output files that tehl did not write; run even "
+                                           "when the memory estimate passes this machine's memory.")
 @click.pass_context
 def sweep(
     ctx: click.Context,
@@ -194,19 +231,27 @@ def sweep(
     tolerance: float,
     output: str | None,
     jobs: int | None,
+    force: bool,
 ) -> None:
     """Solve one point of CASE on a sequence of grids and print its mesh-independence table (change per
     grid, observed order, Richardson extrapolation with its GCI uncertainty); writes HDF5 (/sweep) and CSV."""
-    case = _load_case(case_file)
+    case = _load_case(case_file, solves=True)
     grid_list = parse_grids(grids, case)
     check_tolerance(tolerance)
     workers = worker_count(jobs)
     model = case.solver.thermal if thermal is None else with_thermal(case, thermal).solver.thermal
     points = contact_analysis(case).points
     name = points[0].name if point is None else select_points(points, [point], key="--point")[0].name
-    target = _writable("--output", Path(output if output is not None else f"{case.name}_sweep_{name}.h5"))
+    target = Path(output if output is not None else f"{case.name}_sweep_{name}.h5")
     if target.suffix.lower() == ".csv":
         raise CaseError("--output", str(target), "an HDF5 file name (the CSV is written next to it)")
+    checked_output("--output", target, inputs=[Path(case_file)], force=force)
+    checked_output("--output", target.with_suffix(".csv"), inputs=[Path(case_file)], force=force,
+                   ours=starts_with("grid ["), what="a sweep CSV")
+    point_of = next(p for p in points if p.name == name)
+    swept_case = case if thermal is None else with_thermal(case, thermal)
+    _guard([(point_of, case.lubricant, swept_case.with_grid(g).solver) for g in grid_list], workers,
+           ("--grids", grids), force)
     click.echo(
         f"tehl sweep: {case.name}: {name} on grids {','.join(map(str, grid_list))}, thermal {model}"
         + (f", {min(workers, len(grid_list))} worker processes" if workers > 1 else ""),
@@ -234,23 +279,35 @@ Examples:
 @click.option("-o", "--output", help="Folder of the study's result files and index.csv (default: <STUDY name>_study).")
 @click.option("--workers", type=int, help="Worker processes of the local Dask cluster (default: all cores).")
 @click.option("--scheduler", help="Address of an existing Dask scheduler (e.g. tcp://host:8786) instead.")
+@click.option("--force", is_flag=True, help="Run even when the memory estimate of the local cluster passes this "
+                                           "machine's memory.")
 @click.pass_context
-def study(ctx: click.Context, study_file: str, output: str | None, workers: int | None, scheduler: str | None) -> None:
+def study(ctx: click.Context, study_file: str, output: str | None, workers: int | None, scheduler: str | None,
+          force: bool) -> None:
     """Run every variant of STUDY (a base case and the keys it varies) on a Dask cluster: one result file per
     variant, named by the hash of its case, and index.csv; variants already finished are skipped."""
     # Imported here: only this command needs Dask.
-    from facegear_tehl.study import run_study
+    from facegear_tehl.study import check_folder, run_study
     from facegear_tehl.study_file import load_study
 
-    plan = load_study(study_file)
+    plan = load_study(study_file, announce=_announce_study)
+    if kernel_cache.WARNING:
+        click.echo(f"warning: {kernel_cache.WARNING}", err=True)
     if scheduler is not None and workers is not None:
         raise CaseError("--workers", workers, "no --workers with --scheduler (the cluster has its own workers)")
-    count = worker_count(workers, "--workers")
+    count = min(worker_count(workers, "--workers"), len(plan.variants))  # a worker per variant at most, as --jobs
     folder = Path(output if output is not None else f"{Path(study_file).stem}_study")
+    check_folder(folder)
+    if scheduler is None:  # the local cluster's memory (a remote cluster's machines are not this one)
+        found = study_estimate([v.case for v in plan.variants], count)
+        check_fits(found, "--workers", count, force)
+        if found.memory > 0.5 * machine_memory():
+            click.echo(f"note: {found.text()}", err=True)
     where = f"the Dask cluster at {scheduler}" if scheduler else f"a local Dask cluster of {count} worker processes"
     click.echo(f"tehl study: {len(plan.variants)} variants of {plan.base.name} over {', '.join(plan.keys)} "
                f"on {where}", err=True)
-    report = run_study(plan, folder, workers=count, scheduler=scheduler, progress=_study_progress)
+    report = run_study(plan, folder, workers=count, scheduler=scheduler, progress=_study_progress,
+                       notice=lambda line: click.echo(f"warning: {line}", err=True))
     skipped = len(report.outcomes) - report.computed
     not_converged = sum(o.status == "not_converged" for o in report.outcomes)
     click.echo(f"{report.computed} variants computed, {skipped} already finished, {len(report.failed)} failed, "
@@ -260,6 +317,13 @@ def study(ctx: click.Context, study_file: str, output: str | None, workers: int 
                    err=True)
     if report.failed:
         ctx.exit(EXIT_NOT_CONVERGED)
+
+
+def _announce_study(count: int) -> None:
+    """A study large enough that validating its variants takes a while says its size first."""
+    if count >= ANNOUNCED_VARIANTS:
+        click.echo(f"tehl study: {count} variants: validating each case (about {count * VALIDATION_SECONDS:.0f} s)",
+                   err=True)
 
 
 def _study_progress(outcome, done: int, total: int, eta: float) -> None:
@@ -323,7 +387,7 @@ Examples:
 @click.option("--force", is_flag=True, help="Overwrite OUTPUT if it exists.")
 def init(kind: str, output: str, force: bool) -> None:
     """Write a commented case template (valid as written); edit it, then validate and run it."""
-    target = _writable("--output", Path(output))
+    target = writable_location("--output", Path(output))
     if target.exists() and not force:
         raise CaseError("--output", output, "a file that does not exist yet (--force overwrites it)")
     target.parent.mkdir(parents=True, exist_ok=True)
@@ -371,6 +435,8 @@ def plot(result_file: str, what: str, points: str | None, output: str | None, fm
     from facegear_tehl.plots import figure_types, plot_result
 
     source = Path(result_file)
+    if output is not None:
+        _check_figure_folder(Path(output), source)
     if source.is_dir():  # a study folder: maps over its varied keys
         from facegear_tehl.plots.study_maps import plot_study
 
@@ -625,31 +691,26 @@ def _point_names(option: str | None) -> list[str] | None:
     return list(dict.fromkeys(name.strip() for name in option.split(",") if name.strip()))
 
 
-def _output_path(case_file: Path, case: Case, option: str | None) -> Path:
-    """-o, else output.file of the case (relative to the case file), else <case name>.h5 here.
-
-    Checked before solving (CaseError): not a directory, and its nearest existing folder is writable.
-    """
+def _output_path(case_file: Path, case: Case, option: str | None, force: bool) -> Path:
+    """-o, else output.file of the case (inside the case file's folder), else <case name>.h5 here; checked
+    before solving by the output-path policy (output_path.py): never the case file, never a file tehl did not
+    write unless `force`."""
     if option is not None:
         key, target = "--output", Path(option)
     elif case.output.file is not None:
-        key, target = "output.file", case_file.parent / case.output.file
+        key, target = "output.file", inside_case_folder("output.file", case_file, case.output.file)
     else:
         key, target = "name", Path(f"{case.name}.h5")
-    return _writable(key, target)
+    return checked_output(key, target, inputs=[case_file], force=force)
 
 
-def _writable(key: str, target: Path) -> Path:
-    """`target`, checked before solving (CaseError under `key`): not a directory, and its nearest existing
-    folder is writable."""
-    if target.is_dir():
-        raise CaseError(key, str(target), "a file path, not a directory")
-    folder = target.absolute().parent
-    while not folder.exists():
-        folder = folder.parent
-    if not folder.is_dir() or not os.access(folder, os.W_OK):
-        raise CaseError(key, str(target), f"a path under a writable directory ({folder} is not)")
-    return target
+def _check_figure_folder(folder: Path, source: Path) -> None:
+    """`tehl plot -o`: a folder (existing or new) under a writable directory, not an existing file (the file
+    plotted among them)."""
+    if folder.exists() and not folder.is_dir():
+        what = "the file plotted" if folder.resolve() == source.resolve() else "an existing file"
+        raise CaseError("--output", str(folder), f"a folder for the figures, not {what}")
+    writable_location("--output", folder / "figure")
 
 
 def _terminate(signum: int, frame: object) -> None:

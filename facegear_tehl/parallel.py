@@ -17,6 +17,10 @@ the workers open no HDF5 file, so forking is safe. Elsewhere workers are spawned
 from the on-disk cache (`cache=True`; its files are written by rename, so workers compiling at the same
 time do not corrupt it).
 
+A worker that dies (SIGKILL, the out-of-memory killer) breaks the pool: its solves and those of the other workers
+are submitted again to a fresh pool, and a solve lost twice is run alone (supervision.py), so that a lost worker
+costs no point.
+
 Every solve, in this process or a worker, runs with one BLAS thread: OpenBLAS adds in another order with
 more threads, so this keeps the results bit-identical whatever `jobs` (and whatever the machine's core
 count), and workers that already fill the cores do not also spin BLAS threads against each other.
@@ -25,7 +29,7 @@ Each solve is then the same deterministic computation wherever it runs.
 
 from __future__ import annotations
 
-from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from concurrent.futures import Future, ProcessPoolExecutor
 import concurrent.futures.process
 from contextlib import closing
 from dataclasses import dataclass, replace
@@ -43,6 +47,7 @@ from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.schema import check
 from facegear_tehl.settings import SolverSettings
 from facegear_tehl.solution import Outcome, PointSolution
+from facegear_tehl.supervision import LOST_MESSAGE, SupervisedPool, WorkerLost, die_with_parent, worker_lost
 
 Solver = Callable[[ContactPoint, Lubricant, SolverSettings], PointSolution]
 """A whole solve: `ehl.solve.solve_point` or a stand-in with its signature (module-level, so that it can be
@@ -150,27 +155,27 @@ def solve_each(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
     context = _context()
     if context.get_start_method() == "fork":
         _warm_up(solver, tasks[0])
-    executor = ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=_init_worker)
+    pool = SupervisedPool(workers, context, _init_worker)  # a lost worker's solves are retried once
     try:
         # per future: (task index, first attempt when this is a retry)
         pending: dict[Future, tuple[int, PointSolution | None]] = {}
 
         def submit(index: int, first: PointSolution | None, function: Callable, *args: object) -> None:
             with _DeferredSignals():
-                pending[executor.submit(_stage_task, function, tasks[index].point.name, *args)] = (index, first)
+                pending[pool.submit(index, _stage_task, function, tasks[index].point.name, *args)] = (index, first)
 
         for i, task in enumerate(tasks):
             if staged:
                 submit(i, None, solver.begin, task.point, task.lubricant, task.settings, None)
             else:
                 with _DeferredSignals():
-                    pending[executor.submit(_solve_task, solver, task)] = (i, None)
+                    pending[pool.submit(i, _solve_task, solver, task)] = (i, None)
         while pending:
             with _DeferredSignals() as signals:
                 finished: set[Future] = set()
                 while not finished and not signals.received:
-                    finished, _ = wait(pending, timeout=0.2, return_when=FIRST_COMPLETED)
-            for future in sorted(finished, key=lambda f: pending[f][0]):
+                    finished = pool.wait(pending, timeout=0.2)
+            for future in sorted(pool.retry_lost(finished, pending), key=lambda f: pending[f][0]):
                 index, first = pending.pop(future)
                 outcome = _outcome(future, tasks[index])
                 if not staged or isinstance(outcome, Solved):
@@ -183,9 +188,10 @@ def solve_each(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
                 else:
                     yield index, Solved(outcome if first is None else solver.with_retry(first, outcome), failed=False)
     except BaseException:
-        _stop_workers(executor)
+        for executor in pool.executors:
+            _stop_workers(executor)
         raise
-    executor.shutdown()
+    pool.shared.shutdown()
 
 
 class _DeferredSignals:
@@ -247,6 +253,8 @@ def _outcome(future: Future, task: SolveTask) -> object:
     """The worker's result (a Solved, or with stages a solution or an intermediate), or a failed record if the
     worker could not deliver one (e.g. it was killed)."""
     error = future.exception()
+    if worker_lost(future):
+        return Solved(failed_solution(task.point.name, WorkerLost(LOST_MESSAGE)), failed=True)
     return future.result() if error is None else Solved(failed_solution(task.point.name, error), failed=True)
 
 
@@ -254,11 +262,13 @@ def _context() -> multiprocessing.context.BaseContext:
     return multiprocessing.get_context("fork" if sys.platform.startswith("linux") else "spawn")
 
 
-def _init_worker() -> None:
-    """Workers leave Ctrl-C to the parent (which stops them), end on SIGTERM without cleanup handlers
+def _init_worker(parent: int) -> None:
+    """Workers end with their parent `parent` (supervision.die_with_parent: a killed `tehl run` leaves no worker),
+    leave Ctrl-C to the parent (which stops them), end on SIGTERM without cleanup handlers
     inherited from the CLI, and use one BLAS thread (see the module: same results as in this process; and
     S1-S5 of the face gear case, thermal full, on 2 cores: 15.3 s with OpenBLAS's default threads in both
     workers, 13.1 s with one)."""
+    die_with_parent(parent)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     threadpool_limits(limits=1)

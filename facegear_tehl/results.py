@@ -45,14 +45,15 @@ from datetime import datetime, timezone
 import json
 import os
 from pathlib import Path
-import secrets
 from typing import TYPE_CHECKING, Any, Mapping
 import zlib
 
 import numpy as np
 
 from facegear_tehl import __version__
+from facegear_tehl.atomic_files import remove_stale, temporary_beside
 from facegear_tehl.case import Case
+from facegear_tehl.h5_guard import ResultFileError, check_layout
 from facegear_tehl.record import SolveRecord, record_from_dict, record_to_dict
 from facegear_tehl.solution import Field, PointSolution
 
@@ -88,10 +89,6 @@ _CYCLE_INDEX = ("cycle", "entry of the per-cycle histories, in the order they we
 # The column each table's rows are keyed by (its coordinate in xarray).
 _TABLE_KEYS = {"contact": "s", "heat": "point", "sweep": "grid"}
 _COMPONENTS = {2: ("xy", ("x", "y")), 3: ("xyz", ("x", "y", "z"))}  # a vector column's components (see its description)
-
-
-class ResultFileError(Exception):
-    """A file that is not a readable tehl result (missing, not HDF5, other program, other format)."""
 
 
 class NonFiniteError(ValueError):
@@ -212,7 +209,8 @@ def write_result(run: RunResult, path: str | Path) -> Path:
 
     target = Path(path)
     _check_run(run)
-    temporary = target.with_name(f".{target.name}.{secrets.token_hex(6)}.tmp")
+    remove_stale(target)  # a killed writer's temporary file
+    temporary = temporary_beside(target)
     try:
         with (h5py.File(temporary, "w-", track_order=True) as h5,
               ThreadPoolExecutor(max_workers=_deflate_threads()) as pool):
@@ -507,60 +505,65 @@ def read_result(path: str | Path, fields: bool = True) -> Result:
     import h5py
 
     path = Path(path)
+    if path.exists() and not path.is_file():  # a FIFO would block the open until someone writes to it
+        raise ResultFileError(f"{path}: not a result file (a directory, device or FIFO, not a regular file)")
     try:
         h5 = h5py.File(path, "r")
     except (OSError, ValueError) as exc:
         raise ResultFileError(f"{path}: cannot open as an HDF5 file ({_reason(exc)})") from None
     with h5:
         attrs = h5.attrs
-        if attrs.get("filetype") != FILETYPE or "format_version" not in attrs:
+        if not isinstance(attrs.get("filetype"), str) or attrs["filetype"] != FILETYPE or "format_version" not in attrs:
             raise ResultFileError(f"{path}: not a tehl result file (no filetype '{FILETYPE}' attribute)")
         version = str(attrs["format_version"])
         if version.split(".")[0] != FORMAT_VERSION.split(".")[0]:
             raise ResultFileError(f"{path}: result format {version}; this tehl reads format {FORMAT_VERSION}")
+        check_layout(h5, path)
         try:
-            status = str(attrs["status"])
-            if status not in STATUSES:
-                raise ValueError(f"status {status!r}, expected one of {', '.join(STATUSES)}")
-            contact = h5.get("contact")
-            contact_scalars, contact_units = _read_scalars(contact) if contact is not None else ({}, {})
-            sweep = h5.get("sweep")
-            sweep_scalars, sweep_units = _read_scalars(sweep) if sweep is not None else ({}, {})
-            cycle = h5.get("cycle")
-            cycle_scalars, cycle_units = _read_scalars(cycle) if cycle is not None else ({}, {})
-            verdict = h5.get("verdict")
-            verdict_scalars, verdict_units = _read_scalars(verdict) if verdict is not None else ({}, {})
-            return Result(
-                path=path,
-                format_version=version,
-                tehl_version=str(attrs["tehl_version"]),
-                created=str(attrs["created"]),
-                case_name=str(attrs["case_name"]),
-                case_yaml=str(attrs["case_yaml"]),
-                status=status,
-                message=str(attrs["message"]),
-                warnings=tuple(json.loads(attrs["warnings"])),
-                models=json.loads(attrs["models"]),
-                overrides=json.loads(attrs["overrides"]),
-                derived=tuple(json.loads(attrs.get("derived", "[]"))),
-                verdict=verdict_scalars,
-                verdict_units=verdict_units,
-                verdict_labels=json.loads(verdict.attrs.get("labels", "{}")) if verdict is not None else {},
-                points={name: _read_point(name, group, fields) for name, group in h5["points"].items()},
-                contact=_read_table(contact),
-                contact_scalars=contact_scalars,
-                contact_units=contact_units,
-                heat=_read_table(h5.get("heat")),
-                sweep=_read_table(sweep),
-                sweep_scalars=sweep_scalars,
-                sweep_units=sweep_units,
-                cycle=_read_table(cycle),
-                cycle_scalars=cycle_scalars,
-                cycle_units=cycle_units,
-                convergence_bands=json.loads(attrs.get("convergence_bands", "{}")),
-            )
-        except (KeyError, ValueError, TypeError) as exc:
-            raise ResultFileError(f"{path}: damaged tehl result ({_reason(exc)})") from None
+            return _read_contents(h5, path, version, fields)
+        except (KeyError, ValueError, TypeError, OSError) as exc:  # OSError: data HDF5 cannot read (a bad chunk)
+            raise ResultFileError(f"{path}: damaged tehl result ({_reason(exc)}); write it again with tehl run") \
+                from None
+
+
+def _read_contents(h5: h5py.File, path: Path, version: str, fields: bool) -> Result:
+    """The Result of an open file whose type and layout are checked (read_result)."""
+    attrs = h5.attrs
+    status = str(attrs["status"])
+    if status not in STATUSES:
+        raise ValueError(f"status {status!r}, expected one of {', '.join(STATUSES)}")
+    groups = {name: h5.get(name) for name in ("contact", "sweep", "cycle", "verdict")}
+    scalars = {name: _read_scalars(group) if group is not None else ({}, {}) for name, group in groups.items()}
+    verdict = groups["verdict"]
+    return Result(
+        path=path,
+        format_version=version,
+        tehl_version=str(attrs["tehl_version"]),
+        created=str(attrs["created"]),
+        case_name=str(attrs["case_name"]),
+        case_yaml=str(attrs["case_yaml"]),
+        status=status,
+        message=str(attrs["message"]),
+        warnings=tuple(json.loads(attrs["warnings"])),
+        models=json.loads(attrs["models"]),
+        overrides=json.loads(attrs["overrides"]),
+        derived=tuple(json.loads(attrs.get("derived", "[]"))),
+        verdict=scalars["verdict"][0],
+        verdict_units=scalars["verdict"][1],
+        verdict_labels=json.loads(verdict.attrs.get("labels", "{}")) if verdict is not None else {},
+        points={name: _read_point(name, group, fields) for name, group in h5["points"].items()},
+        contact=_read_table(groups["contact"]),
+        contact_scalars=scalars["contact"][0],
+        contact_units=scalars["contact"][1],
+        heat=_read_table(h5.get("heat")),
+        sweep=_read_table(groups["sweep"]),
+        sweep_scalars=scalars["sweep"][0],
+        sweep_units=scalars["sweep"][1],
+        cycle=_read_table(groups["cycle"]),
+        cycle_scalars=scalars["cycle"][0],
+        cycle_units=scalars["cycle"][1],
+        convergence_bands=json.loads(attrs.get("convergence_bands", "{}")),
+    )
 
 
 def _reason(exc: Exception) -> str:

@@ -18,7 +18,7 @@ every run, interrupted or not, from the files themselves; `failures.txt` lists t
 from __future__ import annotations
 
 from collections.abc import Callable, Iterator, Sequence
-from contextlib import contextmanager, nullcontext
+from contextlib import ExitStack, contextmanager, nullcontext
 import csv
 from dataclasses import dataclass
 import io
@@ -30,10 +30,14 @@ import time
 
 import h5py
 
+from facegear_tehl.atomic_files import remove_stale, temporary_beside
+from facegear_tehl.folder_lock import exclusive
+from facegear_tehl.output_path import starts_with
 from facegear_tehl.results import ResultFileError, RunResult, read_result, write_result
+from facegear_tehl.scheduler_probe import probe
 from facegear_tehl.schema import CaseError
 from facegear_tehl.study_file import Study, Variant, digest, value_text
-from facegear_tehl.study_index import COLUMNS, CYCLE_COLUMNS, INDEX, POINT_COLUMNS
+from facegear_tehl.study_index import COLUMNS, CYCLE_COLUMNS, INDEX, INDEX_HEADER, POINT_COLUMNS
 
 FAILURES = "failures.txt"
 # Dask starts worker processes with MALLOC_TRIM_THRESHOLD_=65536 (its distributed.nanny.pre-spawn-environ), which
@@ -102,16 +106,41 @@ def solve_variant(text: str) -> VariantRun:
 
 def finished(path: Path, variant: Variant) -> bool:
     """The variant's file exists, reads back as a complete result and holds the resolved case that names it."""
+    return unfinished_reason(path, variant) is None
+
+
+def unfinished_reason(path: Path, variant: Variant) -> str | None:
+    """None when `finished`; else why not: the reader's sentence (missing, damaged, not a result) or another case."""
     try:
-        return digest(read_result(path).case_yaml) == variant.digest
-    except ResultFileError:
-        return False
+        held = digest(read_result(path).case_yaml)
+    except ResultFileError as exc:
+        return str(exc)
+    return None if held == variant.digest else f"{path}: holds another case than the variant's"
+
+
+def _resumed(study: Study, folder: Path, notice: Callable[[str], None] | None) -> dict[int, VariantOutcome]:
+    """The outcomes of the variants whose files are finished; each file that exists but is not finished (damaged,
+    another case) is named to `notice`: the study runs its variant again."""
+    outcomes = {}
+    for variant in study.variants:
+        path = folder / variant.file_name
+        reason = unfinished_reason(path, variant) if path.exists() or path.is_symlink() else "missing"
+        if reason is None:
+            outcomes[variant.index] = _read_outcome(folder, variant)
+        elif reason != "missing" and notice is not None:
+            notice(f"variant {variant.index + 1} ({variant.label}): {reason}; running it again")
+    return outcomes
 
 
 def check_folder(folder: Path) -> None:
-    """CaseError under -o unless `folder` is a directory or can be made one under a writable directory."""
+    """CaseError under -o unless `folder` is a directory or can be made one under a writable directory, and any
+    index.csv in it is one tehl study wrote (a file, its header starting with INDEX_HEADER)."""
     if folder.exists() and not folder.is_dir():
         raise CaseError("-o", str(folder), "a directory for the study's files, not a file")
+    index = folder / INDEX
+    if index.exists() and not starts_with(INDEX_HEADER)(index):
+        raise CaseError("-o", str(folder), f"a study folder whose {INDEX} tehl study wrote, or a new one ({index} "
+                                           "is not one: its index would be overwritten)")
     existing = folder.absolute()
     while not existing.exists():
         existing = existing.parent
@@ -120,25 +149,32 @@ def check_folder(folder: Path) -> None:
 
 
 def run_study(study: Study, folder: Path, *, workers: int = 1, scheduler: str | None = None,
-              progress: StudyProgress | None = None) -> StudyReport:
+              progress: StudyProgress | None = None, notice: Callable[[str], None] | None = None) -> StudyReport:
     """Run every variant of `study` whose file in `folder` is not already finished, on a local Dask cluster of
-    `workers` processes or on the cluster whose scheduler is at `scheduler`; write index.csv (and failures.txt
-    when a variant failed). Bad `folder` or an unreachable scheduler raise CaseError before anything is written."""
+    `workers` processes (at most one per variant to run) or on the cluster whose scheduler is at `scheduler`; write
+    index.csv (and failures.txt when a variant failed). Bad `folder` or an unreachable scheduler raise CaseError
+    before anything is written. `notice` is told of each existing file that is run again (damaged, or another
+    case)."""
     check_folder(folder)
-    outcomes = {v.index: _read_outcome(folder, v) for v in study.variants if finished(folder / v.file_name, v)}
+    outcomes = _resumed(study, folder, notice)
     todo = [v for v in study.variants if v.index not in outcomes]
     start, started = time.perf_counter(), False
+    lock = ExitStack()
     try:
-        with _client(workers, scheduler) if todo else nullcontext() as client:
+        with _client(min(workers, len(todo)), scheduler) if todo else nullcontext() as client:  # as --jobs
             folder.mkdir(parents=True, exist_ok=True)  # the cluster is there: from here on the index is written
+            lock.enter_context(exclusive(folder, "-o"))  # by this study alone
+            outcomes.update({v.index: _read_outcome(folder, v) for v in todo if finished(folder / v.file_name, v)})
+            todo = [v for v in todo if v.index not in outcomes]  # less what a study before this one finished
             start, started = time.perf_counter(), True
             if todo:
                 for outcome in _compute(client, todo, folder, progress, start):
                     outcomes[outcome.variant.index] = outcome
     finally:
-        if started:
-            final = tuple(outcomes.get(v.index) or _unrecorded(folder, v) for v in study.variants)
-            index = write_index(study, folder, final)
+        with lock:  # released once the index is written
+            if started:
+                final = tuple(outcomes.get(v.index) or _unrecorded(folder, v) for v in study.variants)
+                index = write_index(study, folder, final)
     return StudyReport(final, time.perf_counter() - start, index)
 
 
@@ -150,6 +186,7 @@ def _client(workers: int, scheduler: str | None) -> Iterator[object]:
     from distributed import Client, LocalCluster
 
     if scheduler is not None:
+        probe(scheduler)  # a server that never answers, or is not Dask's: CaseError, not a hang
         try:
             client = Client(scheduler, timeout=CONNECT_TIMEOUT)
         except (OSError, ValueError, TypeError) as exc:
@@ -251,7 +288,8 @@ def _number(value: float | None) -> str:
 
 def _write_text(path: Path, text: str) -> Path:
     """`text` written to a temporary file and renamed onto `path` (no partial file ever)."""
-    temporary = path.with_name(f".{path.name}.{secrets.token_hex(6)}.tmp")
+    remove_stale(path)  # a killed writer's temporary file
+    temporary = temporary_beside(path)
     try:
         temporary.write_text(text, encoding="utf-8")
         os.replace(temporary, path)

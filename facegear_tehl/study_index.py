@@ -2,6 +2,7 @@
 scalars of its columns."""
 
 INDEX = "index.csv"
+INDEX_HEADER = "variant,"  # how every index.csv begins (study.write_index): what marks one as ours
 # Per-point scalars of the index (SI units in its header); a point without one leaves the cell empty.
 POINT_COLUMNS = (("h_c", "m"), ("h_min", "m"), ("film_parameter", "1"), ("p_max", "Pa"), ("dT_max", "K"),
                  ("mu", "1"))

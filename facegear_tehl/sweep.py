@@ -37,10 +37,10 @@ from itertools import pairwise
 import math
 import os
 from pathlib import Path
-import secrets
 
 import numpy as np
 
+from facegear_tehl.atomic_files import remove_stale, temporary_beside
 from facegear_tehl.case import THERMAL_MODELS, Case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.domain import solution_domain
@@ -346,7 +346,8 @@ def write_csv(table: Mapping[str, Field], path: str | Path) -> Path:
     lines = [",".join(f"{name} [{table[name].units}]" for name in names)]
     for row in zip(*(np.asarray(table[name].values, dtype=float) for name in names)):
         lines.append(",".join("" if math.isnan(v) else f"{v:.10g}" for v in row))
-    temporary = target.with_name(f".{target.name}.{secrets.token_hex(6)}.tmp")
+    remove_stale(target)  # a killed writer's temporary file
+    temporary = temporary_beside(target)
     try:
         temporary.write_text("\n".join(lines) + "\n", encoding="utf-8")
         os.replace(temporary, target)

@@ -331,6 +331,8 @@ def test_unexpected_error_exits_1_without_a_file(tmp_path, monkeypatch, fake_sol
     assert result.exit_code == 1
     lines = result.stderr.strip().splitlines()
     assert lines[-1].startswith("error: NonFiniteError: /points/contact/pressure: refusing to write 1 NaN")
+    assert lines[-1].endswith("(an unexpected error: tehl --debug with the same arguments shows where; please report "
+                              "it with that output)")
     assert "Traceback" not in result.output
     assert _files(tmp_path) == []
 
@@ -440,7 +442,7 @@ def test_info_rejects_what_is_not_a_result(tmp_path, content):
 
 # -------------------------------------------------------------------------------- interrupted runs
 
-@pytest.mark.parametrize("signum, code", [(signal.SIGTERM, 128 + signal.SIGTERM), (signal.SIGINT, 1)])
+@pytest.mark.parametrize("signum, code", [(signal.SIGTERM, 128 + signal.SIGTERM), (signal.SIGINT, 128 + signal.SIGINT)])
 def test_interrupted_run_keeps_the_previous_result(tmp_path, signum, code):
     target = tmp_path / "r.h5"
     write_result(synthetic.run_result(), target)

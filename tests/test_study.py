@@ -370,3 +370,19 @@ def test_the_index_reads_lambda_power_loss_and_efficiency_when_the_file_has_them
     assert (first["film_parameter [1]"], first["power_loss [W]"], first["mesh_efficiency [1]"]) == \
         ("1.25", "812.5", "0.9921")
     assert second["film_parameter [1]"] == second["power_loss [W]"] == ""
+
+
+def test_a_damaged_file_is_named_and_run_again(cluster, tmp_path):
+    """A result file of the folder damaged (a soft-link loop under /points) stopped the resume with AttributeError;
+    now the study names it and computes its variant again (docs/guarantees.md)."""
+    study = _study(tmp_path, "  contact.load: [4.0, 9.0]\n")
+    out = tmp_path / "out"
+    assert _invoke("study", study, "-o", out, "--scheduler", cluster.scheduler_address).exit_code == 0
+    damaged = out / _index(out)[0]["file"]
+    with h5py.File(damaged, "a") as h5:
+        h5["points/loop"] = h5py.SoftLink("/points/loop")
+    again = _invoke("study", study, "-o", out, "--scheduler", cluster.scheduler_address)
+    assert again.exit_code == 0, again.output
+    assert f"warning: variant 1 (contact.load=4.0): {damaged}: damaged tehl result (/points/loop:" in again.stderr
+    assert "1 variants computed, 1 already finished" in again.output
+    assert "loop" not in read_result(damaged).points

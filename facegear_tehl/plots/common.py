@@ -43,11 +43,17 @@ class Output:
         self.report.skipped.append(f"skipped {what}: {reason}")
 
 
+def plain(text: str) -> str:
+    """`text` from a file (a case or point name, a varied value) drawn as written: each `$`, which would open
+    matplotlib's mathtext, escaped (`name: "q$x^{$q"` would otherwise fail to parse and stop the plot)."""
+    return text.replace("$", r"\$")
+
+
 def title(result: Result, subject: str, point: PointResult | None = None) -> str:
-    """'<case>, <point>: <subject>', flagged when the point did not converge."""
-    where = f", {point.name}" if point is not None else ""
+    """'<case>, <point>: <subject>', flagged when the point did not converge; the names drawn as written."""
+    where = f", {plain(point.name)}" if point is not None else ""
     state = "" if point is None or point.converged else " (not converged)"
-    return f"{result.case_name}{where}: {subject}{state}"
+    return f"{plain(result.case_name)}{where}: {subject}{state}"
 
 
 def figure(width: float = 7.5, height: float = 5.0) -> Figure:

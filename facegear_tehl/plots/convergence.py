@@ -12,7 +12,7 @@ from matplotlib.ticker import FormatStrFormatter, LogLocator, MaxNLocator, NullF
 import numpy as np
 
 from facegear_tehl.plots.case_values import CaseValues
-from facegear_tehl.plots.common import Output, figure, legend, title
+from facegear_tehl.plots.common import Output, figure, legend, plain, title
 from facegear_tehl.results import PointResult, Result
 from facegear_tehl.settings import SolverSettings
 from facegear_tehl.solution import Field
@@ -71,11 +71,11 @@ def _history_panel(ax: Axes, points: Sequence[PointResult], key: str) -> None:
         if key in p.history:
             values = np.asarray(p.history[key].values, dtype=float)
             if film:
-                ax.plot(np.arange(len(values)), shown(values), "o-", markersize=3, label=p.name)
+                ax.plot(np.arange(len(values)), shown(values), "o-", markersize=3, label=plain(p.name))
             else:
                 values = np.abs(values)
                 ax.semilogy(np.arange(len(values)), np.where(values > 0.0, values, np.nan), "o-", markersize=3,
-                            label=p.name)
+                            label=plain(p.name))
     units = shown.label if film else first.units
     ax.set_ylabel(f"{name} ({units})" if film else f"|{name}|" + ("" if units in ("", "1") else f" ({units})"))
     ax.set_title(first.description or name, fontsize="medium", wrap=True)
@@ -131,7 +131,7 @@ def _levels_panel(ax: Axes, points: Sequence[PointResult]) -> None:
     for p in points:
         nodes = np.asarray(p.history["level_nodes"].values)
         h_c = np.asarray(p.history["level_h_c"].values)
-        ax.plot(nodes, PERCENT(h_c / h_c[-1] - 1.0), "o-", markersize=3, label=p.name)
+        ax.plot(nodes, PERCENT(h_c / h_c[-1] - 1.0), "o-", markersize=3, label=plain(p.name))
     ax.set_xscale("log", base=2)
     ax.set_xticks(nodes, [f"{n:.0f}" for n in nodes])
     ax.xaxis.set_minor_locator(NullLocator())

@@ -12,6 +12,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 import csv
 from dataclasses import dataclass
+import io
 import itertools
 import math
 from pathlib import Path
@@ -20,9 +21,10 @@ import re
 import numpy as np
 
 from facegear_tehl.plots import FORMATS
-from facegear_tehl.plots.common import Output, PlotReport, figure
+from facegear_tehl.plots.common import Output, PlotReport, figure, plain
 from facegear_tehl.results import ResultFileError
 from facegear_tehl.schema import CaseError
+from facegear_tehl.study_file import HASH_DIGITS
 from facegear_tehl.study_index import COLUMNS, INDEX
 from facegear_tehl.units import display
 
@@ -64,13 +66,20 @@ def read_index(folder: Path) -> StudyIndex:
     """The index of the study folder `folder`; ResultFileError if it has none or it is not a study index."""
     path = folder / INDEX
     try:
-        with path.open(encoding="utf-8", newline="") as stream:
-            table = list(csv.reader(stream))
+        text = path.read_text(encoding="utf-8")
+        table = list(csv.reader(io.StringIO(text, newline="")))
     except OSError as exc:
         raise ResultFileError(f"{folder}: not a study folder ({INDEX}: {exc.strerror})") from None
+    except (UnicodeDecodeError, csv.Error) as exc:
+        raise ResultFileError(f"{path}: not a readable study index ({exc}); run tehl study again to rewrite it") \
+            from None
     header = table[0] if table else []
     if header[:1] != ["variant"] or "point" not in header:
         raise ResultFileError(f"{path}: not a study index (no variant and point columns)")
+    if not text.endswith("\n"):  # write_index ends every row, the last one included, with a newline
+        raise ResultFileError(f"{path}: its last line is cut short (a truncated index); run tehl study again to "
+                              "rewrite it")
+    _check_rows(path, header, table[1:])
     keys = tuple(header[1:header.index("point")])
     units = {}
     for column in header:
@@ -79,6 +88,34 @@ def read_index(folder: Path) -> StudyIndex:
             units[match.group(1)] = match.group(2)
     names = [re.sub(r" \[.*\]$", "", column) for column in header]
     return StudyIndex(keys, tuple(dict(zip(names, row)) for row in table[1:]), units)
+
+
+def _check_rows(path: Path, header: list[str], rows: list[list[str]]) -> None:
+    """ResultFileError naming the line of the first row of `rows` that has not a cell per column (a truncated or
+    edited index) or holds a scalar of COLUMNS that is neither empty nor a finite number."""
+    numeric = [i for i, column in enumerate(header) if re.sub(r" \[.*\]$", "", column) in COLUMNS]
+    for line, row in enumerate(rows, start=2):
+        if len(row) != len(header):
+            raise ResultFileError(f"{path}: line {line} has {len(row)} cells, the header {len(header)} (a truncated "
+                                  "or damaged index); run tehl study again to rewrite it")
+        for i in numeric:
+            if row[i] and not _finite(row[i]):
+                raise ResultFileError(f"{path}: line {line}, column {header[i]}: {row[i]!r} is not a number; run "
+                                      "tehl study again to rewrite the index")
+
+
+def _unlisted_files(folder: Path, index: StudyIndex) -> int:
+    """Variant result files in `folder` (named by HASH_DIGITS hex digits) that no row of `index` names."""
+    listed = {row.get("file") for row in index.rows}
+    return sum(bool(re.fullmatch(f"[0-9a-f]{{{HASH_DIGITS}}}\\.h5", path.name)) and path.name not in listed
+               for path in folder.iterdir())
+
+
+def _finite(text: str) -> bool:
+    try:
+        return math.isfinite(float(text))
+    except ValueError:
+        return False
 
 
 def map_grids(index: StudyIndex, z: str = "h_min", x: str | None = None, y: str | None = None,
@@ -147,8 +184,14 @@ def plot_study(folder: Path, out_folder: Path, *, what: str = "maps", z: str = "
         raise CaseError("--format", fmt, "one of " + ", ".join(FORMATS))
     if dpi <= 0:
         raise CaseError("--dpi", dpi, "a positive number of dots per inch")
-    grids = map_grids(read_index(folder), z, x, y, points)
+    index = read_index(folder)
+    grids = map_grids(index, z, x, y, points)
     out = Output(out_folder, fmt, dpi, PlotReport())
+    unlisted = _unlisted_files(folder, index)
+    if unlisted:
+        out.report.skipped.append(f"warning: {folder / INDEX} does not name {unlisted} result file(s) of the folder "
+                                  "(an index cut short, or files of an earlier study): run tehl study again to "
+                                  "rewrite it")
     for grid in grids:
         if np.isnan(grid.values).all():
             out.skip(f"map {_stem(grid)}", f"no {grid.z} in the index for these variants")
@@ -177,15 +220,15 @@ def draw_map(grid: MapGrid, out: Output) -> None:
             text = "–" if math.isnan(value) else f"{value:.3g}" + ("*" if grid.not_converged[i, j] else "")
             ax.text(xs[j], ys[i], text, ha="center", va="center", fontsize="x-small", color="black",
                     bbox={"facecolor": "white", "alpha": 0.6, "linewidth": 0, "pad": 1})
-    ax.set_xticks(xs, grid.x_values if not x_numeric else None)
-    ax.set_xlabel(grid.x)
+    ax.set_xticks(xs, [plain(v) for v in grid.x_values] if not x_numeric else None)
+    ax.set_xlabel(plain(grid.x))
     if grid.y is None:
         ax.set_yticks([])
     else:
-        ax.set_yticks(ys, grid.y_values if not y_numeric else None)
-        ax.set_ylabel(grid.y)
-    where = "worst point" if grid.point == WORST else f"point {grid.point}"
-    pinned = "".join(f", {key} = {value}" for key, value in grid.fixed)
+        ax.set_yticks(ys, [plain(v) for v in grid.y_values] if not y_numeric else None)
+        ax.set_ylabel(plain(grid.y))
+    where = "worst point" if grid.point == WORST else f"point {plain(grid.point)}"
+    pinned = plain("".join(f", {key} = {value}" for key, value in grid.fixed))
     flagged = "; * not converged" if grid.not_converged.any() else ""
     ax.set_title(f"{label}, {where}{pinned}{flagged}", fontsize="medium")
     out.save(fig, _stem(grid))
