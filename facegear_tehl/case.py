@@ -344,6 +344,7 @@ def _solver(block: Block) -> SolverSettings:
         grid_y=grid_y,
         outlet_refinement=block.choice("outlet_refinement", OUTLET_REFINEMENTS, d["outlet_refinement"]),
         outlet_patches=block.integer("outlet_patches", d["outlet_patches"], low=1, high=MAX_OUTLET_PATCHES),
+        time_budget=block.number("time_budget", d["time_budget"], positive=True, high=1e6, unit="s"),
     )
     check(settings.thermal_layers % 2 == 1, block.key_path("thermal_layers"), settings.thermal_layers,
           "an odd number of layer nodes (Simpson's rule across the film), e.g. 7, 9 or 11")

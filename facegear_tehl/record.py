@@ -50,6 +50,7 @@ class Action(Enum):
     FINER_GRID = "solved again on a finer grid"
     KEPT_COARSER = "the converged coarser solution kept"
     FIRST_KEPT = "no retry did better: the first attempt reported"
+    BUDGET_SPENT = "not refined: the next grid would pass the point's time budget, the best solution so far kept"
     NONE = "kept as it is"
 
 

@@ -95,6 +95,7 @@ class Refinement:
     reason: str  # why a converged solve was not enough ("" for a solve that failed: `_coarse_reason`)
     tried: str = ""  # a finer grid whose solve did not converge, the coarser converged solution kept ("" if none)
     outcome: str = ""  # how the solve on `tried` ended
+    stopped: str = ""  # the finer grid not started: it would have passed the point's time budget ("" if none)
 
 
 def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *, jobs: int | None = None,
@@ -116,6 +117,16 @@ def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
     while True:
         next_grids = {i: _next_grid(tasks[i], s) for i, s in enumerate(solved)
                       if POLICY.unresolved(s) or (POLICY.coarse(s) and i not in kept)}
+        for i in [i for i, settings in next_grids.items() if settings is not None and _over_budget(tasks[i], settings,
+                                                                                                   solved[i])]:
+            name = tasks[i].point.name
+            first = refined.get(name, Refinement(asked[name], asked[name], _coarse_reason(solved[i])))
+            refined[name] = replace(first, stopped=_shape(next_grids.pop(i)))
+            kept.add(i)
+            solved[i] = _noted(solved[i], RetryRecord(Reason.UNRESOLVED if POLICY.unresolved(solved[i]) else
+                                                      Reason.COARSE_ESTIMATE, Action.BUDGET_SPENT, 0,
+                                                      f"{refined[name].stopped}: time budget "
+                                                      f"{tasks[i].settings.time_budget:g} s"))
         closed = [i for i, settings in next_grids.items() if settings is not None]
         if not closed:
             return solved, failed, refined
@@ -161,9 +172,21 @@ def _noted(solution: PointSolution, retry: RetryRecord, earlier: tuple[RetryReco
     return replace(solution, record=record, models={**solution.models, "solver": record.render()}, **changes)
 
 
+def _over_budget(task: SolveTask, finer: SolverSettings, solution: PointSolution) -> bool:
+    """Solving the point on `finer` would pass its time budget: the time spent on it so far (s) and that time again
+    times the ratio of the finer grid's nodes to the last one's (multigrid work grows with the nodes) exceed
+    `solver.time_budget`."""
+    spent = solution.scalars.get("wall_time", (0.0, "s"))[0]
+    ratio = (finer.grid * finer.nodes_y) / (task.settings.grid * task.settings.nodes_y)
+    return spent * (1.0 + ratio) > task.settings.time_budget
+
+
 def refinement_note(name: str, refinement: Refinement, solution: PointSolution) -> str:
     """What the solver did about a grid that did not resolve the film of point `name`, and how it ended."""
-    if refinement.tried:
+    if refinement.stopped:
+        done = (f"{refinement.stopped} not started: it would have passed the point's time budget "
+                f"(solver.time_budget); the result is the {refinement.grid} solution, {solution.outcome.value}")
+    elif refinement.tried:
         done = f"{refinement.tried} ended {refinement.outcome}; the result is the converged {refinement.grid} solution"
     elif POLICY.unresolved(solution):
         done = f"finer grids up to {refinement.grid} did not resolve it either ({solution.outcome.value})"

@@ -255,3 +255,21 @@ def test_the_thermal_film_the_coarse_stage_could_not_hold_converges():
     expansion = solve.lubricant.thermal_expansion * thermal.scalar("dT_max")
     ratio = thermal.scalar("h_c") / isothermal.scalar("h_c")
     assert gupta - 0.02 <= ratio <= 1.0 + expansion, (ratio, gupta, expansion)
+
+
+@pytest.mark.parametrize(("budget", "grids"), [(4.0, [129]), (6.0, [129, 257]), (1e6, [129, 257, 513])])
+def test_refinement_stops_where_the_next_grid_would_pass_the_time_budget(budget, grids):
+    """Each stand-in solve takes 1 s and the next grid has 4x the nodes: a grid is started only while the time spent
+    so far, and that again times 4, fits solver.time_budget (129: 1 + 4 = 5 s; 257 after it: 2 + 8 = 10 s). A point
+    stopped so keeps its best solution so far, says why, and records it."""
+    solver = StandIn({129: (Outcome.CONVERGED, 2.6), 257: (Outcome.CONVERGED, 0.5), 513: (Outcome.CONVERGED, 0.04)})
+    task = _task()
+    task = replace(task, settings=replace(task.settings, time_budget=budget))
+    (solution,), _, refined = solve_refining([task], solver, jobs=1)
+    assert solver.grids == grids and solution.scalar("grid") == grids[-1]
+    stopped = len(grids) < 3
+    assert (refined["contact"].stopped != "") == stopped
+    assert (solution.record.retries[-1].action is Action.BUDGET_SPENT) == stopped
+    if stopped:
+        note = refinement_note("contact", refined["contact"], solution)
+        assert "not started: it would have passed the point's time budget" in note
