@@ -429,7 +429,9 @@ def load_case(path: str | Path) -> Case:
 
 def read_input(path: Path, what: str) -> str:
     """The text of an input file (`what`: "case file", "study file"); CaseError naming the file if it cannot be read
-    or is not UTF-8 text."""
+    or is not UTF-8 text, or is not a regular file (a FIFO would block the read until someone writes to it)."""
+    if path.exists() and not path.is_file():
+        raise CaseError("(file)", str(path), f"a {what} (a regular file, not a directory, device or FIFO)")
     try:
         return path.read_text(encoding="utf-8")
     except OSError as exc:

@@ -141,3 +141,13 @@ def test_plot_refuses_an_existing_file_as_its_folder(tmp_path):
     before = source.read_bytes()
     _refused(_invoke("plot", source, "-o", source), "--output")
     assert source.read_bytes() == before
+
+
+@pytest.mark.parametrize("command", ["validate", "run"])
+def test_a_case_file_that_is_a_fifo_is_refused_at_once(tmp_path, monkeypatch, command):
+    """Reading a FIFO as the case would wait for a writer for ever: it is refused naming the file, exit 2."""
+    monkeypatch.chdir(tmp_path)
+    fifo = tmp_path / "case.yaml"
+    os.mkfifo(fifo)
+    result = _invoke(command, fifo)
+    assert result.exit_code == 2 and "a regular file, not a directory, device or FIFO" in result.stderr
