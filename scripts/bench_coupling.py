@@ -8,7 +8,7 @@
    equation (every relaxation sweep recomputes them), the rest of the V-cycles and the rest of the outer loop
    (acceleration, freezing the state); with the outer iterations and V-cycles of each stage. --thermal off profiles
    the isothermal solve (with the case's Ree-Eyring lubricant: its outer loop of eta*/eta on the finest grid).
-2. With --before DIR (a source tree of another version, e.g. `git worktree add DIR 546879e`): the same profile of
+2. With --before DIR (a source tree of another version, e.g. `git worktree add DIR HEAD~1`): the same profile of
    DIR, then timings interleaved (before, after, before, ...; medians of --repeat): the point's thermal full and
    isothermal Newtonian solves (CPU time of the solve in a warm process, and their ratio), `tehl run CASE
    --jobs 2` and `tehl validate CASE` (wall time from the command line, and the CPU time of the process and its
@@ -58,7 +58,7 @@ def timed(owner, name, key):
     setattr(owner, name, wrapper)
 
 for name in ("fixed_parts", "sweep_columns", "wall_fluxes"):
-    if hasattr(energy, name):  # fixed_parts: a kernel of its own since addacab
+    if hasattr(energy, name):  # fixed_parts: a kernel of its own in later versions
         timed(energy, name, "energy")
 timed(jaeger, "surface_temperature_rise", "energy")
 for name in ("layered_coefficients", "temperature_factors", "isothermal_layered_coefficients", "column_integrals",
@@ -66,7 +66,12 @@ for name in ("layered_coefficients", "temperature_factors", "isothermal_layered_
     if hasattr(flow, name):  # the isothermal film's column form: a kernel of its own since this script's --thermal
         timed(flow, name, "flow")
 timed(thermal.FilmThermalModel, "update", "update")
-cycle = solve.PointSolve.cycle
+try:  # the pressure iteration of the one-engine driver; before it, PointSolve.cycle
+    from facegear_tehl.ehl.pressure import PressureIteration as cycling
+    from facegear_tehl.ehl.staged import solve_point
+except ImportError:
+    cycling, solve_point = solve.PointSolve, solve.solve_point
+cycle = cycling.cycle
 def counted_cycle(self, *args, **kwargs):
     before, start = self.history.cycles, time.process_time()
     try:
@@ -74,7 +79,7 @@ def counted_cycle(self, *args, **kwargs):
     finally:
         times[stage[0], "cycles"] += time.process_time() - start
         counts[stage[0], "cycles"] += self.history.cycles - before
-solve.PointSolve.cycle = counted_cycle
+cycling.cycle = counted_cycle
 couple = solve.PointSolve.couple
 def staged_couple(self, index, *args, **kwargs):
     level = self.solver.levels[index]
@@ -90,10 +95,10 @@ def staged_couple(self, index, *args, **kwargs):
 solve.PointSolve.couple = staged_couple
 settings = dataclasses.replace(case.solver, thermal=sys.argv[3])
 with threadpool_limits(limits=1):
-    solve.solve_point(point, case.lubricant, dataclasses.replace(settings, grid=33, grid_y=None))  # load kernels
+    solve_point(point, case.lubricant, dataclasses.replace(settings, grid=33, grid_y=None))  # load kernels
     times.clear(), counts.clear()
     start = time.process_time()
-    solution = solve.solve_point(point, case.lubricant, settings)
+    solution = solve_point(point, case.lubricant, settings)
     total = time.process_time() - start
 print(json.dumps({"total": total, "converged": solution.converged,
                   "times": [[k[0], k[1], v] for k, v in times.items()],
@@ -104,8 +109,11 @@ SOLVE = r'''
 import dataclasses, json, sys, time
 from threadpoolctl import threadpool_limits
 from facegear_tehl.case import load_case
-from facegear_tehl.ehl.staged import solve_point
 from facegear_tehl.points import contact_analysis
+try:
+    from facegear_tehl.ehl.staged import solve_point
+except ImportError:  # a version before the one-engine driver
+    from facegear_tehl.ehl.solve import solve_point
 
 case = load_case(sys.argv[1])
 point = next(p for p in contact_analysis(case).points if p.name == sys.argv[2])
