@@ -56,8 +56,8 @@ class Action(Enum):
 
 @dataclass(frozen=True)
 class StageRecord:
-    """One stage that ran: on which grid (nodes in x, y), its V-cycles and outer iterations, how it ended, its wall
-    time (s)."""
+    """One stage that ran: on which grid (nodes in x, y), its V-cycles on that grid (the full-multigrid start's cycles
+    on the grids below it are in its work), outer iterations, how it ended, its wall time (s) and work units."""
 
     stage: Stage
     nx: int
@@ -66,6 +66,7 @@ class StageRecord:
     outer: int
     outcome: Outcome
     seconds: float
+    work: float = 0.0  # work units (the finest grid's relaxation sweeps' worth, Venner & Lubrecht 2000)
 
 
 @dataclass(frozen=True)
@@ -111,7 +112,7 @@ def record_to_dict(record: SolveRecord) -> dict[str, object]:
     return {
         "plan": list(record.plan),
         "stages": [{"stage": s.stage.value, "nx": s.nx, "ny": s.ny, "cycles": s.cycles, "outer": s.outer,
-                    "outcome": s.outcome.value, "seconds": s.seconds} for s in record.stages],
+                    "outcome": s.outcome.value, "seconds": s.seconds, "work": s.work} for s in record.stages],
         "retries": [{"reason": r.reason.value, "action": r.action.value, "attempt": r.attempt, "detail": r.detail}
                     for r in record.retries],
         "attempt": record.attempt,
@@ -124,7 +125,8 @@ def record_to_dict(record: SolveRecord) -> dict[str, object]:
 def record_from_dict(data: dict[str, object]) -> SolveRecord:
     """The record from `record_to_dict`'s plain data."""
     stages = tuple(StageRecord(Stage(s["stage"]), int(s["nx"]), int(s["ny"]), int(s["cycles"]), int(s["outer"]),
-                               Outcome(s["outcome"]), float(s["seconds"])) for s in data["stages"])
+                               Outcome(s["outcome"]), float(s["seconds"]), float(s.get("work", 0.0)))
+                   for s in data["stages"])
     retries = tuple(RetryRecord(Reason(r["reason"]), Action(r["action"]), int(r["attempt"]), str(r["detail"]))
                     for r in data["retries"])
     return SolveRecord(tuple(data["plan"]), stages, retries, int(data["attempt"]), str(data["relaxation"]),
@@ -137,7 +139,7 @@ def record_lines(name: str, record: SolveRecord) -> list[str]:
     lines = [f"solve of {name}: attempt {record.attempt} ({record.relaxation}), iteration {record.iteration.value}"]
     lines += [f"  planned  {step}" for step in record.plan]
     lines += [f"  ran      {s.stage.value} on {s.nx} x {s.ny}: {s.cycles} V-cycles, {s.outer} outer iterations, "
-              f"{s.outcome.value}, {s.seconds:.2f} s" for s in record.stages]
+              f"{s.work:.1f} work units, {s.outcome.value}, {s.seconds:.2f} s" for s in record.stages]
     lines += [f"  retry    {r.reason.value}" + (f" ({r.detail})" if r.detail else "") + f": {r.action.value}"
               for r in record.retries]
     lines += [f"  note     {note}" for note in record.notes]

@@ -35,7 +35,7 @@ def test_the_plan_follows_the_hierarchy():
     full = _plan(513, 65, ThermalMode.FULL)
     assert [(p.stage, p.nx, p.ny) for p in full.stages] == [
         (Stage.START, 129, 65), (Stage.SEED, 129, 65), (Stage.COARSE, 257, 65), (Stage.FINEST, 513, 65),
-        (Stage.OUTLET, 1025, 65)]
+        (Stage.OUTLET, 513, 65)]
     # the seed stage needs 129 nodes in x two grids below the finest; the coarse stage 65 one grid below
     assert [p.stage for p in _plan(257, 65, ThermalMode.FULL).stages] == [
         Stage.START, Stage.COARSE, Stage.FINEST, Stage.OUTLET]

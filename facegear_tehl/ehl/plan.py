@@ -67,6 +67,6 @@ def plan_for(shapes: list[tuple[int, int]], mode: ThermalMode, coupled: bool, se
             and abs(entrainment_angle) <= TUNING.max_entrainment_angle):
         always = settings.outlet_refinement == OutletRefinement.ALWAYS
         when = "always" if always else "where the hot spot lies on the spike's flank"
-        stages.append(PlannedStage(Stage.OUTLET, 2 * shapes[-1][0] - 1, shapes[-1][1],
-                                   f"up to {settings.outlet_patches} nested patches over the outlet, {when}"))
+        stages.append(PlannedStage(Stage.OUTLET, *shapes[-1], f"up to {settings.outlet_patches} nested patches over "
+                                                             f"its outlet at 1/2, 1/4, 1/8 of its x spacing, {when}"))
     return SolvePlan(tuple(stages))

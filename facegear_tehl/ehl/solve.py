@@ -154,8 +154,7 @@ class PointSolve:
         if self.mode is ThermalMode.FULL and status.converged and needs_outlet_patch(self, top, state):
             mark = self._mark()
             self.outlet, self.outlet_note = outlet_stages(self, top, state)
-            self._stage_done(Stage.OUTLET, len(self.solver.levels) - 1, CONVERGED if self.outlet else
-                             Status(Outcome.NOT_CONVERGED), mark)
+            self._stage_done(Stage.OUTLET, top, CONVERGED if self.outlet else Status(Outcome.NOT_CONVERGED), mark)
         return self.report(top, status, state)
 
     def _coarse_thermal_stage(self) -> PointSolution | PointSolve:
@@ -321,16 +320,16 @@ class PointSolve:
                                 self.lubricant, self.point, solve_energy=False, newtonian_below=newtonian_below)
 
     # ------------------------------------------------------------------ record and report
-    def _mark(self) -> tuple[int, int, float]:
-        """The counts a stage record is measured from: V-cycles, outer iterations, clock (s)."""
-        return self.history.cycles, self.history.outer, time.perf_counter()
+    def _mark(self) -> tuple[int, int, float, float]:
+        """The counts a stage record is measured from: V-cycles, outer iterations, clock (s), work units."""
+        return self.history.cycles, self.history.outer, time.perf_counter(), self.solver.work_units
 
-    def _stage_done(self, stage: Stage, index: int, status: Status, mark: tuple[int, int, float]) -> None:
+    def _stage_done(self, stage: Stage, index: int, status: Status, mark: tuple[int, int, float, float]) -> None:
         level = self.solver.levels[index]
-        cycles, outer, clock = mark
+        cycles, outer, clock, work = mark
         self.stages.append(StageRecord(stage, level.nx, level.ny, max(self.history.cycles - cycles, 0),
                                        max(self.history.outer - outer, 0), status.outcome,
-                                       time.perf_counter() - clock))
+                                       time.perf_counter() - clock, self.solver.work_units - work))
 
     def record(self, iteration: Outcome) -> SolveRecord:
         """The solve record so far; `iteration`: how the iteration ended before a closed film was checked."""
