@@ -387,3 +387,25 @@ def test_the_cycle_figure_draws_no_line_across_a_jump_of_the_tooth_load(gear_fil
                 assert not any(x.min() < s < x.max() for s in jumps_mm), (line.get_label(), x)
     markers = [line for ax in figures["cycle"].axes for line in ax.get_lines() if len(line.get_xdata()) == 1]
     assert joined == 0 and len(markers) >= 3 * 4, "every series is drawn as markers, one run per point"
+
+
+def _bar_heights(ax) -> dict[str, list[float]]:
+    """Bar heights per legend label of one axes."""
+    return {container.get_label(): [bar.get_height() for bar in container] for container in ax.containers}
+
+
+def test_heat_held_over_the_domain_is_not_drawn_on_the_axis_of_the_heat_generated(thermal_file, tmp_path, monkeypatch):
+    """Q_oil over the whole domain (a heat held, growing with the inlet length) has an axis of its own; every bar
+    is the file's /heat value in mJ; the revolution-averaged powers are not on the axis of the instantaneous ones."""
+    figures = _capture(monkeypatch)
+    _plot(thermal_file, tmp_path, what=["heat"])
+    heat = read_result(thermal_file).heat
+    axes = [_bar_heights(ax) for ax in figures["heat_oil_film"].axes]
+    holding = [bars for bars in axes if any("whole domain" in label and "held" in label for label in bars)]
+    assert len(holding) == 1 and len(holding[0]) == 1
+    assert holding[0].popitem()[1] == pytest.approx(1e3 * np.asarray(heat["oil_film_heat_domain"].values))
+    generated = [bars for bars in axes if any(label.startswith("$Q_f") for label in bars)]
+    assert len(generated) == 1 and not any("held" in label for label in generated[0])
+    for bars in [_bar_heights(ax) for ax in figures["heat_power"].axes]:
+        steady = [label for label in bars if "P_{ss" in label]
+        assert not steady or len(steady) == len(bars)
