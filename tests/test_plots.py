@@ -386,7 +386,8 @@ def test_the_cycle_figure_draws_no_line_across_a_jump_of_the_tooth_load(gear_fil
                 joined += 1
                 assert not any(x.min() < s < x.max() for s in jumps_mm), (line.get_label(), x)
     markers = [line for ax in figures["cycle"].axes for line in ax.get_lines() if len(line.get_xdata()) == 1]
-    assert joined == 0 and len(markers) >= 3 * 4, "every series is drawn as markers, one run per point"
+    # load share, p_h and h_min at three points (λ is a second scale of h_min, not a series)
+    assert joined == 0 and len(markers) >= 3 * 3, "every series is drawn as markers, one run per point"
 
 
 def _bar_heights(ax) -> dict[str, list[float]]:
@@ -409,3 +410,27 @@ def test_heat_held_over_the_domain_is_not_drawn_on_the_axis_of_the_heat_generate
     for bars in [_bar_heights(ax) for ax in figures["heat_power"].axes]:
         steady = [label for label in bars if "P_{ss" in label]
         assert not steady or len(steady) == len(bars)
+
+
+def test_the_cycle_figure_names_the_axis_of_every_series_and_draws_the_film_once(thermal_file, tmp_path,
+                                                                                 monkeypatch):
+    """Where a panel has two y-axes, each legend entry says which axis it is read on; h_min and λ = h_min/σ are one
+    curve with two scales (the second scale maps h_min by the file's σ), not two coinciding curves."""
+    figures = _capture(monkeypatch)
+    _plot(thermal_file, tmp_path, what=["cycle"])
+    cycle = read_result(thermal_file).cycle
+    panels = [ax for ax in figures["cycle"].axes if ax.get_legend() is not None]
+    assert len(panels) == 5
+    places = [ax.get_position().bounds for ax in figures["cycle"].axes]
+    twins = {id(ax) for ax in panels if places.count(ax.get_position().bounds) == 2}
+    assert len(twins) == 2, "load share with p_h, and μ with the sliding power"
+    for ax in panels:
+        labels = [text.get_text() for text in ax.get_legend().get_texts()]
+        two_axes = id(ax) in twins
+        assert all(label.endswith(("(left axis)", "(right axis)")) == two_axes for label in labels), labels
+    film = next(ax for ax in panels if ax.get_ylabel().startswith("h_min"))
+    assert {line.get_label() for line in film.get_lines() if not line.get_label().startswith("_")} == {"h_min"}
+    scale = film.child_axes[0]
+    sigma = np.asarray(cycle["h_min"].values) / np.asarray(cycle["film_parameter"].values)
+    assert np.ptp(sigma) < 1e-9 * sigma.max(), "λ = h_min/σ with one σ along the path"
+    assert f"σ {1e6 * sigma[0]:.3g} µm" in scale.get_ylabel()
