@@ -185,8 +185,9 @@ def test_every_default_figure_fits_its_canvas(thermal_file, tmp_path, monkeypatc
         assert box.x1 <= width + tolerance and box.y1 <= height + tolerance, (stem, box, width, height)
 
 
-def test_temperature_maps_are_rises_centred_at_zero_on_one_scale(thermal_file, tmp_path, monkeypatch):
-    """ΔT = T - T_inlet with T_inlet = 40 degC (the case file); both points on [-L, L], L the largest |ΔT|."""
+def test_temperature_maps_are_rises_centred_at_zero_each_on_its_own_scale(thermal_file, tmp_path, monkeypatch):
+    """ΔT = T - T_inlet with T_inlet = 40 degC (the case file); each point on [-L, L], L its own largest |ΔT| (a scale
+    shared with S1's 90 K rise left S3's map blank), each with its colour bar."""
     figures = _capture(monkeypatch)
     _plot(thermal_file, tmp_path, what=["overview"])
     result = read_result(thermal_file)
@@ -194,13 +195,35 @@ def test_temperature_maps_are_rises_centred_at_zero_on_one_scale(thermal_file, t
     images = [image for ax in figures["overview"].axes for image in ax.get_images()
               if image.get_cmap().name == "RdBu_r"]
     assert len(images) == 2
-    limits = {image.get_clim() for image in images}
-    assert len(limits) == 1
-    low, high = limits.pop()
-    assert low == -high
-    assert high >= max(np.abs(rise).max() for rise in rises)
-    assert high == pytest.approx(max(max(p.scalars["dT_max"], -p.scalars["dT_min"]) for p in result.points.values()))
+    for image, rise, point in zip(images, rises, result.points.values()):
+        low, high = image.get_clim()
+        assert low == -high
+        assert high >= np.abs(rise).max()
+        assert high == pytest.approx(max(point.scalars["dT_max"], -point.scalars["dT_min"]))
+        assert image.colorbar is not None
+    assert len({image.get_clim() for image in images}) == 2
     assert any(rise.min() < 0.0 for rise in rises), "the S3 outlet cools below the inlet (expansion)"
+
+
+def test_the_place_of_dT_min_is_named_only_inside_the_domain(thermal_file, tmp_path, monkeypatch):
+    """A ΔT_min of 0 is the inlet itself (no film below the inlet temperature) and a minimum on the domain edge is
+    a boundary value: no location is printed for them; a location printed is more than one node inside the grid."""
+    figures = _capture(monkeypatch)
+    _plot(thermal_file, tmp_path, what=["centreline"])
+    result = read_result(thermal_file)
+    for name, point in result.points.items():
+        labels = [t.get_text() for ax in figures[f"{name}_centreline"].axes if ax.get_legend()
+                  for t in ax.get_legend().get_texts() if "T_{min}" in t.get_text()]
+        assert len(labels) == 1
+        x, y = (np.asarray(point.axes[k].values) for k in ("x", "y"))
+        place = point.scalars["x_dT_min"], point.scalars["y_dT_min"]
+        interior = all(axis[1] < p < axis[-2] for axis, p in zip((x, y), place))
+        if point.scalars["dT_min"] < 0.0 and interior:
+            assert f"= {place[0] / point.scalars['b']:.2f}" in labels[0], labels
+        else:
+            assert "x/b" not in labels[0], labels
+            if point.scalars["dT_min"] >= 0.0:
+                assert "none below the inlet" in labels[0]
 
 
 def test_trends_draw_no_line_across_a_jump_of_the_tooth_load(gear_run, tmp_path, monkeypatch):
