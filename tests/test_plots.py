@@ -457,3 +457,25 @@ def test_the_cycle_figure_names_the_axis_of_every_series_and_draws_the_film_once
     sigma = np.asarray(cycle["h_min"].values) / np.asarray(cycle["film_parameter"].values)
     assert np.ptp(sigma) < 1e-9 * sigma.max(), "λ = h_min/σ with one σ along the path"
     assert f"σ {1e6 * sigma[0]:.3g} µm" in scale.get_ylabel()
+
+
+def test_convergence_marks_each_stage_restart_from_the_solve_record(thermal_file, tmp_path, monkeypatch):
+    """The temperature change per outer iteration jumps where the solve begins its next stage on a finer grid: the
+    open squares sit exactly at the record's stage starts (cumulated outer iterations), and the changes are drawn
+    relative to the point's rise against one tolerance line, not one line per point."""
+    figures = _capture(monkeypatch)
+    _plot(thermal_file, tmp_path, what=["convergence"])
+    result = read_result(thermal_file)
+    case = load_case(FACE_GEAR)
+    panel = next(ax for ax in figures["convergence"].axes if "ΔT" in ax.get_ylabel() or "T_{max}" in ax.get_ylabel())
+    squares = [line for line in panel.get_lines() if line.get_marker() == "s" and len(line.get_xdata())]
+    expected = []
+    for point in result.points.values():
+        outer = [stage.outer for stage in point.record.stages if stage.outer > 0]
+        assert sum(outer) == len(point.history["thermal_change_history"].values)
+        expected.append(list(np.cumsum(outer)[:-1]))
+    assert squares, "the thermal solve runs a seed, a coarse and a finest stage"
+    assert sorted(list(line.get_xdata()) for line in squares) == sorted(e for e in expected if e)
+    levels = [float(line.get_ydata()[0]) for line in panel.get_lines()
+              if line.get_linestyle() in ("--", ":") and len(line.get_ydata())]
+    assert case.solver.thermal_tolerance in levels and len(levels) <= 2
