@@ -33,7 +33,7 @@ import h5py
 from facegear_tehl.results import ResultFileError, RunResult, read_result, write_result
 from facegear_tehl.schema import CaseError
 from facegear_tehl.study_file import Study, Variant, digest, value_text
-from facegear_tehl.study_index import COLUMNS, CYCLE_COLUMNS, INDEX, POINT_COLUMNS
+from facegear_tehl.study_index import COLUMNS, CYCLE_COLUMNS, ESTIMATE_COLUMNS, GRID, INDEX, POINT_COLUMNS
 
 FAILURES = "failures.txt"
 # Dask starts worker processes with MALLOC_TRIM_THRESHOLD_=65536 (its distributed.nanny.pre-spawn-environ), which
@@ -203,24 +203,30 @@ def _unrecorded(folder: Path, variant: Variant) -> VariantOutcome:
 
 def write_index(study: Study, folder: Path, outcomes: Sequence[VariantOutcome]) -> Path:
     """DIR/index.csv, one row per variant and point (a failed or pending variant: one row without a point):
-    variant number, the varied values, point, status, converged, the scalars of COLUMNS (SI, units in the
-    header; empty where the file has none), the file, the message. Then failures.txt (or its removal)."""
+    variant number, the varied values, point, status, converged, the scalars of COLUMNS and their error estimates
+    (SI, units in the header; empty where the file has none), the grid solved on (nx x ny), the file, the message.
+    Then failures.txt (or its removal)."""
     header = ["variant", *study.keys, "point", "status", "converged",
-              *(f"{name} [{units}]" for name, units in POINT_COLUMNS + CYCLE_COLUMNS), "file", "message"]
+              *(f"{name} [{units}]" for name, units in POINT_COLUMNS + CYCLE_COLUMNS + ESTIMATE_COLUMNS), GRID,
+              "file", "message"]
     rows = []
     for outcome in outcomes:
         variant = outcome.variant
         lead = [str(variant.index + 1), *(value_text(value) for _, value in variant.values)]
         path = folder / variant.file_name
         if not outcome.has_file:
-            rows.append([*lead, "", outcome.status, "", *([""] * len(COLUMNS)), "", outcome.message])
+            rows.append([*lead, "", outcome.status, "", *([""] * (len(COLUMNS) + len(ESTIMATE_COLUMNS))), "", "",
+                         outcome.message])
             continue
         result = read_result(path, fields=False)
         cycle = _cycle_attrs(path)
         for point in result.points.values():
             scalars = [_number(point.scalars.get(name)) for name, _ in POINT_COLUMNS]
             rows.append([*lead, point.name, result.status, "yes" if point.converged else "no", *scalars,
-                         *(_number(cycle.get(name)) for name, _ in CYCLE_COLUMNS), variant.file_name,
+                         *(_number(cycle.get(name)) for name, _ in CYCLE_COLUMNS),
+                         *(_number(point.scalars.get(name)) for name, _ in ESTIMATE_COLUMNS),
+                         "x".join(str(len(point.axes[k].values)) for k in ("x", "y") if k in point.axes),
+                         variant.file_name,
                          point.message.replace("\n", " ")])
     text = io.StringIO()
     writer = csv.writer(text, lineterminator="\n")
