@@ -392,6 +392,23 @@ def plot(result_file: str, what: str, points: str | None, output: str | None, fm
         click.echo(f"  {path}")
 
 
+@tehl.command("report", epilog="""\b
+Examples:
+  tehl report facegear_110.h5                  writes facegear_110.html beside it
+  tehl report facegear_110.h5 -o review.html""")
+@click.argument("result_file", metavar="RESULT")
+@click.option("-o", "--output", help="The HTML file (default: <RESULT name>.html next to RESULT).")
+def report_command(result_file: str, output: str | None) -> None:
+    """Write one self-contained HTML page of a result file (inputs, verdict, results with their error estimates,
+    key figures, solve summary, provenance) to hand on or print to PDF; nothing is solved."""
+    # Imported here: only this command and plot need matplotlib.
+    from facegear_tehl.report_page import write_report
+
+    source = Path(result_file)
+    target = _writable("--output", Path(output) if output is not None else source.with_suffix(".html"))
+    click.echo(f"report: {write_report(read_result(source), target)}")
+
+
 def info_json(result: Result) -> dict[str, Any]:
     """{'case', 'status', 'message', 'format_version', 'points': {name: {scalar: SI value, 'converged',
     'message'}}, 'units': {name: {scalar: unit}}, 'solve': {name: the solve record (record.record_to_dict)}}, and

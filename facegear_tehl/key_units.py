@@ -22,11 +22,14 @@ def _template_lines() -> tuple[str, ...]:
 def key_unit(dotted: str) -> str | None:
     """The unit of the case key `dotted` (e.g. gear.pinion_torque -> 'N m'), None when the templates state none."""
     leaf = dotted.rsplit(".", 1)[-1]
-    pattern = re.compile(rf"^\s*#?\s*{re.escape(leaf)}:[^#]*#\s*([^,(]+?)\s*(?:[,(]|$)")
+    pattern = re.compile(rf"^\s*#?\s*{re.escape(leaf)}:[^#]*#\s*(\S+)(?: (\S+))?")
     for line in _template_lines():
         match = pattern.match(line)
-        if match and match.group(1) in UNITS:
-            return match.group(1)
+        if match:
+            first, second = (word.rstrip(",;") for word in match.groups(""))
+            for candidate in (f"{first} {second}", first):  # 'N m', 'Pa s', 'W/(m K)' before 'm', 'Pa'
+                if candidate in UNITS:
+                    return candidate
     return None
 
 
