@@ -68,17 +68,16 @@ def overview_figure(result: Result, rows: Sequence[tuple[PointResult, dict[str, 
         ax.tick_params(labelleft=False)
     for ax in axes[-1, : len(columns)]:
         ax.set_xlabel("$x/b$ (inlet −, outlet +)")
-    _grid_note(fig, rows[0][0], rows[0][1][columns[0]])
     subject = "pressure, film and temperature rise" if "temperature_mid" in columns else "pressure and film"
-    fig.suptitle(title(result, f"{subject} at every point"))
+    fig.suptitle(title(result, f"{subject} at every point") + "\n" + _grid_note(rows[0][0], rows[0][1][columns[0]]))
     return fig
 
 
-def _grid_note(fig: Figure, point: PointResult, m: FieldMap) -> None:
-    """A footnote: the stepped outlines of the maps (the outlet crescent) are the node spacing, not physics."""
-    fig.text(0.01, 0.005, "Stepped outlines (the outlet crescent) are the solver's nodes, "
-             f"Δx/b = {m.X[1] - m.X[0]:.3g}, "
-             f"Δy/a = {m.Y[1] - m.Y[0]:.3g} at {point.name}, not a shape of the film.", fontsize="x-small")
+def _grid_note(point: PointResult, m: FieldMap) -> str:
+    """The stepped outlines of the maps (the outlet crescent) are the node spacing, not physics: a line for the
+    title."""
+    return (f"stepped outlines (the outlet crescent) are the solver's nodes, Δx/b = {m.X[1] - m.X[0]:.3g}, "
+            f"Δy/a = {m.Y[1] - m.Y[0]:.3g} at {point.name}, not a shape of the film")
 
 
 def _common_limits(maps: Sequence[FieldMap]) -> tuple[float, float]:
