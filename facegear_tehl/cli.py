@@ -409,6 +409,37 @@ def report_command(result_file: str, output: str | None) -> None:
     click.echo(f"report: {write_report(read_result(source), target)}")
 
 
+@tehl.command("compare", epilog="""\b
+Examples:
+  tehl compare design_a.h5 design_b.h5                    table, and design_a_compare.png
+  tehl compare a.h5 b.h5 c.h5 -o compare.pdf""")
+@click.argument("result_files", metavar="RESULT RESULT [...]", nargs=-1)
+@click.option("-o", "--output", help="The figure along the path (.png, .pdf, .svg; default: <first>_compare.png).")
+def compare_command(result_files: tuple[str, ...], output: str | None) -> None:
+    """Compare two or more result files point by point: each quantity side by side, the difference to the first
+    file and whether it exceeds the combined error estimates; and a figure along the contact path."""
+    # Imported here: only this command, plot and report need matplotlib.
+    from facegear_tehl.compare import common_points, comparison_table, labels_of, save_figure
+    from facegear_tehl.plots import FORMATS
+
+    if len(result_files) < 2:
+        raise CaseError("RESULT", " ".join(result_files), "two or more result files")
+    paths = [Path(name) for name in result_files]
+    target = Path(output) if output is not None else paths[0].with_name(f"{paths[0].stem}_compare.png")
+    if target.suffix.lstrip(".") not in FORMATS:
+        raise CaseError("--output", str(target), "a figure file ending in ." + ", .".join(FORMATS))
+    _writable("--output", target)
+    results = [read_result(path, fields=False) for path in paths]
+    if not common_points(results):
+        raise CaseError("RESULT", " ".join(result_files), "files that share at least one point name")
+    labels = labels_of(paths)
+    click.echo("point by point: each file's value, its difference to the first and whether it exceeds the combined "
+               "grid-error estimates sqrt(e_1^2 + e_2^2) of the two:")
+    click.echo(comparison_table(results, labels))
+    for path in save_figure(results, labels, target).written:
+        click.echo(f"figure: {path}")
+
+
 def info_json(result: Result) -> dict[str, Any]:
     """{'case', 'status', 'message', 'format_version', 'points': {name: {scalar: SI value, 'converged',
     'message'}}, 'units': {name: {scalar: unit}}, 'solve': {name: the solve record (record.record_to_dict)}}, and

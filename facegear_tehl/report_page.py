@@ -20,6 +20,7 @@ from typing import Any
 import yaml
 
 from facegear_tehl import __version__
+from facegear_tehl.compare import absolute_estimate
 from facegear_tehl.key_units import key_unit
 from facegear_tehl.plots import plot_result
 from facegear_tehl.record import SolveRecord
@@ -152,8 +153,7 @@ def _value_with_error(point: PointResult, key: str, estimate: str | None) -> str
     value = unit(point.scalars[key])
     if estimate is None or estimate not in point.scalars:
         return f"{value:.4g}"
-    relative = point.units.get(estimate, "1") != point.units[key]  # "1": relative; else in the scalar's units
-    error = abs(point.scalars[estimate] * (point.scalars[key] if relative else 1.0))
+    error = absolute_estimate(point, key, estimate)
     return f"{value:.4g} ± {abs(unit(error) - unit(0.0)):.2g}"
 
 

@@ -75,13 +75,15 @@ def test_the_page_is_self_contained_with_every_section(report):
 
 
 def test_each_number_carries_the_error_estimate_of_the_file(report):
-    """h_min in µm ± its relative estimate times h_min, as the file holds them (computed here from the SI values)."""
+    """h_min in µm and μ, each ± its relative estimate times the value, as the file holds them (computed here from
+    the SI values)."""
     result, page = report
     text = page.read_text(encoding="utf-8")
     for point in result.points.values():
         h_min = 1e6 * point.scalars["h_min"]
-        error = abs(point.scalars["error_estimate_h_min"]) * h_min
-        assert f"{h_min:.4g} ± {error:.2g}" in text
+        assert f"{h_min:.4g} ± {abs(point.scalars['error_estimate_h_min']) * h_min:.2g}" in text
+        mu, estimate = point.scalars["mu"], point.scalars.get("error_estimate_mu")
+        assert (f"{mu:.4g} ± {abs(estimate) * mu:.2g}" if estimate is not None else f">{mu:.4g}</td>") in text
         grid = f"{len(point.axes['x'].values)}x{len(point.axes['y'].values)}"
         assert re.search(rf"<td>{point.name}</td><td>yes</td><td>{grid}</td>", text)
 
