@@ -14,6 +14,7 @@ import pytest
 from facegear_tehl.key_units import key_label, key_unit
 from facegear_tehl.plots import common
 from facegear_tehl.plots.study_maps import plot_study
+from facegear_tehl.study_file import load_study
 
 HEADER = ("variant,gear.pinion_torque,gear.pinion_speed,point,status,converged,h_min [m],"
           "error_estimate_h_min [1],grid,file,message\n")
@@ -80,3 +81,18 @@ def test_a_full_resolved_map_on_one_grid_has_contours(tmp_path, monkeypatch):
     mesh = next(c for c in ax.collections if isinstance(c, QuadMesh))
     expected = 1e6 * np.array([[h for t, n, h, _, _ in rows if n == speed] for speed in speeds])
     assert np.asarray(mesh.get_array()).reshape(4, 4) == pytest.approx(expected)
+
+
+def test_variant_files_are_named_by_their_values_and_never_share_a_name(tmp_path):
+    """'pinion_torque=250_pinion_speed=1500.h5'; a value with characters a file name cannot hold keeps the digest."""
+    base = tmp_path / "case.yaml"
+    base.write_text(Path("cases/facegear_110.yaml").read_text(encoding="utf-8"), encoding="utf-8")
+    study = tmp_path / "study.yaml"
+    study.write_text("base: case.yaml\nvary:\n  gear.pinion_torque: [250, 500]\n  gear.pinion_speed: [1500, 3000]\n"
+                     "  gear.points: [[S1, S3], [S2]]\n", encoding="utf-8")
+    names = [variant.file_name for variant in load_study(study).variants]
+    assert names[0].startswith("pinion_torque=250_pinion_speed=1500_points=_S1__S3__") and names[0].endswith(".h5")
+    assert len(set(names)) == len(names) == 8
+    simple = tmp_path / "simple.yaml"
+    simple.write_text("base: case.yaml\nvary:\n  gear.pinion_torque: [250, 500]\n", encoding="utf-8")
+    assert [v.file_name for v in load_study(simple).variants] == ["pinion_torque=250.h5", "pinion_torque=500.h5"]
