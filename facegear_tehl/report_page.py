@@ -17,6 +17,7 @@ from pathlib import Path
 import tempfile
 from typing import Any
 
+import numpy as np
 import yaml
 
 from facegear_tehl import __version__
@@ -34,6 +35,8 @@ SCALARS = (("h_c", "error_estimate_h_c"), ("h_min", "error_estimate_h_min"), ("f
            ("p_max", None), ("p_hertz", None), ("dT_max", "error_estimate_dT_max"), ("dT_min", None),
            ("mu", "error_estimate_mu"), ("load_error", None))
 FIGURE_DPI = 90  # enough to read on screen and in print, a page of a few MB at most
+OVERVIEW_ROWS = 6  # points on the overview sheet at most (evenly spread along the path): a 41-point cycle's sheet
+# would be a 4 MB image 70 inches tall
 STYLE = """
 body { font-family: sans-serif; max-width: 60em; margin: 1em auto; padding: 0 1em; color: #222; }
 h1 { font-size: 1.5em; } h2 { font-size: 1.2em; border-bottom: 1px solid #aaa; margin-top: 1.5em; }
@@ -162,19 +165,28 @@ def _figures(result: Result) -> str:
     contact path, the cycle, the trends, the overview of the maps and the centre line of the thinnest film."""
     solved = [p for p in result.points.values() if "h_min" in p.scalars and p.fields]
     thinnest = min(solved, key=lambda p: p.scalars["h_min"]).name if solved else ""
+    rows = overview_rows([p.name for p in solved])
     wanted = [("contact_path", "Where the contact lies on both teeth along the path."),
               ("cycle", "Film, temperatures and friction along the meshing cycle (docs/figures.md)."),
               ("trends", "p_max, h_c, h_min and the temperature rise over the points, with their error estimates."),
-              ("overview", "Pressure, film and mid-film temperature rise of every point."),
+              ("overview", "Pressure, film and mid-film temperature rise of " + (
+                  "every point." if len(rows) == len(solved) else f"{', '.join(rows)} of the {len(solved)} points.")),
               (f"{thinnest}_centreline", f"The centre line of {thinnest}, the point of the thinnest film.")]
     with tempfile.TemporaryDirectory() as folder:
         written = list(plot_result(result, folder, what=("contact", "cycle", "trends"), dpi=FIGURE_DPI).written)
         if solved:
-            written += plot_result(result, folder, what=("overview",), dpi=FIGURE_DPI).written
+            written += plot_result(result, folder, what=("overview",), points=rows, dpi=FIGURE_DPI).written
             written += plot_result(result, folder, what=("centreline",), points=[thinnest], dpi=FIGURE_DPI).written
         files = {path.stem: path for path in written}
         blocks = [_figure(files[stem], caption) for stem, caption in wanted if stem in files]
     return "\n".join(blocks) or "<p class=\"note\">No figure: the file holds no fields, path or cycle.</p>"
+
+
+def overview_rows(names: Sequence[str]) -> list[str]:
+    """At most OVERVIEW_ROWS of `names` (in path order), evenly spread, the first and the last among them."""
+    if len(names) <= OVERVIEW_ROWS:
+        return list(names)
+    return [names[i] for i in sorted({round(k) for k in np.linspace(0, len(names) - 1, OVERVIEW_ROWS)})]
 
 
 def _figure(path: Path, caption: str) -> str:

@@ -15,6 +15,7 @@ import pytest
 
 from facegear_tehl.browser_check import browser, render
 from facegear_tehl.cli import tehl
+from facegear_tehl.report_page import overview_rows
 from facegear_tehl.results import read_result
 
 FACE_GEAR = "cases/facegear_110.yaml"
@@ -98,6 +99,12 @@ def test_inputs_in_engineering_units_and_the_solve_record(report):
         for stage in point.record.stages:
             assert f"<td>{stage.stage.value}</td><td>{stage.nx}x{stage.ny}</td>" in text
     assert result.tehl_version in text and result.created in text
+
+
+def test_a_long_cycle_shows_six_points_on_the_overview_the_ends_among_them():
+    names = [f"P{i:02d}" for i in range(1, 42)]
+    assert overview_rows(names) == ["P01", "P09", "P17", "P25", "P33", "P41"]
+    assert overview_rows(names[:5]) == names[:5]
 
 
 def test_a_missing_file_exits_2(tmp_path):
