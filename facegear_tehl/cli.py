@@ -141,7 +141,8 @@ def run(
     click.echo(
         f"tehl run: {case.name}: {', '.join(p.name for p in selected)} on a {solver.grid}x{solver.nodes_y} grid, "
         f"thermal {solver.thermal}"
-        + (f", {processes} worker processes" if processes > 1 else ""),
+        + (f", {processes} worker processes" if processes > 1 else "")
+        + " (the grid as asked; each point's line gives the grid solved on, with the lengthened inlet)",
         err=True,
     )
     for warning in analysis.warnings:
@@ -161,11 +162,11 @@ def run(
     target.parent.mkdir(parents=True, exist_ok=True)
     write_result(run_result, target)
     result = read_result(target, fields=False)  # the tables print what the file holds
-    click.echo(summary_table(result.points.values()))
+    click.echo(SUMMARY_TITLE + "\n" + summary_table(result.points.values()))
     if result.heat and "point" in result.heat:
-        click.echo(heat_budget_table(result))
+        click.echo(HEAT_TITLE + "\n" + heat_budget_table(result))
     if result.cycle:
-        click.echo(cycle_table(result))
+        click.echo(CYCLE_TITLE + "\n" + cycle_table(result))
         click.echo(cycle_summary(result))
     if result.verdict:
         click.echo(verdict_text(result))
@@ -457,6 +458,56 @@ def plot(result_file: str, what: str, points: str | None, output: str | None, fm
         click.echo(f"  {path}")
 
 
+@tehl.command("report", epilog="""\b
+Examples:
+  tehl report facegear_110.h5                  writes facegear_110.html beside it
+  tehl report facegear_110.h5 -o review.html""")
+@click.argument("result_file", metavar="RESULT")
+@click.option("-o", "--output", help="The HTML file (default: <RESULT name>.html next to RESULT).")
+def report_command(result_file: str, output: str | None) -> None:
+    """Write one self-contained HTML page of a result file (inputs, verdict, results with their error estimates,
+    key figures, solve summary, provenance) to hand on or print to PDF; nothing is solved."""
+    # Imported here: only this command and plot need matplotlib.
+    from facegear_tehl.report_page import write_report
+
+    source = Path(result_file)
+    target = checked_output("--output", Path(output) if output is not None else source.with_suffix(".html"),
+                            inputs=[source], ours=starts_with("<!DOCTYPE html>"), what="an HTML")
+    click.echo(f"report: {write_report(read_result(source), target)}")
+
+
+@tehl.command("compare", epilog="""\b
+Examples:
+  tehl compare design_a.h5 design_b.h5                    table, and design_a_compare.png
+  tehl compare a.h5 b.h5 c.h5 -o compare.pdf""")
+@click.argument("result_files", metavar="RESULT RESULT [...]", nargs=-1)
+@click.option("-o", "--output", help="The figure along the path (.png, .pdf, .svg; default: <first>_compare.png).")
+def compare_command(result_files: tuple[str, ...], output: str | None) -> None:
+    """Compare two or more result files point by point: each quantity side by side, the difference to the first
+    file and whether it exceeds the combined error estimates; and a figure along the contact path."""
+    # Imported here: only this command, plot and report need matplotlib.
+    from facegear_tehl.compare import common_points, comparison_table, labels_of, save_figure
+    from facegear_tehl.plots import FORMATS
+
+    if len(result_files) < 2:
+        raise CaseError("RESULT", " ".join(result_files), "two or more result files")
+    paths = [Path(name) for name in result_files]
+    target = Path(output) if output is not None else paths[0].with_name(f"{paths[0].stem}_compare.png")
+    if target.suffix.lstrip(".") not in FORMATS:
+        raise CaseError("--output", str(target), "a figure file ending in ." + ", .".join(FORMATS))
+    checked_output("--output", target, inputs=paths, ours=lambda path: path.suffix.lstrip(".") in FORMATS,
+                   what="a figure")
+    results = [read_result(path, fields=False) for path in paths]
+    if not common_points(results):
+        raise CaseError("RESULT", " ".join(result_files), "files that share at least one point name")
+    labels = labels_of(paths)
+    click.echo("point by point: each file's value, its difference to the first and whether it exceeds the combined "
+               "grid-error estimates sqrt(e_1^2 + e_2^2) of the two:")
+    click.echo(comparison_table(results, labels))
+    for path in save_figure(results, labels, target).written:
+        click.echo(f"figure: {path}")
+
+
 def info_json(result: Result) -> dict[str, Any]:
     """{'case', 'status', 'message', 'format_version', 'points': {name: {scalar: SI value, 'converged',
     'message'}}, 'units': {name: {scalar: unit}}, 'solve': {name: the solve record (record.record_to_dict)}}, and
@@ -514,9 +565,9 @@ def info_text(result: Result, si: bool = False) -> str:
                 for key in keys]
         lines += ["", format_table([group, "unit", *(p.name for p in points)], rows)]
     if result.heat and "point" in result.heat:
-        lines += ["", "heat budget:", heat_budget_table(result)]
+        lines += ["", HEAT_TITLE, heat_budget_table(result)]
     if result.cycle:
-        lines += ["", "meshing cycle:", cycle_table(result), cycle_summary(result)]
+        lines += ["", CYCLE_TITLE, cycle_table(result), cycle_summary(result)]
     if result.verdict:
         lines += ["", verdict_text(result)]
     for p in points:
@@ -560,6 +611,14 @@ def _listed(value: Any) -> str:
     return ",".join(map(str, value)) if isinstance(value, list) else str(value)
 
 
+# The titles of the tables `tehl run` prints (and `tehl info` for the last two).
+SUMMARY_TITLE = ("film, pressure and temperature rise over the inlet per point; err: the solver's grid-error "
+                 "estimate in % (Richardson, docs/accuracy.md):")
+HEAT_TITLE = ("heat budget: per point; Blok flash dT is the rise by Blok's (1937) formula, surface dT the solved "
+              "largest surface rise:")
+CYCLE_TITLE = ("meshing cycle: along the path; load share of the pair; theta_B,i solved = bulk + the solved surface "
+               "rise of flank i, Blok flash dT = Blok's (1937) rise with the film's mu (theta_B by Blok = bulk + it):")
+
 # Summary columns, then the error estimates: column, the quantity it estimates the error of.
 _SUMMARY = (
     Column("h_c", "h_c", "m"),
@@ -583,7 +642,7 @@ _HEAT = (
     Column("gamma_1", "partition_1", spec=".3f"),
     Column("P_ss,1", "steady_power_1", "W", ".3g"),
     Column("P_ss,2", "steady_power_2", "W", ".3g"),
-    Column("flash", "flash_temperature", "K", ".1f"),
+    Column("Blok flash dT", "flash_temperature", "K", ".1f"),
     Column("surface dT", "surface_rise_max", "K", ".1f"),
     Column("Q_f", "frictional_heat", "J", ".3g"),
     Column("Q_oil", "oil_film_heat", "J", ".3g"),
@@ -606,14 +665,14 @@ def heat_budget_table(result: Result) -> str:
 # Meshing-cycle columns, keys of the /cycle group.
 _CYCLE = (
     Column("s", "s", "m", ".2f", MILLIMETRE),
-    Column("K", "load_share", spec=".3f"),
+    Column("load share", "load_share", spec=".3f"),
     Column("p_h", "p_h", "Pa", ".1f"),
     Column("h_min", "h_min", "m"),
     Column("lambda", "film_parameter", spec=".2f"),
     Column("dT_max", "dT_max", "K", ".1f"),
-    Column("flash", "flash_temperature", "K", ".1f"),
-    Column("theta_B,1", "contact_temperature_1", "K", ".1f", CELSIUS),
-    Column("theta_B,2", "contact_temperature_2", "K", ".1f", CELSIUS),
+    Column("Blok flash dT", "flash_temperature", "K", ".1f"),
+    Column("theta_B,1 solved", "contact_temperature_1", "K", ".1f", CELSIUS),
+    Column("theta_B,2 solved", "contact_temperature_2", "K", ".1f", CELSIUS),
     Column("mu", "mu", spec=".4f"),
     Column("mu Xu", "mu_xu", spec=".4f"),
     Column("P", "sliding_power", "W", ".1f"),
@@ -681,6 +740,8 @@ def _report_progress(solution: PointSolution, done: int, total: int) -> None:
         details.append(f"{solution.scalar('iterations'):.0f} cycles")
     if "wall_time" in solution.scalars:
         details.append(f"{solution.scalar('wall_time'):.2f} s")
+    if {"x", "y"} <= solution.axes.keys():
+        details.append(f"solved on {len(solution.axes['x'].values)}x{len(solution.axes['y'].values)}")
     suffix = f" ({', '.join(details)})" if details else ""
     click.echo(f"[{done}/{total}] {solution.name}: {state}{suffix}", err=True)
 

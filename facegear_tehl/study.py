@@ -4,13 +4,14 @@ index of the results, resumable.
 Each variant is one task on a Dask cluster (a local one of N worker processes, one thread each, or an existing
 cluster by its scheduler's address). The task runs the code path of `tehl run` on the variant's resolved case
 text (`run.run_case`, its points solved one after the other in the task) and returns the `RunResult`; this
-process writes it with `results.write_result` (atomically) as `<hash>.h5` in the study folder, so the workers
+process writes it with `results.write_result` (atomically) as `<values>.h5` in the study folder
+(`pinion_torque=250_pinion_speed=1500.h5`, `study_file.Variant.file_name`), so the workers
 need no file system shared with it. Dask reschedules the task of a worker that dies (up to its
 `distributed.scheduler.allowed-failures`, 3 by default); a task that still fails, or raises, is recorded as a
 failed variant with its message and the other variants go on.
 
-Resuming: a variant whose file exists, reads back as a complete result and holds the resolved case whose hash
-names it is skipped, so an interrupted study (Ctrl-C, a killed worker, a lost node) completes on the next run
+Resuming: a variant whose file exists, reads back as a complete result and holds the variant's resolved case (its
+SHA-256 equal) is skipped, so an interrupted study (Ctrl-C, a killed worker, a lost node) completes on the next run
 and recomputes nothing that was finished. `index.csv` (one row per variant and point) is rewritten at the end of
 every run, interrupted or not, from the files themselves; `failures.txt` lists the variants that failed.
 """
@@ -33,11 +34,21 @@ import h5py
 from facegear_tehl.atomic_files import remove_stale, temporary_beside
 from facegear_tehl.folder_lock import exclusive
 from facegear_tehl.output_path import starts_with
+from facegear_tehl.record import Action
 from facegear_tehl.results import ResultFileError, RunResult, read_result, write_result
 from facegear_tehl.scheduler_probe import probe
 from facegear_tehl.schema import CaseError
 from facegear_tehl.study_file import Study, Variant, digest, value_text
-from facegear_tehl.study_index import COLUMNS, CYCLE_COLUMNS, INDEX, INDEX_HEADER, POINT_COLUMNS
+from facegear_tehl.study_index import (
+    COLUMNS,
+    CYCLE_COLUMNS,
+    ESTIMATE_COLUMNS,
+    GRID,
+    INDEX,
+    INDEX_HEADER,
+    POINT_COLUMNS,
+    REFINEMENTS,
+)
 
 FAILURES = "failures.txt"
 # Dask starts worker processes with MALLOC_TRIM_THRESHOLD_=65536 (its distributed.nanny.pre-spawn-environ), which
@@ -240,24 +251,33 @@ def _unrecorded(folder: Path, variant: Variant) -> VariantOutcome:
 
 def write_index(study: Study, folder: Path, outcomes: Sequence[VariantOutcome]) -> Path:
     """DIR/index.csv, one row per variant and point (a failed or pending variant: one row without a point):
-    variant number, the varied values, point, status, converged, the scalars of COLUMNS (SI, units in the
-    header; empty where the file has none), the file, the message. Then failures.txt (or its removal)."""
+    variant number, the varied values, point, status, converged, the scalars of COLUMNS and their error estimates
+    (SI, units in the header; empty where the file has none), the grid solved on (nx x ny), the refinements (solved
+    again on a finer grid), the file, the message.
+    Then failures.txt (or its removal)."""
     header = ["variant", *study.keys, "point", "status", "converged",
-              *(f"{name} [{units}]" for name, units in POINT_COLUMNS + CYCLE_COLUMNS), "file", "message"]
+              *(f"{name} [{units}]" for name, units in POINT_COLUMNS + CYCLE_COLUMNS + ESTIMATE_COLUMNS), GRID,
+              REFINEMENTS, "file", "message"]
     rows = []
     for outcome in outcomes:
         variant = outcome.variant
         lead = [str(variant.index + 1), *(value_text(value) for _, value in variant.values)]
         path = folder / variant.file_name
         if not outcome.has_file:
-            rows.append([*lead, "", outcome.status, "", *([""] * len(COLUMNS)), "", outcome.message])
+            rows.append([*lead, "", outcome.status, "", *([""] * (len(COLUMNS) + len(ESTIMATE_COLUMNS))), "", "", "",
+                         outcome.message])
             continue
         result = read_result(path, fields=False)
         cycle = _cycle_attrs(path)
         for point in result.points.values():
             scalars = [_number(point.scalars.get(name)) for name, _ in POINT_COLUMNS]
             rows.append([*lead, point.name, result.status, "yes" if point.converged else "no", *scalars,
-                         *(_number(cycle.get(name)) for name, _ in CYCLE_COLUMNS), variant.file_name,
+                         *(_number(cycle.get(name)) for name, _ in CYCLE_COLUMNS),
+                         *(_number(point.scalars.get(name)) for name, _ in ESTIMATE_COLUMNS),
+                         "x".join(str(len(point.axes[k].values)) for k in ("x", "y") if k in point.axes),
+                         "" if point.record is None else
+                         str(sum(r.action is Action.FINER_GRID for r in point.record.retries)),
+                         variant.file_name,
                          point.message.replace("\n", " ")])
     text = io.StringIO()
     writer = csv.writer(text, lineterminator="\n")

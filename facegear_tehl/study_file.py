@@ -7,12 +7,12 @@
     set: {solver.thermal: "off"}            # optional: the same value in every variant
 
 Each variant is the base case's YAML mapping with the `set` values, then its `vary` values, put at their paths
-(missing blocks are created), its `output` block removed (a variant's file is named by its hash) and its `name`
+(missing blocks are created), its `output` block removed (a variant's file is named by its values) and its `name`
 written out (the base's name, else the base file's stem). That mapping, dumped as YAML, is the variant's
 *resolved case*: `tehl run` of that text solves the same case, and the UTF-8 bytes of that text are hashed
-(SHA-256) to name the variant's result file. Every variant is validated through the case schema here, before
-anything runs; every problem raises `CaseError` naming the study key (`vary.<path>`, `set.<path>`), the value
-and what was expected, with the variant when one variant's case is invalid.
+(SHA-256): a finished file is the variant's when it holds that text. Every variant is validated through the case
+schema here, before anything runs; every problem raises `CaseError` naming the study key (`vary.<path>`,
+`set.<path>`), the value and what was expected, with the variant when one variant's case is invalid.
 """
 
 from __future__ import annotations
@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import hashlib
 import itertools
 from pathlib import Path
+import re
 from typing import Any
 
 import yaml
@@ -36,7 +37,8 @@ from facegear_tehl.yaml_bounds import check_expansion
 # and a day or more of solving; a larger product of `vary` lists is a typing slip or a study to split.
 MAX_VARIANTS = 10_000
 HASH_DIGITS = 16  # hex digits of the SHA-256 kept in a file name: 64 bits, no collision among 1e9 variants
-RESERVED_BLOCK = "output"  # not a study key: each variant's file is named by its hash
+NAME_LENGTH = 200  # characters of a variant's file name before '.h5': below the 255 of common file systems
+RESERVED_BLOCK = "output"  # not a study key: each variant's file is named by its values
 
 
 class _Dumper(yaml.SafeDumper):
@@ -59,8 +61,17 @@ class Variant:
 
     @property
     def file_name(self) -> str:
-        """The variant's result file in the study folder: the first HASH_DIGITS hex digits of its digest."""
-        return f"{self.digest[:HASH_DIGITS]}.h5"
+        """The variant's result file in the study folder, named by its varied values:
+        'pinion_torque=250_pinion_speed=1500.h5' (each key by its last name, or its whole path when two varied keys
+        share it); characters other than letters, digits, '.', '=', '-' become '_', and when that changes a value,
+        or the name would pass NAME_LENGTH, the first HASH_DIGITS hex digits of the digest follow (two variants
+        never share a name)."""
+        leaves = [path.rsplit(".", 1)[-1] for path, _ in self.values]
+        parts = [f"{leaf if leaves.count(leaf) == 1 else path}={value_text(value)}"
+                 for leaf, (path, value) in zip(leaves, self.values)]
+        name = "_".join(re.sub(r"[^\w.=-]", "_", part) for part in parts)
+        lossy = any(re.search(r"[^\w.=-]", part) for part in parts) or len(name) > NAME_LENGTH
+        return f"{name[:NAME_LENGTH]}_{self.digest[:HASH_DIGITS]}.h5" if lossy else f"{name}.h5"
 
     @property
     def label(self) -> str:
@@ -95,7 +106,7 @@ def resolved_text(mapping: Mapping[str, Any]) -> str:
 
 
 def digest(text: str) -> str:
-    """SHA-256 (hex) of the UTF-8 bytes of a resolved case's text: what names its result file."""
+    """SHA-256 (hex) of the UTF-8 bytes of a resolved case's text: what a finished result file is checked by."""
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
@@ -189,7 +200,7 @@ def _check_paths(paths: list[tuple[str, str]]) -> None:
         check(all(part.strip() == part and part for part in parts), f"{section}.{path}", path,
               "a dotted path of case keys, e.g. gear.pinion_torque")
         check(parts[0] != RESERVED_BLOCK, f"{section}.{path}", path,
-              "a case key outside output (each variant's file is named by its hash)")
+              "a case key outside output (each variant's file is named by its values)")
     for (section, path), (other_section, other) in itertools.combinations(paths, 2):
         nested = path == other or other.startswith(path + ".") or path.startswith(other + ".")
         check(not nested, f"{other_section}.{other}", other,

@@ -6,7 +6,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 import math
 
-from facegear_tehl.units import MILLIMETRE, PERCENT, Unit, display
+from facegear_tehl.units import CELSIUS, MILLIMETRE, PERCENT, Unit, display
 
 
 def format_table(headers: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
@@ -67,6 +67,10 @@ COST = (Column("cycles", "iterations", spec=".0f"), Column("work units", "work_u
 """The cost of a solve: in the run summary and in the sweep report."""
 
 
+# Absolute temperatures (the contact temperature θ_B of each flank, solved and by Blok's formula): shown in °C, as
+# the verdict and the cycle table give them; every other scalar in K is a rise, shown in K.
+ABSOLUTE_TEMPERATURE_KEYS = ("contact_temperature_1", "contact_temperature_2", "contact_temperature_blok_1",
+                             "contact_temperature_blok_2")
 # `tehl info`: the per-point scalars by theme, in this order; a scalar of none of them is listed under "other".
 SCALAR_GROUPS = (
     ("film", ("h_c", "h_min", "film_parameter", "film_parameter_central", "x_h_min", "y_h_min", "inlet_gap_ratio",
@@ -75,7 +79,7 @@ SCALAR_GROUPS = (
                   "moes_l", "path_coordinate")),
     ("temperature", ("dT_max", "dT_min", "x_dT_min", "y_dT_min", "dT_mid_max", "dT_surface_1_max",
                      "dT_surface_2_max", "surface_rise_max", "flash_temperature", "thermal_loading",
-                     "error_estimate_dT_max")),
+                     "error_estimate_dT_max", *ABSOLUTE_TEMPERATURE_KEYS)),
     ("friction", ("mu", "mu_1", "mu_2", "mu_xu", "error_estimate_mu", "entrainment_speed", "sliding_speed",
                   "slide_roll_ratio", "entrainment_angle", "friction_power", "dissipated_power",
                   "dissipated_power_ellipse", "partition_1", "partition_2", "friction_power_1", "friction_power_2")),
@@ -98,7 +102,10 @@ ROUND_OFF = 1e-12  # |x| below this fraction of the largest value of its unit in
 
 
 def scalar_unit(key: str, units: str) -> Unit:
-    """The unit a scalar is shown in: films in µm, other lengths in mm, fractions in %, the rest by `display`."""
+    """The unit a scalar is shown in: films in µm, other lengths in mm, fractions in %, absolute temperatures in
+    °C, the rest by `display`."""
+    if units == "K" and key in ABSOLUTE_TEMPERATURE_KEYS:
+        return CELSIUS
     if units == "m":
         return display("m") if key in FILM_KEYS else MILLIMETRE
     if units == "1" and key in PERCENT_KEYS:

@@ -240,8 +240,9 @@ def test_run_writes_the_result_and_a_summary(tmp_path, monkeypatch, fake_solver)
     result = _invoke("run", synthetic.BALL_ON_DISC)
     assert result.exit_code == 0, result.output
     assert _files(tmp_path) == ["ball_on_disc.h5"]  # <case name>.h5 in the current directory
-    assert "[1/1] contact: converged (7 cycles, 0.25 s)" in result.stderr
-    header, _, row = result.stdout.splitlines()[:3]
+    assert "[1/1] contact: converged (7 cycles, 0.25 s, solved on 33x17)" in result.stderr
+    title, header, _, row = result.stdout.splitlines()[:4]
+    assert title.endswith(":")
     assert header.split()[:4] == ["point", "converged", "h_c", "µm"]
     assert "err h_min %" in header
     cells = row.split()
@@ -320,7 +321,7 @@ def test_failed_point_exits_1_and_writes_a_flagged_result(tmp_path, monkeypatch,
     assert "error: contact: failed: FloatingPointError: overflow" in result.stderr
     written = read_result(tmp_path / "ball_on_disc.h5")
     assert written.status == "failed" and written.points["contact"].fields == {}
-    cells = result.stdout.splitlines()[2].split()[2:]  # every value of the failed point's row: no data
+    cells = result.stdout.splitlines()[3].split()[2:]  # every value of the failed point's row (after the title)
     assert len(cells) >= 14 and set(cells) == {"-"}
 
 

@@ -185,8 +185,9 @@ def test_every_default_figure_fits_its_canvas(thermal_file, tmp_path, monkeypatc
         assert box.x1 <= width + tolerance and box.y1 <= height + tolerance, (stem, box, width, height)
 
 
-def test_temperature_maps_are_rises_centred_at_zero_on_one_scale(thermal_file, tmp_path, monkeypatch):
-    """ΔT = T - T_inlet with T_inlet = 40 degC (the case file); both points on [-L, L], L the largest |ΔT|."""
+def test_temperature_maps_are_rises_centred_at_zero_each_on_its_own_scale(thermal_file, tmp_path, monkeypatch):
+    """ΔT = T - T_inlet with T_inlet = 40 degC (the case file); each point on [-L, L], L its own largest |ΔT| (a scale
+    shared with S1's 90 K rise left S3's map blank), each with its colour bar."""
     figures = _capture(monkeypatch)
     _plot(thermal_file, tmp_path, what=["overview"])
     result = read_result(thermal_file)
@@ -194,13 +195,35 @@ def test_temperature_maps_are_rises_centred_at_zero_on_one_scale(thermal_file, t
     images = [image for ax in figures["overview"].axes for image in ax.get_images()
               if image.get_cmap().name == "RdBu_r"]
     assert len(images) == 2
-    limits = {image.get_clim() for image in images}
-    assert len(limits) == 1
-    low, high = limits.pop()
-    assert low == -high
-    assert high >= max(np.abs(rise).max() for rise in rises)
-    assert high == pytest.approx(max(max(p.scalars["dT_max"], -p.scalars["dT_min"]) for p in result.points.values()))
+    for image, rise, point in zip(images, rises, result.points.values()):
+        low, high = image.get_clim()
+        assert low == -high
+        assert high >= np.abs(rise).max()
+        assert high == pytest.approx(max(point.scalars["dT_max"], -point.scalars["dT_min"]))
+        assert image.colorbar is not None
+    assert len({image.get_clim() for image in images}) == 2
     assert any(rise.min() < 0.0 for rise in rises), "the S3 outlet cools below the inlet (expansion)"
+
+
+def test_the_place_of_dT_min_is_named_only_inside_the_domain(thermal_file, tmp_path, monkeypatch):
+    """A ΔT_min of 0 is the inlet itself (no film below the inlet temperature) and a minimum on the domain edge is
+    a boundary value: no location is printed for them; a location printed is more than one node inside the grid."""
+    figures = _capture(monkeypatch)
+    _plot(thermal_file, tmp_path, what=["centreline"])
+    result = read_result(thermal_file)
+    for name, point in result.points.items():
+        labels = [t.get_text() for ax in figures[f"{name}_centreline"].axes if ax.get_legend()
+                  for t in ax.get_legend().get_texts() if "T_{min}" in t.get_text()]
+        assert len(labels) == 1
+        x, y = (np.asarray(point.axes[k].values) for k in ("x", "y"))
+        place = point.scalars["x_dT_min"], point.scalars["y_dT_min"]
+        interior = all(axis[1] < p < axis[-2] for axis, p in zip((x, y), place))
+        if point.scalars["dT_min"] < 0.0 and interior:
+            assert f"= {place[0] / point.scalars['b']:.2f}" in labels[0], labels
+        else:
+            assert "x/b" not in labels[0], labels
+            if point.scalars["dT_min"] >= 0.0:
+                assert "none below the inlet" in labels[0]
 
 
 def test_trends_draw_no_line_across_a_jump_of_the_tooth_load(gear_run, tmp_path, monkeypatch):
@@ -386,4 +409,79 @@ def test_the_cycle_figure_draws_no_line_across_a_jump_of_the_tooth_load(gear_fil
                 joined += 1
                 assert not any(x.min() < s < x.max() for s in jumps_mm), (line.get_label(), x)
     markers = [line for ax in figures["cycle"].axes for line in ax.get_lines() if len(line.get_xdata()) == 1]
-    assert joined == 0 and len(markers) >= 3 * 4, "every series is drawn as markers, one run per point"
+    # load share, p_h and h_min at three points (λ is a second scale of h_min, not a series)
+    assert joined == 0 and len(markers) >= 3 * 3, "every series is drawn as markers, one run per point"
+
+
+def _bar_heights(ax) -> dict[str, list[float]]:
+    """Bar heights per legend label of one axes."""
+    return {container.get_label(): [bar.get_height() for bar in container] for container in ax.containers}
+
+
+def test_heat_held_over_the_domain_is_not_drawn_on_the_axis_of_the_heat_generated(thermal_file, tmp_path, monkeypatch):
+    """Q_oil over the whole domain (a heat held, growing with the inlet length) has an axis of its own; every bar
+    is the file's /heat value in mJ; the revolution-averaged powers are not on the axis of the instantaneous ones."""
+    figures = _capture(monkeypatch)
+    _plot(thermal_file, tmp_path, what=["heat"])
+    heat = read_result(thermal_file).heat
+    axes = [_bar_heights(ax) for ax in figures["heat_oil_film"].axes]
+    holding = [bars for bars in axes if any("whole domain" in label and "held" in label for label in bars)]
+    assert len(holding) == 1 and len(holding[0]) == 1
+    assert holding[0].popitem()[1] == pytest.approx(1e3 * np.asarray(heat["oil_film_heat_domain"].values))
+    generated = [bars for bars in axes if any(label.startswith("$Q_f") for label in bars)]
+    assert len(generated) == 1 and not any("held" in label for label in generated[0])
+    for bars in [_bar_heights(ax) for ax in figures["heat_power"].axes]:
+        steady = [label for label in bars if "P_{ss" in label]
+        assert not steady or len(steady) == len(bars)
+
+
+def test_the_cycle_figure_names_the_axis_of_every_series_and_draws_the_film_once(thermal_file, tmp_path,
+                                                                                 monkeypatch):
+    """Where a panel has two y-axes, each legend entry says which axis it is read on; h_min and λ = h_min/σ are one
+    curve with two scales (the second scale maps h_min by the file's σ), not two coinciding curves."""
+    figures = _capture(monkeypatch)
+    _plot(thermal_file, tmp_path, what=["cycle"])
+    cycle = read_result(thermal_file).cycle
+    panels = [ax for ax in figures["cycle"].axes if ax.get_legend() is not None]
+    assert len(panels) == 5
+    places = [ax.get_position().bounds for ax in figures["cycle"].axes]
+    twins = {id(ax) for ax in panels if places.count(ax.get_position().bounds) == 2}
+    assert len(twins) == 2, "load share with p_h, and μ with the sliding power"
+    for ax in panels:
+        labels = [text.get_text() for text in ax.get_legend().get_texts()]
+        two_axes = id(ax) in twins
+        assert all(label.endswith(("(left axis)", "(right axis)")) == two_axes for label in labels), labels
+    film = next(ax for ax in panels if ax.get_ylabel().startswith("h_min"))
+    assert {line.get_label() for line in film.get_lines() if not line.get_label().startswith("_")} == {"h_min"}
+    scale = film.child_axes[0]
+    sigma = np.asarray(cycle["h_min"].values) / np.asarray(cycle["film_parameter"].values)
+    assert np.ptp(sigma) < 1e-9 * sigma.max(), "λ = h_min/σ with one σ along the path"
+    assert f"σ {1e6 * sigma[0]:.3g} µm" in scale.get_ylabel()
+
+
+def test_convergence_marks_each_stage_restart_from_the_solve_record(thermal_file, tmp_path, monkeypatch):
+    """The temperature change per outer iteration jumps where the solve begins its next stage on a finer grid: the
+    open squares sit exactly at the record's stage starts (cumulated outer iterations; the record rewritten in the
+    file into stages of 2 and the rest moves them), and the changes are drawn relative to the point's rise against
+    one tolerance line, not one line per point."""
+    path = tmp_path / "staged.h5"
+    path.write_bytes(thermal_file.read_bytes())
+    with h5py.File(path, "r+") as h5:
+        for name in h5["points"]:
+            attrs = h5[f"points/{name}/solve"].attrs
+            stages = json.loads(attrs["stages"])
+            total = sum(stage["outer"] for stage in stages)
+            assert total == len(h5[f"points/{name}/thermal_change_history"]) and total > 4
+            staged = [{**stages[-1], "outer": 2}, {**stages[-1], "outer": 2}, {**stages[-1], "outer": total - 4}]
+            attrs["stages"] = json.dumps(staged)
+            attrs["stage_seconds"] = [0.0] * len(staged)
+    figures = _capture(monkeypatch)
+    _plot(path, tmp_path / "figures", what=["convergence"])
+    case = load_case(FACE_GEAR)
+    panel = next(ax for ax in figures["convergence"].axes if "T_{max}" in ax.get_ylabel())
+    squares = [list(line.get_xdata()) for line in panel.get_lines() if line.get_marker() == "s" and
+               len(line.get_xdata())]
+    assert squares == [[2, 4]] * len(read_result(path).points)
+    levels = [float(line.get_ydata()[0]) for line in panel.get_lines()
+              if line.get_linestyle() in ("--", ":") and len(line.get_ydata())]
+    assert case.solver.thermal_tolerance in levels and len(levels) <= 2

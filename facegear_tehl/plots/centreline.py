@@ -11,7 +11,7 @@ from matplotlib.figure import Figure
 import numpy as np
 
 from facegear_tehl.plots.common import Output, figure, title
-from facegear_tehl.plots.field_data import FieldMap, section, section_directions, section_length
+from facegear_tehl.plots.field_data import FieldMap, interior_place, section, section_directions, section_length
 from facegear_tehl.results import PointResult, Result
 from facegear_tehl.units import MILLIMETRE
 
@@ -111,8 +111,16 @@ def _temperatures(ax: Axes, point: PointResult, temperatures: list[FieldMap], al
 
 
 def _where(point: PointResult, key: str) -> str:
-    """' at x/b = 0.81, y/a = -0.01' for an extreme whose place the file holds (x_<key>, y_<key>)."""
+    """' at x/b = 0.81, y/a = -0.01' for an extreme whose place the file holds (x_<key>, y_<key>); for ΔT_min
+    only when it is interior (field_data.interior_place), else what the value is."""
     if f"x_{key}" not in point.scalars or f"y_{key}" not in point.scalars:
         return " (whole film)"
-    return (f" at $x/b$ = {point.scalars[f'x_{key}'] / point.scalars['b']:.2f}, "
-            f"$y/a$ = {point.scalars[f'y_{key}'] / point.scalars['a']:.2f}")
+    if key == "dT_min":
+        place = interior_place(point)
+        if place is None:
+            return (": none below the inlet" if point.scalars[key] >= 0.0
+                    else " on the domain boundary (whole film)")
+        x, y = place
+    else:
+        x, y = point.scalars[f"x_{key}"] / point.scalars["b"], point.scalars[f"y_{key}"] / point.scalars["a"]
+    return f" at $x/b$ = {x:.2f}, $y/a$ = {y:.2f}"

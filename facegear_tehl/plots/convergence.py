@@ -46,7 +46,7 @@ def _convergence_figure(result: Result, points: Sequence[PointResult], histories
     fig = figure(width=5.0 * columns + 0.5, height=3.4 * rows + 0.6)
     axes = fig.subplots(rows, columns, squeeze=False).ravel()
     for ax, key in zip(axes, histories):
-        _history_panel(ax, points, key)
+        _history_panel(ax, points, key, result.convergence_bands)
         if case is not None:
             _tolerances(ax, points, key, case.solver, result.convergence_bands)
     if levels:
@@ -61,29 +61,63 @@ _NAMES = {"thermal_h_c_history": "$h_c$", "thermal_change_history": "temperature
           "viscosity_change_history": r"change of ln($\eta^*/\eta$)"}
 
 
-def _history_panel(ax: Axes, points: Sequence[PointResult], key: str) -> None:
-    """One per-cycle history of every point: errors and changes as magnitudes on a log axis, films in µm."""
+def _history_panel(ax: Axes, points: Sequence[PointResult], key: str, bands: Mapping[str, float]) -> None:
+    """One per-cycle history of every point: errors and changes as magnitudes on a log axis, films in µm; the
+    temperature change relative to each point's rise (one tolerance line for all points); the first iterate of each
+    later stage of the solve record marked as a restart."""
     first = next(p.history[key] for p in points if key in p.history)
     film = first.units == "m"
     shown = display(first.units)
     name = _NAMES.get(key, key.removesuffix("_history").replace("_", " "))
+    relative = key == "thermal_change_history"
     for p in points:
         if key in p.history:
             values = np.asarray(p.history[key].values, dtype=float)
             if film:
-                ax.plot(np.arange(len(values)), shown(values), "o-", markersize=3, label=plain(p.name))
+                values = shown(values)
+                line = ax.plot(np.arange(len(values)), values, "o-", markersize=3, label=plain(p.name))[0]
             else:
-                values = np.abs(values)
-                ax.semilogy(np.arange(len(values)), np.where(values > 0.0, values, np.nan), "o-", markersize=3,
-                            label=plain(p.name))
+                values = np.abs(values) / (_rise(p, bands) if relative else 1.0)
+                values = np.where(values > 0.0, values, np.nan)
+                line = ax.semilogy(np.arange(len(values)), values, "o-", markersize=3, label=plain(p.name))[0]
+            _mark_restarts(ax, p, first.description, values, line.get_color())
     units = shown.label if film else first.units
-    ax.set_ylabel(f"{name} ({units})" if film else f"|{name}|" + ("" if units in ("", "1") else f" ({units})"))
+    if relative:
+        ax.set_ylabel(r"|temperature change| / $\Delta T_{max}$")
+    else:
+        ax.set_ylabel(f"{name} ({units})" if film else f"|{name}|" + ("" if units in ("", "1") else f" ({units})"))
     ax.set_title(first.description or name, fontsize="medium", wrap=True)
     ax.set_xlabel("outer iteration" if "outer iteration" in first.description else "cycle")
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))
     ax.yaxis.set_minor_locator(NullLocator())  # decades suffice; minor ticks of 5 log panels cost a second
     ax.grid(alpha=0.3)
     legend(ax, fontsize="small", ncols=2)
+
+
+def _rise(point: PointResult, bands: Mapping[str, float]) -> float:
+    """The rise the thermal loop's tolerance is scaled by (ehl.solve): ΔT_max, at least `min_rise` (K)."""
+    return max(float(point.scalars.get("dT_max", 1.0)), bands.get("min_rise", 0.0))
+
+
+def restart_indices(point: PointResult, description: str, length: int) -> list[int]:
+    """Where each stage after the first begins in a per-outer-iteration history of `length` entries, from the solve
+    record's outer iterations per stage (the history holds the stages' iterations in order, the last stage's
+    possibly left out); none for a per-cycle history or a file without a record."""
+    if point.record is None or "outer iteration" not in description:
+        return []
+    counts = [stage.outer for stage in point.record.stages if stage.outer > 0]
+    if sum(counts) < length:  # the record does not account for the history: no marks rather than wrong ones
+        return []
+    return [int(i) for i in np.cumsum(counts)[:-1] if i < length]
+
+
+def _mark_restarts(ax: Axes, point: PointResult, description: str, values: np.ndarray, colour: str) -> None:
+    """Open squares on the first iterate of each later stage: the solve began again on a finer grid (or the outlet
+    patch), a restart rather than divergence."""
+    starts = restart_indices(point, description, len(values))
+    if starts:
+        ax.plot(starts, values[starts], "s", color=colour, markersize=8, markerfacecolor="none",
+                label="_nolegend_")
 
 
 def _tolerances(ax: Axes, points: Sequence[PointResult], key: str, solver: SolverSettings,
@@ -112,18 +146,17 @@ def _tolerances(ax: Axes, points: Sequence[PointResult], key: str, solver: Solve
 
 def _thermal_tolerances(ax: Axes, points: Sequence[PointResult], key: str, solver: SolverSettings,
                         bands: Mapping[str, float]) -> None:
-    """The thermal loop's tolerance (and settled-floor bound, if the file has it) times each point's rise."""
-    floor = bands.get("thermal_floor_fraction")
-    fractions = ((solver.thermal_tolerance, "--"),) + (((floor, ":"),) if floor is not None else ())
-    for line, p in zip(ax.get_lines(), [p for p in points if key in p.history]):
-        if "dT_max" in p.scalars:
-            rise = max(float(p.scalars["dT_max"]), bands.get("min_rise", 0.0))
-            for fraction, style in fractions:
-                ax.axhline(fraction * rise, color=line.get_color(), linestyle=style, linewidth=0.8)
-    symbol = r"$\Delta T_{max}$"
-    ax.plot([], [], "k--", linewidth=0.8, label=f"tolerance {solver.thermal_tolerance:.0e} {symbol}")
-    if floor is not None:
-        ax.plot([], [], "k:", linewidth=0.8, label=f"settled-floor bound {floor:.0e} {symbol}")
+    """The thermal loop's tolerance (and settled-floor bound, if the file has it) as fractions of each point's rise,
+    the axis the changes are drawn on; the open squares named once."""
+    ax.axhline(solver.thermal_tolerance, color="black", linestyle="--", linewidth=1.0,
+               label=f"tolerance {solver.thermal_tolerance:.0e}")
+    if "thermal_floor_fraction" in bands:
+        floor = bands["thermal_floor_fraction"]
+        ax.axhline(floor, color="black", linestyle=":", linewidth=1.0, label=f"settled-floor bound {floor:.0e}")
+    if any(restart_indices(p, p.history[key].description, len(p.history[key].values)) for p in points
+           if key in p.history):
+        ax.plot([], [], "s", markersize=8, markerfacecolor="none", markeredgecolor="grey",
+                label="restart: next stage (finer grid)")
 
 
 def _levels_panel(ax: Axes, points: Sequence[PointResult]) -> None:

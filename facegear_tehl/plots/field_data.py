@@ -124,6 +124,21 @@ def temperature_limit(points: Iterable[PointResult], case: CaseValues | None) ->
     return limit
 
 
+def interior_place(point: PointResult) -> tuple[float, float] | None:
+    """(x/b, y/a) of ΔT_min when it lies below the inlet temperature and more than one node inside the domain; None
+    when the file lacks the place, the film never cools below the inlet (ΔT_min = 0 is the inlet itself) or the
+    minimum sits on the domain boundary (where the inlet oil enters: a boundary value, not a place in the film)."""
+    s = point.scalars
+    if not {"x_dT_min", "y_dT_min", "dT_min"} <= s.keys() or not {"x", "y"} <= point.axes.keys():
+        return None
+    x, y = (np.asarray(point.axes[k].values, dtype=float) for k in ("x", "y"))
+    inside = all(axis[0] + (axis[1] - axis[0]) < place < axis[-1] - (axis[-1] - axis[-2])
+                 for axis, place in ((x, s["x_dT_min"]), (y, s["y_dT_min"])))
+    if s["dT_min"] >= 0.0 or not inside:
+        return None
+    return s["x_dT_min"] / s["b"], s["y_dT_min"] / s["a"]
+
+
 def hertz_ready(point: PointResult) -> str | None:
     """Why the fields of `point` cannot be drawn in Hertzian coordinates, or None when they can."""
     if not point.fields:
@@ -225,11 +240,12 @@ def section(m: FieldMap, direction: np.ndarray) -> tuple[np.ndarray, np.ndarray]
 
 def point_fields(result: Result, points: Sequence[PointResult], case: CaseValues | None, out: Output
                  ) -> list[tuple[PointResult, dict[str, FieldMap]]]:
-    """The drawable maps of each point that has fields (by field name, ΔT on one scale for all `points`);
-    one skip line per point and reason a field or a point is left out, and per thermal group no point has."""
-    dT_limit = temperature_limit(points, case)
+    """The drawable maps of each point that has fields (by field name, ΔT on the point's own scale [−L, L], L its
+    largest |ΔT|: a shared scale leaves a point of small rises blank); one skip line per point and reason a field or
+    a point is left out, and per thermal group no point has."""
     rows = []
     for point in points:
+        dT_limit = temperature_limit([point], case)
         reason = hertz_ready(point)
         if reason is not None:
             out.skip(f"fields {point.name}", reason)

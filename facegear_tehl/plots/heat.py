@@ -1,6 +1,7 @@
-"""The heat budget per meshing point on linear axes: frictional heat power per gear and its steady-state
-value (Fig. 17 of the seed paper), frictional heat and heat held by the oil film (Fig. 20, 21); columns that
-are zero to round-off at every point are left out with one line."""
+"""The heat budget per meshing point on linear axes: frictional heat power per gear and its time average at a
+point of the tooth surface (Fig. 17 of the seed paper), frictional heat generated per meshing and heat held by the
+oil film (Fig. 20, 21) on separate axes (a heat generated and a heat held at one instant are different quantities);
+columns that are zero to round-off at every point are left out with one line."""
 
 from __future__ import annotations
 
@@ -15,6 +16,16 @@ from facegear_tehl.plots.over_points import heat_point_names
 from facegear_tehl.results import Result
 from facegear_tehl.units import display
 
+STEADY_TITLE = ("time average at one point of the tooth surface (heated for b/(πr) of a revolution);\n"
+                "not the gear's heat load, which is the mesh power loss of tehl run")
+# The energy panels: one kind of heat per axis, the domain's held heat apart (it grows with the inlet length).
+ENERGY_PANELS = (
+    ("frictional heat generated per meshing", ("frictional_heat", "frictional_heat_ellipse", "frictional_heat_seed")),
+    ("heat held by the oil film in the Hertz ellipse at the solved instant", ("oil_film_heat",)),
+    ("heat held by the oil film over the whole solver domain at the solved instant\n"
+     "(grows with the lengthened inlet; not a share of the heat generated)", ("oil_film_heat_domain",)),
+)
+
 
 def _labels(result: Result) -> dict[str, str]:
     """Legend labels of the /heat columns the heat budget writes."""
@@ -25,8 +36,8 @@ def _labels(result: Result) -> dict[str, str]:
         "friction_power_2": rf"$\gamma_2 P$ into the {body_2}",
         "dissipated_power": "$P_{film}$: film dissipation, whole domain",
         "dissipated_power_ellipse": "$P_{film}$ in the Hertz ellipse",
-        "steady_power_1": f"$P_{{ss,1}}$, {body_1}",
-        "steady_power_2": f"$P_{{ss,2}}$, {body_2}",
+        "steady_power_1": rf"$P_{{ss,1}} = \gamma_1 P\, b/(\pi r_1)$, {body_1}",
+        "steady_power_2": rf"$P_{{ss,2}} = \gamma_2 P\, b/(\pi r_2)$, {body_2}",
         "frictional_heat": "$Q_f$: film dissipation, whole domain",
         "frictional_heat_ellipse": "$Q_{f,ellipse}$: film dissipation in the Hertz ellipse",
         "frictional_heat_seed": r"$Q_{f,seed} = \mu F |v_s| t_c$ (seed paper)",
@@ -65,7 +76,7 @@ def draw_heat(result: Result, out: Output) -> None:
     if powers:
         panels = [
             ("instantaneous frictional heat power", {k: v for k, v in powers.items() if "steady" not in k}),
-            ("steady-state frictional heat power (averaged over a revolution)",
+            (STEADY_TITLE,
              {k: v for k, v in powers.items() if "steady" in k}),
         ]
         panels = [(panel_title, columns) for panel_title, columns in panels if columns]
@@ -85,13 +96,24 @@ def draw_heat(result: Result, out: Output) -> None:
         out.skip("heat energy", "no heat columns (units J) in /heat")
         return
     unit = display("J")
-    fig = figure(width=9.0, height=4.2)
-    ax = fig.add_subplot()
-    _bars(ax, result, names, {k: unit(v) for k, v in energies.items()})
-    ax.set_ylabel(f"heat per meshing ({unit.label})")
-    ax.set_xlabel("meshing point")
-    ax.set_title(title(result, "frictional heat and heat held by the oil film"))
+    panels = [(panel_title, {k: unit(energies[k]) for k in keys if k in energies})
+              for panel_title, keys in _energy_panels(energies)]
+    panels = [(panel_title, columns) for panel_title, columns in panels if columns]
+    fig = figure(width=9.0, height=2.4 * len(panels) + 0.8)
+    axes = fig.subplots(len(panels), 1, sharex=True, squeeze=False)[:, 0]
+    for ax, (panel_title, columns) in zip(axes, panels):
+        _bars(ax, result, names, columns)
+        ax.set_title(panel_title, fontsize="medium")
+        ax.set_ylabel(f"heat ({unit.label})")
+    axes[-1].set_xlabel("meshing point")
+    fig.suptitle(title(result, "frictional heat and heat held by the oil film"))
     out.save(fig, "heat_oil_film")
+
+
+def _energy_panels(energies: Mapping[str, np.ndarray]) -> list[tuple[str, tuple[str, ...]]]:
+    """ENERGY_PANELS, and a panel of its own for each /heat column in J the heat budget does not write."""
+    known = {key for _, keys in ENERGY_PANELS for key in keys}
+    return [*ENERGY_PANELS, *((name.replace("_", " "), (name,)) for name in energies if name not in known)]
 
 
 def _bars(ax: Axes, result: Result, names: Sequence[str], columns: Mapping[str, np.ndarray]) -> None:

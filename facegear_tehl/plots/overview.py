@@ -1,6 +1,6 @@
-"""One sheet of all points: the pressure, film and mid-film ΔT maps in Hertzian coordinates, each column on
-one colour scale for every point (ΔT centred at 0), and the pressure at true scale in mm, where the
-Hertz ellipse of a face gear is a strip 35-58 times longer than wide."""
+"""One sheet of all points: the pressure, film and mid-film ΔT maps in Hertzian coordinates, pressure and film on
+one colour scale for every point, ΔT on each point's own scale centred at 0 (a colour bar per map), and the
+pressure at true scale in mm, where the Hertz ellipse of a face gear is a strip 35-58 times longer than wide."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from matplotlib.image import AxesImage
 import numpy as np
 
 from facegear_tehl.plots.common import Output, figure, title
-from facegear_tehl.plots.field_data import FieldMap
+from facegear_tehl.plots.field_data import FieldMap, interior_place
 from facegear_tehl.results import PointResult, Result
 from facegear_tehl.units import MILLIMETRE
 
@@ -40,12 +40,18 @@ def overview_figure(result: Result, rows: Sequence[tuple[PointResult, dict[str, 
                         width_ratios=[1.0] * len(columns) + [1.6])
     limits = {name: _common_limits([maps[name] for _, maps in rows if name in maps]) for name in columns}
     for j, name in enumerate(columns):
-        meshes = [_hertz_map(ax, point, maps[name], limits[name])
+        own = name == "temperature_mid"  # each point's ΔT on its own scale, a colour bar per map
+        meshes = [_hertz_map(ax, point, maps[name], (maps[name].vmin, maps[name].vmax) if own else limits[name])
                   for ax, (point, maps) in zip(axes[:, j], rows) if name in maps]
         for ax, (_, maps) in zip(axes[:, j], rows):
             if name not in maps:
                 ax.set_axis_off()
-        if meshes:
+        if meshes and own:
+            for mesh in meshes:
+                bar = fig.colorbar(mesh, ax=mesh.axes, location="right", shrink=0.9, aspect=12)
+                bar.set_label("mid-film ΔT (K)", fontsize="x-small")
+                bar.ax.tick_params(labelsize="x-small")
+        elif meshes:
             first = next(maps[name] for _, maps in rows if name in maps)
             bar = fig.colorbar(meshes[0], ax=axes[:, j], location="bottom", shrink=0.9, aspect=25)
             bar.set_label(first.axis_label + (" (mid-film)" if first.group == "temperature" else ""))
@@ -63,13 +69,19 @@ def overview_figure(result: Result, rows: Sequence[tuple[PointResult, dict[str, 
     for ax in axes[-1, : len(columns)]:
         ax.set_xlabel("$x/b$ (inlet −, outlet +)")
     subject = "pressure, film and temperature rise" if "temperature_mid" in columns else "pressure and film"
-    fig.suptitle(title(result, f"{subject} at every point"))
+    fig.suptitle(title(result, f"{subject} at every point") + "\n" + _grid_note(rows[0][0], rows[0][1][columns[0]]))
     return fig
 
 
+def _grid_note(point: PointResult, m: FieldMap) -> str:
+    """The stepped outlines of the maps (the outlet crescent) are the node spacing, not physics: a line for the
+    title."""
+    return (f"stepped outlines (the outlet crescent) are the solver's nodes, Δx/b = {m.X[1] - m.X[0]:.3g}, "
+            f"Δy/a = {m.Y[1] - m.Y[0]:.3g} at {point.name}, not a shape of the film")
+
+
 def _common_limits(maps: Sequence[FieldMap]) -> tuple[float, float]:
-    """One colour range for a column: from the lowest to the highest limit of its maps (ΔT maps already
-    share theirs)."""
+    """One colour range for a column: from the lowest to the highest limit of its maps."""
     return min(m.vmin for m in maps), max(m.vmax for m in maps)
 
 
@@ -93,9 +105,9 @@ def _hertz_map(ax: Axes, point: PointResult, m: FieldMap, limits: tuple[float, f
     ax.set_ylim(max(VIEW_Y[0], m.Y[0]), min(VIEW_Y[1], m.Y[-1]))
     ax.set_aspect("equal")
     ax.set_title(_extremes(point, m), fontsize="small")
-    if m.group == "temperature" and {"x_dT_min", "y_dT_min"} <= point.scalars.keys():
-        ax.plot(point.scalars["x_dT_min"] / point.scalars["b"], point.scalars["y_dT_min"] / point.scalars["a"],
-                "v", color="tab:cyan", markeredgecolor="black", markersize=6)
+    place = interior_place(point) if m.group == "temperature" else None
+    if place is not None:
+        ax.plot(*place, "v", color="tab:cyan", markeredgecolor="black", markersize=6)
     return mesh
 
 
@@ -107,7 +119,8 @@ def _extremes(point: PointResult, m: FieldMap) -> str:
     if m.group == "film" and {"h_c", "h_min"} <= s.keys():
         return f"$h_c$ = {m.unit(s['h_c']):.3g}, $h_{{min}}$ = {m.unit(s['h_min']):.3g} {m.unit.label}"
     if m.group == "temperature" and {"dT_max", "dT_min"} <= s.keys():
-        return rf"$\Delta T_{{max}}$ = {s['dT_max']:.1f}, $\Delta T_{{min}}$ = {s['dT_min']:.1f} K (▼)"
+        mark = " (▼)" if interior_place(point) is not None else ""
+        return rf"$\Delta T_{{max}}$ = {s['dT_max']:.1f}, $\Delta T_{{min}}$ = {s['dT_min']:.1f} K{mark}"
     return m.label
 
 

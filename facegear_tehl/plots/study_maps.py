@@ -1,5 +1,7 @@
-"""Operating maps of a study (`tehl plot DIR --what maps`): a scalar of DIR/index.csv over two varied keys, as a
-heat map with its value written in each cell and contour lines where both keys are numbers.
+"""Operating maps of a study (`tehl plot DIR --what maps`): a scalar of DIR/index.csv over two varied keys, its
+value written at each variant. A filled map with contour lines only where it can be read as one: both keys numbers
+with at least MIN_CONTOUR_VALUES values each, every variant solved on one grid and resolved; otherwise a marker per
+variant (its shape the grid solved on, open where the variant is under-resolved). Axes name the key with its unit.
 
 One figure per point of the base case and one for the worst point of each variant (the smallest film, λ or
 efficiency; the largest pressure, temperature rise, friction or power loss), and, when the study varies more
@@ -18,20 +20,27 @@ import math
 from pathlib import Path
 import re
 
+from matplotlib.axes import Axes
+from matplotlib.cm import ScalarMappable
+from matplotlib.colors import Normalize
 import numpy as np
 
+from facegear_tehl.key_units import key_label
 from facegear_tehl.plots import FORMATS
 from facegear_tehl.plots.common import Output, PlotReport, figure, plain
 from facegear_tehl.results import ResultFileError
 from facegear_tehl.schema import CaseError
-from facegear_tehl.study_file import HASH_DIGITS
-from facegear_tehl.study_index import COLUMNS, INDEX
+from facegear_tehl.study_index import COLUMNS, GRID, INDEX
 from facegear_tehl.units import display
 
 WORST = "worst"
 SMALLER_IS_WORSE = ("h_c", "h_min", "film_parameter", "mesh_efficiency")  # the others: larger is worse
 MAX_ANNOTATED_CELLS = 400  # above this many cells the numbers would overlap: colours only
 LABELS = {"film_parameter": "λ", "dT_max": "ΔT_max", "mu": "μ", "mesh_efficiency": "efficiency"}
+MIN_CONTOUR_VALUES = 4  # per key: contour lines through fewer values per axis are the interpolation, not the film
+UNRESOLVED_ESTIMATE = 0.05  # relative error estimate above which a value is marked under-resolved: 20-100 times the
+# estimates of the shipped case (0.05-0.3 %), and as large as the trends a map is read for
+GRID_MARKERS = ("o", "s", "^", "D", "v", "P")  # one marker shape per grid solved on
 
 
 @dataclass(frozen=True)
@@ -60,6 +69,25 @@ class MapGrid:
     not_converged: np.ndarray
     point: str
     fixed: tuple[tuple[str, str], ...]
+    grids: np.ndarray | None = None  # the grid each value was solved on ('' unknown), as values
+    unresolved: np.ndarray | None = None  # the value's error estimate is above UNRESOLVED_ESTIMATE
+
+    @property
+    def grid_names(self) -> tuple[str, ...]:
+        """The grids the values were solved on, most common first ('' where the index does not say)."""
+        if self.grids is None:
+            return ()
+        named = [g for g, v in zip(self.grids.ravel(), self.values.ravel()) if g and not math.isnan(v)]
+        return tuple(sorted(set(named), key=lambda g: -named.count(g)))
+
+    @property
+    def contourable(self) -> bool:
+        """A filled map with contours reads right: enough numeric values per key, every value there, one grid, none
+        under-resolved."""
+        rows, columns = self.values.shape
+        return (self.y is not None and min(rows, columns) >= MIN_CONTOUR_VALUES and np.isfinite(self.values).all()
+                and len(self.grid_names) <= 1 and not (self.unresolved is not None and self.unresolved.any())
+                and _coordinates(self.x_values)[1] and _coordinates(self.y_values)[1])
 
 
 def read_index(folder: Path) -> StudyIndex:
@@ -105,10 +133,10 @@ def _check_rows(path: Path, header: list[str], rows: list[list[str]]) -> None:
 
 
 def _unlisted_files(folder: Path, index: StudyIndex) -> int:
-    """Variant result files in `folder` (named by HASH_DIGITS hex digits) that no row of `index` names."""
+    """Result files in `folder` (a study writes nothing else there with the suffix .h5) that no row of `index`
+    names."""
     listed = {row.get("file") for row in index.rows}
-    return sum(bool(re.fullmatch(f"[0-9a-f]{{{HASH_DIGITS}}}\\.h5", path.name)) and path.name not in listed
-               for path in folder.iterdir())
+    return sum(path.suffix == ".h5" and path.name not in listed for path in folder.iterdir())
 
 
 def _finite(text: str) -> bool:
@@ -147,12 +175,14 @@ def map_grids(index: StudyIndex, z: str = "h_min", x: str | None = None, y: str 
         pinned = tuple(zip(others, fixed))
         rows = [row for row in index.rows if all(row[key] == value for key, value in pinned)]
         for point in chosen:
-            values = np.full((len(y_values), len(x_values)), math.nan)
-            flagged = np.zeros(values.shape, dtype=bool)
+            shape = (len(y_values), len(x_values))
+            values, flagged, solved = np.full(shape, math.nan), np.zeros(shape, dtype=bool), np.full(shape, "", object)
+            unresolved = np.zeros(shape, dtype=bool)
             for (i, y_value), (j, x_value) in itertools.product(enumerate(y_values), enumerate(x_values)):
                 cell = [row for row in rows if row[x] == x_value and (y is None or row[y] == y_value)]
-                values[i, j], flagged[i, j] = _cell(cell, z, point)
-            grids.append(MapGrid(z, index.units.get(z, "1"), x, y, x_values, y_values, values, flagged, point, pinned))
+                values[i, j], flagged[i, j], solved[i, j], unresolved[i, j] = _cell(cell, z, point)
+            grids.append(MapGrid(z, index.units.get(z, "1"), x, y, x_values, y_values, values, flagged, point, pinned,
+                                 solved, unresolved))
     return grids
 
 
@@ -161,13 +191,15 @@ def _values(index: StudyIndex, key: str) -> tuple[str, ...]:
     return tuple(dict.fromkeys(row[key] for row in index.rows))
 
 
-def _cell(rows: Sequence[dict[str, str]], z: str, point: str) -> tuple[float, bool]:
-    """The value of one cell (NaN: none) and whether it comes from a point that did not converge: the point's,
-    or for WORST the worst over the variant's points that have the scalar."""
-    found = [(float(row[z]), row["converged"] != "yes") for row in rows
+def _cell(rows: Sequence[dict[str, str]], z: str, point: str) -> tuple[float, bool, str, bool]:
+    """The value of one cell (NaN: none), whether it comes from a point that did not converge, the grid it was
+    solved on and whether its error estimate (if the index has one) is above UNRESOLVED_ESTIMATE: the point's, or
+    for WORST the worst over the variant's points that have the scalar."""
+    found = [(float(row[z]), row["converged"] != "yes", row.get(GRID, ""),
+              abs(float(row.get(f"error_estimate_{z}") or 0.0)) > UNRESOLVED_ESTIMATE) for row in rows
              if row.get(z) and (point == WORST and row["point"] or row["point"] == point)]
     if not found:
-        return math.nan, False
+        return math.nan, False, "", False
     pick = min if z in SMALLER_IS_WORSE else max
     return pick(found, key=lambda item: item[0])
 
@@ -201,37 +233,79 @@ def plot_study(folder: Path, out_folder: Path, *, what: str = "maps", z: str = "
 
 
 def draw_map(grid: MapGrid, out: Output) -> None:
-    """One heat map: the cells coloured by value (display units), each value written in its cell, contour lines
-    where both keys are numbers."""
+    """One map: a filled map with contour lines where `grid.contourable`, else a marker per variant coloured by value
+    (shape: the grid solved on; open: under-resolved); each value written at its variant."""
     unit = display(grid.units)
     values = unit(grid.values)
     xs, x_numeric = _coordinates(grid.x_values)
     ys, y_numeric = _coordinates(grid.y_values) if grid.y is not None else (np.zeros(1), False)
     fig = figure(width=max(6.0, 1.0 + 0.8 * len(xs)), height=max(4.0, 1.5 + 0.5 * len(ys)))
     ax = fig.subplots()
-    mesh = ax.pcolormesh(_edges(xs), _edges(ys), np.ma.masked_invalid(values), cmap="viridis", shading="flat")
     label = LABELS.get(grid.z, grid.z)
-    fig.colorbar(mesh, ax=ax, label=f"{label} ({unit.label})" if unit.label != "-" else label)
-    if x_numeric and y_numeric and min(values.shape) >= 2 and np.isfinite(values).all():
+    resolved = np.isfinite(values) & ~(grid.unresolved if grid.unresolved is not None else False)
+    finite = values[resolved] if resolved.any() else values[np.isfinite(values)]  # the colours: resolved values
+    norm = Normalize(float(finite.min()), float(finite.max()))
+    if grid.contourable:
+        mesh = ax.pcolormesh(_edges(xs), _edges(ys), values, cmap="viridis", norm=norm, shading="flat")
         lines = ax.contour(xs, ys, values, colors="white", linewidths=0.8)
         ax.clabel(lines, fontsize="x-small", fmt="%.3g")
+    else:
+        mesh = _markers(ax, grid, values, xs, ys, norm)
+    fig.colorbar(mesh, ax=ax, label=f"{label} ({unit.label})" if unit.label != "-" else label)
     if values.size <= MAX_ANNOTATED_CELLS:
+        offset = (0, 0) if grid.contourable else (0, 13)  # points: above the marker
         for (i, j), value in np.ndenumerate(values):
             text = "–" if math.isnan(value) else f"{value:.3g}" + ("*" if grid.not_converged[i, j] else "")
-            ax.text(xs[j], ys[i], text, ha="center", va="center", fontsize="x-small", color="black",
-                    bbox={"facecolor": "white", "alpha": 0.6, "linewidth": 0, "pad": 1})
+            ax.annotate(text, (xs[j], ys[i]), xytext=offset, textcoords="offset points", ha="center", va="center",
+                        fontsize="x-small", color="black",
+                        bbox={"facecolor": "white", "alpha": 0.6, "linewidth": 0, "pad": 1})
+    _axes(ax, grid, xs, ys, x_numeric, y_numeric)
+    out.save(fig, _stem(grid))
+
+
+def _markers(ax: Axes, grid: MapGrid, values: np.ndarray, xs: np.ndarray, ys: np.ndarray, norm: Normalize):
+    """A marker per variant coloured by value, its shape the grid solved on, open where under-resolved; a legend
+    naming the grids (when more than one) and the open markers."""
+    names = grid.grid_names or ("",)
+    mesh = None
+    for k, name in enumerate(names):
+        for resolved in (True, False):
+            take = np.isfinite(values) & ((grid.grids == name) if grid.grids is not None else True)
+            take &= ~grid.unresolved if resolved else grid.unresolved
+            i, j = np.nonzero(take)
+            if not len(i):
+                continue
+            style = {"c": values[i, j], "cmap": "viridis", "norm": norm} if resolved else {
+                "facecolors": "none", "edgecolors": "black"}
+            where = f"solved on {name}" if len(names) > 1 else ""
+            unresolved = f"under-resolved: estimate above {UNRESOLVED_ESTIMATE:.0%}"
+            text = where if resolved else (where + "; " if where else "") + unresolved
+            points = ax.scatter(xs[j], ys[i], s=160, marker=GRID_MARKERS[k % len(GRID_MARKERS)], label=text or None,
+                                **style)
+            if resolved and mesh is None:
+                mesh = points
+    if mesh is None:
+        mesh = ScalarMappable(norm=norm, cmap="viridis")
+    if any(h.get_label() and not h.get_label().startswith("_") for h in ax.collections):
+        ax.legend(fontsize="x-small", loc="upper center", bbox_to_anchor=(0.5, -0.18), ncols=2)
+    ax.margins(0.25)
+    return mesh
+
+
+def _axes(ax: Axes, grid: MapGrid, xs: np.ndarray, ys: np.ndarray, x_numeric: bool, y_numeric: bool) -> None:
+    """Ticks at the variants' values, the keys with their units, the title."""
     ax.set_xticks(xs, [plain(v) for v in grid.x_values] if not x_numeric else None)
-    ax.set_xlabel(plain(grid.x))
+    ax.set_xlabel(plain(key_label(grid.x)))
     if grid.y is None:
         ax.set_yticks([])
     else:
         ax.set_yticks(ys, [plain(v) for v in grid.y_values] if not y_numeric else None)
-        ax.set_ylabel(plain(grid.y))
+        ax.set_ylabel(plain(key_label(grid.y)))
+    label = LABELS.get(grid.z, grid.z)
     where = "worst point" if grid.point == WORST else f"point {plain(grid.point)}"
-    pinned = plain("".join(f", {key} = {value}" for key, value in grid.fixed))
+    pinned = plain("".join(f", {key_label(key)} = {value}" for key, value in grid.fixed))
     flagged = "; * not converged" if grid.not_converged.any() else ""
     ax.set_title(f"{label}, {where}{pinned}{flagged}", fontsize="medium")
-    out.save(fig, _stem(grid))
 
 
 def _stem(grid: MapGrid) -> str:

@@ -1,0 +1,83 @@
+"""`tehl compare`: differences judged against the combined grid-error estimates, checked by hand on files whose
+values are set here."""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+
+from click.testing import CliRunner
+import h5py
+import pytest
+
+from facegear_tehl.cli import tehl
+from facegear_tehl.compare import Significance, differences
+from facegear_tehl.results import read_result
+
+FACE_GEAR = "cases/facegear_110.yaml"
+
+
+@pytest.fixture(scope="module")
+def design(tmp_path_factory):
+    """`tehl run` of the shipped face gear at S1 and S3 on a 33-node grid, with a 1 % estimate of μ written in."""
+    path = tmp_path_factory.mktemp("compare") / "a.h5"
+    run = CliRunner().invoke(tehl, ["run", FACE_GEAR, "--grid", "33", "--points", "S1,S3", "--jobs", "1", "-o",
+                                    str(path)])
+    assert run.exit_code == 0, run.output
+    with h5py.File(path, "r+") as h5:
+        for name in h5["points"]:
+            attrs = h5[f"points/{name}"].attrs
+            attrs["error_estimate_mu"] = 0.01
+            attrs["units"] = json.dumps({**json.loads(attrs["units"]), "error_estimate_mu": "1"})
+    return path
+
+
+def _variant(source, target, factors):
+    """A copy of `source` with S1's scalars multiplied by `factors` (a design B known by construction)."""
+    target.write_bytes(source.read_bytes())
+    with h5py.File(target, "r+") as h5:
+        attrs = h5["points/S1"].attrs
+        for key, factor in factors.items():
+            attrs[key] = attrs[key] * factor
+    return target
+
+
+def test_a_difference_is_significant_only_beyond_the_combined_estimates(design, tmp_path):
+    """h_min moved by 3 of its estimates: beyond sqrt(e_a^2 + e_b^2) = 1.4 of them; h_c by 0.5: within; μ by 2 %
+    against 1 % estimates (combined 1.43 %): beyond; p_max has no estimate."""
+    a = read_result(design)
+    s1 = a.points["S1"].scalars
+    e_h, e_c = s1["error_estimate_h_min"], s1["error_estimate_h_c"]
+    b_path = _variant(design, tmp_path / "b.h5", {"h_min": 1 + 3 * e_h, "h_c": 1 + 0.5 * e_c, "mu": 1.02})
+    found = {(d.point, d.quantity): d for d in differences(a, read_result(b_path))}
+    h_min = found["S1", "h_min"]
+    assert h_min.estimate == pytest.approx(math.hypot(e_h * s1["h_min"], e_h * s1["h_min"] * (1 + 3 * e_h)))
+    assert h_min.significance is Significance.SIGNIFICANT
+    assert found["S1", "h_c"].significance is Significance.NOT_SIGNIFICANT
+    mu = found["S1", "mu"]
+    assert mu.estimate == pytest.approx(0.01 * s1["mu"] * math.hypot(1.0, 1.02))
+    assert mu.significance is Significance.SIGNIFICANT
+    assert found["S1", "p_max"].significance is Significance.UNKNOWN
+    assert found["S3", "h_min"].difference == 0.0
+    assert found["S3", "h_min"].significance is Significance.NOT_SIGNIFICANT
+
+
+def test_the_command_prints_the_table_and_draws_the_path(design, tmp_path):
+    b_path = _variant(design, tmp_path / "b.h5", {"h_min": 1.5})
+    result = CliRunner().invoke(tehl, ["compare", str(design), str(b_path), "-o", str(tmp_path / "cmp.png")])
+    assert result.exit_code == 0, result.output
+    row = next(line for line in result.output.splitlines() if re.match(r"S1\s+h_min\s", line))
+    assert row.split()[-1] == "yes" and (tmp_path / "cmp.png").stat().st_size > 10_000
+    same = next(line for line in result.output.splitlines() if re.match(r"S3\s+h_min\s", line))
+    assert same.endswith("no (within the estimates)")
+
+
+@pytest.mark.parametrize(("args", "message"), [
+    ((), "expected two or more result files"),
+    (("-o", "x.bmp"), "expected a figure file ending in .png"),
+])
+def test_bad_use_exits_2_with_one_line(design, tmp_path, args, message):
+    files = [str(design)] if not args else [str(design), str(design)]
+    result = CliRunner().invoke(tehl, ["compare", *files, *args])
+    assert result.exit_code == 2 and message in result.output and result.output.count("\n") == 1
