@@ -12,9 +12,10 @@ import numpy as np
 import pytest
 
 from facegear_tehl.key_units import key_label, key_unit
-from facegear_tehl.plots import common
 from facegear_tehl.plots.study_maps import plot_study
 from facegear_tehl.study_file import load_study
+
+from test_plots import _capture
 
 HEADER = ("variant,gear.pinion_torque,gear.pinion_speed,point,status,converged,h_min [m],"
           "error_estimate_h_min [1],grid,file,message\n")
@@ -27,16 +28,6 @@ def _write(folder: Path, rows: list[tuple]) -> Path:
     return folder
 
 
-def _capture(monkeypatch) -> dict:
-    figures = {}
-    save = common.Output.save
-
-    def capture(self, figure, stem):
-        figures[stem] = figure
-        save(self, figure, stem)
-
-    monkeypatch.setattr(common.Output, "save", capture)
-    return figures
 
 
 def test_the_keys_carry_the_units_of_the_case_templates():

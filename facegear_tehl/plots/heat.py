@@ -79,16 +79,7 @@ def draw_heat(result: Result, out: Output) -> None:
             (STEADY_TITLE,
              {k: v for k, v in powers.items() if "steady" in k}),
         ]
-        panels = [(panel_title, columns) for panel_title, columns in panels if columns]
-        fig = figure(width=9.0, height=2.8 * len(panels) + 0.8)
-        axes = fig.subplots(len(panels), 1, sharex=True, squeeze=False)[:, 0]
-        for ax, (panel_title, columns) in zip(axes, panels):
-            _bars(ax, result, names, columns)
-            ax.set_title(panel_title, fontsize="medium")
-            ax.set_ylabel("heat power (W)")
-        axes[-1].set_xlabel("meshing point")
-        fig.suptitle(title(result, "frictional heat power"))
-        out.save(fig, "heat_power")
+        _panel_bars(result, names, panels, 2.8, "heat power (W)", "frictional heat power", "heat_power", out)
     else:
         out.skip("heat power", "no heat power columns (units W) in /heat")
     energies = _heat_columns(result, "J", out)
@@ -98,16 +89,24 @@ def draw_heat(result: Result, out: Output) -> None:
     unit = display("J")
     panels = [(panel_title, {k: unit(energies[k]) for k in keys if k in energies})
               for panel_title, keys in _energy_panels(energies)]
+    _panel_bars(result, names, panels, 2.4, f"heat ({unit.label})", "frictional heat and heat held by the oil film",
+                "heat_oil_film", out)
+
+
+def _panel_bars(result: Result, names: Sequence[str], panels: list[tuple[str, dict]], height: float, ylabel: str,
+                what: str, stem: str, out: Output) -> None:
+    """One bar panel per (title, columns) that has columns, stacked over the meshing points (`height` inches each),
+    saved as `stem`."""
     panels = [(panel_title, columns) for panel_title, columns in panels if columns]
-    fig = figure(width=9.0, height=2.4 * len(panels) + 0.8)
+    fig = figure(width=9.0, height=height * len(panels) + 0.8)
     axes = fig.subplots(len(panels), 1, sharex=True, squeeze=False)[:, 0]
     for ax, (panel_title, columns) in zip(axes, panels):
         _bars(ax, result, names, columns)
         ax.set_title(panel_title, fontsize="medium")
-        ax.set_ylabel(f"heat ({unit.label})")
+        ax.set_ylabel(ylabel)
     axes[-1].set_xlabel("meshing point")
-    fig.suptitle(title(result, "frictional heat and heat held by the oil film"))
-    out.save(fig, "heat_oil_film")
+    fig.suptitle(title(result, what))
+    out.save(fig, stem)
 
 
 def _energy_panels(energies: Mapping[str, np.ndarray]) -> list[tuple[str, tuple[str, ...]]]:
