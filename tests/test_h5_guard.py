@@ -81,7 +81,17 @@ def _huge_compressed(h5):
     group["residual_huge"].attrs.update(kind="history", units="1", description="")
 
 
-DAMAGE = {"points a dataset": _points_a_dataset, "text scalar": _text_scalar, "dangling link": _dangling,
+def _record_with_data(h5):
+    """The solve record holds attributes alone: a dataset in it is no record of ours."""
+    h5["points/contact"].create_group("solve")["hidden"] = np.arange(3.0)
+
+
+def _record_a_dataset(h5):
+    h5["points/contact/solve"] = np.arange(3.0)
+
+
+DAMAGE = {"points a dataset": _points_a_dataset, "data in the solve record": _record_with_data,
+          "the solve record a dataset": _record_a_dataset, "text scalar": _text_scalar, "dangling link": _dangling,
           "soft-link loop": _loop, "text field": _text_field, "units a list": _units_a_list,
           "4 GB history": _huge_history, "4 GB compressed history": _huge_compressed}
 
