@@ -58,12 +58,10 @@ class SolverSettings:
     load_tolerance: float = 1e-4  # relative load-balance error to accept
     thermal_layers: int = 9  # layer nodes across the film of the `full` thermal model (odd)
     max_thermal_iterations: int = 40  # outer iterations of film state and pressure
-    # largest temperature change per outer iteration of the thermal loop, relative to the rise: against converged
-    # references the loop's iteration error stays within a quarter of the grid error at 2e-3 as at 1e-3 (the face
-    # gear case's S1-S5 and 41-point cycle, docs/benchmarks.md); S1 20 % less CPU, the cycle 7 % fewer iterations
+    # largest temperature change per outer iteration of the thermal loop, relative to the rise: its iteration error
+    # then stays within a quarter of the grid error (the measurements: docs/tuning.md)
     thermal_tolerance: float = 2e-3
-    # largest change of ln(eta*/eta) per outer iteration of an isothermal Ree-Eyring film's loop: at 2e-3 an h_c of
-    # the 41-point cycle moved by 0.66 of its error estimate against a converged reference (0.23 at 1e-3)
+    # largest change of ln(eta*/eta) per outer iteration of an isothermal Ree-Eyring film's loop (docs/tuning.md)
     eyring_tolerance: float = 1e-3
     grid_y: int | None = None  # nodes along y (the major axis) on the finest grid, 2^n + 1; None: as `grid`
     # thermal full: the outlet solved again on a patch twice as fine along x (ehl/outlet.py), one of
@@ -76,7 +74,7 @@ class SolverSettings:
     outlet_patches: int = MAX_OUTLET_PATCHES
     # s: wall time a point may take with the finer grids the solver chooses for a film its grid does not resolve; the
     # next grid is not started when the time spent times the next grid's node ratio would pass it (the point then
-    # reports its best solution so far, with its estimate and why). The envelope's slowest point takes 163 s.
+    # reports its best solution so far, with its estimate and why); several times the envelope's slowest point
     time_budget: float = 600.0
 
     def __post_init__(self) -> None:
