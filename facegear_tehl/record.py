@@ -44,14 +44,11 @@ class Action(Enum):
     FINER_COARSEST_GRID = "the start begun again from a finer coarsest grid"
     COARSEST_GRID_AGAIN = "the coarse stage begun again from the coarsest grid"
     COUPLED_ON_FINEST = "coupled on the finest grid alone from its isothermal solution"
-    MORE_COARSE_CYCLES = "the stage solved again with more V-cycles of the grid below"
-    STAGES_AGAIN = "the stages below solved again to convergence"
     DROPPED = "dropped: the solution below it is reported"
     FINER_GRID = "solved again on a finer grid"
     KEPT_COARSER = "the converged coarser solution kept"
     FIRST_KEPT = "no retry did better: the first attempt reported"
     BUDGET_SPENT = "not refined: the next grid would pass the point's time budget, the best solution so far kept"
-    NONE = "kept as it is"
 
 
 @dataclass(frozen=True)
