@@ -54,7 +54,9 @@ class Action(Enum):
 @dataclass(frozen=True)
 class StageRecord:
     """One stage that ran: on which grid (nodes in x, y), its V-cycles on that grid (the full-multigrid start's cycles
-    on the grids below it are in its work), outer iterations, how it ended, its wall time (s) and work units."""
+    on the grids below it are in its work), outer iterations, how it ended, its wall time (s) and work units; where its
+    first entry sits in the reported per-cycle and per-outer-iteration histories (-1: not in them, the history was
+    begun again after the stage, or a file without the index)."""
 
     stage: Stage
     nx: int
@@ -64,6 +66,8 @@ class StageRecord:
     outcome: Outcome
     seconds: float
     work: float = 0.0  # work units (the finest grid's relaxation sweeps' worth, Venner & Lubrecht 2000)
+    first_cycle: int = -1
+    first_outer: int = -1
 
 
 @dataclass(frozen=True)
@@ -109,7 +113,8 @@ def record_to_dict(record: SolveRecord) -> dict[str, object]:
     return {
         "plan": list(record.plan),
         "stages": [{"stage": s.stage.value, "nx": s.nx, "ny": s.ny, "cycles": s.cycles, "outer": s.outer,
-                    "outcome": s.outcome.value, "seconds": s.seconds, "work": s.work} for s in record.stages],
+                    "outcome": s.outcome.value, "seconds": s.seconds, "work": s.work, "first_cycle": s.first_cycle,
+                    "first_outer": s.first_outer} for s in record.stages],
         "retries": [{"reason": r.reason.value, "action": r.action.value, "attempt": r.attempt, "detail": r.detail}
                     for r in record.retries],
         "attempt": record.attempt,
@@ -122,7 +127,8 @@ def record_to_dict(record: SolveRecord) -> dict[str, object]:
 def record_from_dict(data: dict[str, object]) -> SolveRecord:
     """The record from `record_to_dict`'s plain data."""
     stages = tuple(StageRecord(Stage(s["stage"]), int(s["nx"]), int(s["ny"]), int(s["cycles"]), int(s["outer"]),
-                               Outcome(s["outcome"]), float(s["seconds"]), float(s.get("work", 0.0)))
+                               Outcome(s["outcome"]), float(s["seconds"]), float(s.get("work", 0.0)),
+                               int(s.get("first_cycle", -1)), int(s.get("first_outer", -1)))
                    for s in data["stages"])
     retries = tuple(RetryRecord(Reason(r["reason"]), Action(r["action"]), int(r["attempt"]), str(r["detail"]))
                     for r in data["retries"])

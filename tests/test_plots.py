@@ -461,18 +461,20 @@ def test_the_cycle_figure_names_the_axis_of_every_series_and_draws_the_film_once
 
 def test_convergence_marks_each_stage_restart_from_the_solve_record(thermal_file, tmp_path, monkeypatch):
     """The temperature change per outer iteration jumps where the solve begins its next stage on a finer grid: the
-    open squares sit exactly at the record's stage starts (cumulated outer iterations; the record rewritten in the
-    file into stages of 2 and the rest moves them), and the changes are drawn relative to the point's rise against
-    one tolerance line, not one line per point."""
+    open squares sit exactly at the record's stage starts (the record rewritten in the file to stages beginning at
+    outer iterations 0, 2 and 4 moves them there), and the changes are drawn relative to the point's rise against
+    one tolerance line, not one line per point. The per-cycle panels mark the stages at their first V-cycle (a stage
+not in the reported history, -1, is not marked)."""
     path = tmp_path / "staged.h5"
     path.write_bytes(thermal_file.read_bytes())
     with h5py.File(path, "r+") as h5:
         for name in h5["points"]:
             attrs = h5[f"points/{name}/solve"].attrs
             stages = json.loads(attrs["stages"])
-            total = sum(stage["outer"] for stage in stages)
-            assert total == len(h5[f"points/{name}/thermal_change_history"]) and total > 4
-            staged = [{**stages[-1], "outer": 2}, {**stages[-1], "outer": 2}, {**stages[-1], "outer": total - 4}]
+            assert len(h5[f"points/{name}/thermal_change_history"]) > 4
+            assert len(h5[f"points/{name}/pressure_change_history"]) > 3
+            staged = [{**stages[-1], "first_outer": first, "first_cycle": cycle}
+                      for first, cycle in ((0, 0), (2, 3), (4, -1))]
             attrs["stages"] = json.dumps(staged)
             attrs["stage_seconds"] = [0.0] * len(staged)
     figures = _capture(monkeypatch)
@@ -482,6 +484,11 @@ def test_convergence_marks_each_stage_restart_from_the_solve_record(thermal_file
     squares = [list(line.get_xdata()) for line in panel.get_lines() if line.get_marker() == "s" and
                len(line.get_xdata())]
     assert squares == [[2, 4]] * len(read_result(path).points)
+    pressure = next(ax for ax in figures["convergence"].axes if "pressure" in ax.get_title())
+    squares = [list(line.get_xdata()) for line in pressure.get_lines() if line.get_marker() == "s" and
+               len(line.get_xdata())]
+    assert squares == [[3]] * len(read_result(path).points)
+    assert "restart, not divergence" in figures["convergence"].get_supxlabel()
     levels = [float(line.get_ydata()[0]) for line in panel.get_lines()
               if line.get_linestyle() in ("--", ":") and len(line.get_ydata())]
     assert case.solver.thermal_tolerance in levels and len(levels) <= 2

@@ -61,11 +61,25 @@ def test_a_run_writes_its_record_and_info_shows_it(facegear_file):
         assert ran[0] is Stage.START and Stage.FINEST in ran
         assert sum(stage.outer for stage in record.stages) == point.scalars["thermal_iterations"]
         assert record.plan and record.attempt == point.scalars["attempts"]
+        _check_stage_starts(point)
     result = CliRunner().invoke(tehl, ["info", str(facegear_file)])
     assert result.exit_code == 0, result.output
     assert "solve of S1:" in result.output and "  planned  " in result.output and "  ran      " in result.output
     as_json = json.loads(CliRunner().invoke(tehl, ["info", str(facegear_file), "--json"]).output)
     assert record_from_dict(as_json["solve"]["S3"]) == run.points["S3"].record
+
+
+def _check_stage_starts(point) -> None:
+    """Each stage's first entries lie in the histories in the order the stages ran, and the last stage with outer
+    iterations holds the per-outer-iteration history's tail: its outer-iteration count (the loop's counter) equals
+    the entries after its start (the history's list), two counts kept apart."""
+    stages = [s for s in point.record.stages if s.first_cycle >= 0]
+    cycles = len(point.history["pressure_change_history"].values)
+    assert [s.first_cycle for s in stages] == sorted(s.first_cycle for s in stages)
+    assert all(s.first_cycle < cycles for s in stages)
+    if "thermal_change_history" in point.history:
+        last = [s for s in stages if s.outer > 0][-1]
+        assert len(point.history["thermal_change_history"].values) - last.first_outer == last.outer
 
 
 def test_the_monitor_on_hand_made_histories():

@@ -15,6 +15,7 @@ from __future__ import annotations
 from dataclasses import replace
 import math
 import time
+from typing import NamedTuple
 
 import numpy as np
 
@@ -55,6 +56,18 @@ def problem_for(point: ContactPoint, lubricant: Lubricant, settings: SolverSetti
         velocity_2=np.asarray(point.velocity_2) / point.entrainment_speed,
         domain_x=domain_x, domain_y=domain_y,
     )
+
+
+class StageMark(NamedTuple):
+    """Where a stage began: V-cycles, outer iterations, clock (s), work units, and its first entries' places in the
+    per-cycle and per-outer-iteration histories."""
+
+    cycles: int
+    outer: int
+    clock: float
+    work: float
+    first_cycle: int
+    first_outer: int
 
 
 class PointSolve:
@@ -162,14 +175,15 @@ class PointSolve:
         stops after the fine stage's single film-state evaluation, `full` couples again there). The isothermal
         pressure is cycled first; its tolerance is not required, the coupled loop goes on from where it got. A plan
         with a seed stage starts from that stage's state instead."""
-        seed = self._seed_stage() if self.plan.has(Stage.SEED) else None
-        if seed is None:
+        seeded = self._seed_stage() if self.plan.has(Stage.SEED) else None
+        seed = None if seeded is None else seeded[0]
+        if seeded is None:
             index, status = self.start(below_top=1)
             mark = self._mark()
             if status.converged:
                 self.cycle(index, self.settings.max_cycles)
         else:
-            index, status, mark = len(self.solver.levels) - 2, CONVERGED, self._mark()
+            index, status, mark = len(self.solver.levels) - 2, CONVERGED, seeded[1]
         state = None
         if status.converged:
             state, status = self.couple(index, seed, math.nan if seed is None else self.summaries[-1].h_c)
@@ -184,10 +198,11 @@ class PointSolve:
                 return self._couple_on_finest(status)
         return self.report(index, status, state)
 
-    def _seed_stage(self) -> FilmState | None:
+    def _seed_stage(self) -> tuple[FilmState, StageMark] | None:
         """The coupled problem two grids below the finest to seed_stage_limit of the rise, its solution and film
-        state interpolated to the next grid and cycled there; returns the frozen state there, or None (the solver
-        begun again from the coarsest grid) when the stage ran away."""
+        state interpolated to the next grid and cycled there; returns the frozen state there and the coarse stage's
+        mark, taken before those cycles, or None (the solver begun again from the coarsest grid) when the stage ran
+        away."""
         reached, status = self.start(below_top=2)
         index = len(self.solver.levels) - 3  # (a start that began again from a finer coarsest grid has fewer levels)
         mark = self._mark()
@@ -197,9 +212,10 @@ class PointSolve:
             self._stage_done(Stage.SEED, index, status, mark)
             if state is not None and not status.diverged:
                 self.summaries[-1] = summarise(self.solver.levels[index])
+                coarse_mark = self._mark()
                 frozen, status = self._interpolated_state(index + 1, state, TUNING.cycles_per_thermal_update)
                 if not status.diverged:
-                    return frozen
+                    return frozen, coarse_mark
         self.retries.append(RetryRecord(Reason.SEED_RAN_AWAY, Action.COARSEST_GRID_AGAIN, self.attempt,
                                         status.message))
         self.new_hierarchy(grid.hierarchy_shapes(self.settings.grid, self.settings.nodes_y, self.coarsest))
@@ -248,6 +264,8 @@ class PointSolve:
         self.solver.work_units = work
         self.summaries = []
         self.pressure.history = History(cycles=self.settings.cycles_per_level)
+        # the stages so far are not in the history begun again
+        self.stages = [replace(s, first_cycle=-1, first_outer=-1) for s in self.stages]
 
     # ------------------------------------------------------------------ the coupled loop on a uniform grid
     def couple(self, index: int, initial: FilmState | None = None,
@@ -320,16 +338,18 @@ class PointSolve:
                                 self.lubricant, self.point, solve_energy=False, newtonian_below=newtonian_below)
 
     # ------------------------------------------------------------------ record and report
-    def _mark(self) -> tuple[int, int, float, float]:
-        """The counts a stage record is measured from: V-cycles, outer iterations, clock (s), work units."""
-        return self.history.cycles, self.history.outer, time.perf_counter(), self.solver.work_units
+    def _mark(self) -> StageMark:
+        """The counts a stage record is measured from."""
+        history = self.history
+        return StageMark(history.cycles, history.outer, time.perf_counter(), self.solver.work_units,
+                         len(history.changes), len(history.thermal_changes) + len(history.viscosity_changes))
 
-    def _stage_done(self, stage: Stage, index: int, status: Status, mark: tuple[int, int, float, float]) -> None:
-        level = self.solver.levels[index]
-        cycles, outer, clock, work = mark
-        self.stages.append(StageRecord(stage, level.nx, level.ny, max(self.history.cycles - cycles, 0),
-                                       max(self.history.outer - outer, 0), status.outcome,
-                                       time.perf_counter() - clock, self.solver.work_units - work))
+    def _stage_done(self, stage: Stage, index: int, status: Status, mark: StageMark) -> None:
+        level, history = self.solver.levels[index], self.history
+        self.stages.append(StageRecord(stage, level.nx, level.ny, max(history.cycles - mark.cycles, 0),
+                                       max(history.outer - mark.outer, 0), status.outcome,
+                                       time.perf_counter() - mark.clock, self.solver.work_units - mark.work,
+                                       mark.first_cycle, mark.first_outer))
 
     def record(self, iteration: Outcome) -> SolveRecord:
         """The solve record so far; `iteration`: how the iteration ended before a closed film was checked."""

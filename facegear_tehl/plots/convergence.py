@@ -53,6 +53,7 @@ def _convergence_figure(result: Result, points: Sequence[PointResult], histories
         _levels_panel(axes[len(histories)], levels)
     for ax in axes[count:]:
         ax.remove()
+    _name_restarts(fig, points, histories)
     fig.suptitle(title(result, "convergence per cycle"))
     return fig
 
@@ -100,15 +101,14 @@ def _rise(point: PointResult, bands: Mapping[str, float]) -> float:
 
 
 def restart_indices(point: PointResult, description: str, length: int) -> list[int]:
-    """Where each stage after the first begins in a per-outer-iteration history of `length` entries, from the solve
-    record's outer iterations per stage (the history holds the stages' iterations in order, the last stage's
-    possibly left out); none for a per-cycle history or a file without a record."""
-    if point.record is None or "outer iteration" not in description:
+    """Where each stage after the first begins in a history of `length` entries: the solve record's place of the
+    stage's first entry in the per-cycle or the per-outer-iteration histories (StageRecord.first_cycle,
+    first_outer); none for a file without a record or a stage not in the reported history."""
+    if point.record is None:
         return []
-    counts = [stage.outer for stage in point.record.stages if stage.outer > 0]
-    if sum(counts) < length:  # the record does not account for the history: no marks rather than wrong ones
-        return []
-    return [int(i) for i in np.cumsum(counts)[:-1] if i < length]
+    per_outer = "outer iteration" in description
+    starts = [stage.first_outer if per_outer else stage.first_cycle for stage in point.record.stages]
+    return sorted({start for start in starts if 0 < start < length})
 
 
 def _mark_restarts(ax: Axes, point: PointResult, description: str, values: np.ndarray, colour: str) -> None:
@@ -147,16 +147,20 @@ def _tolerances(ax: Axes, points: Sequence[PointResult], key: str, solver: Solve
 def _thermal_tolerances(ax: Axes, points: Sequence[PointResult], key: str, solver: SolverSettings,
                         bands: Mapping[str, float]) -> None:
     """The thermal loop's tolerance (and settled-floor bound, if the file has it) as fractions of each point's rise,
-    the axis the changes are drawn on; the open squares named once."""
+    the axis the changes are drawn on."""
     ax.axhline(solver.thermal_tolerance, color="black", linestyle="--", linewidth=1.0,
                label=f"tolerance {solver.thermal_tolerance:.0e}")
     if "thermal_floor_fraction" in bands:
         floor = bands["thermal_floor_fraction"]
         ax.axhline(floor, color="black", linestyle=":", linewidth=1.0, label=f"settled-floor bound {floor:.0e}")
-    if any(restart_indices(p, p.history[key].description, len(p.history[key].values)) for p in points
-           if key in p.history):
-        ax.plot([], [], "s", markersize=8, markerfacecolor="none", markeredgecolor="grey",
-                label="restart: next stage (finer grid)")
+
+
+def _name_restarts(fig: Figure, points: Sequence[PointResult], histories: Sequence[str]) -> None:
+    """The open squares named once for the figure, below the panels, when any panel has them."""
+    if any(restart_indices(p, p.history[key].description, len(p.history[key].values))
+           for key in histories for p in points if key in p.history):
+        fig.supxlabel("□ open squares: the first iterate of a later stage of the solve (a finer grid or an outlet "
+                      "patch): a restart, not divergence", fontsize="small")
 
 
 def _levels_panel(ax: Axes, points: Sequence[PointResult]) -> None:
