@@ -45,6 +45,8 @@ class Action(Enum):
     COARSEST_GRID_AGAIN = "the coarse stage begun again from the coarsest grid"
     COUPLED_ON_FINEST = "coupled on the finest grid alone from its isothermal solution"
     DROPPED = "dropped: the solution below it is reported"
+    MORE_COARSE_CYCLES = "solved again with more V-cycles of the grid below per patch correction"
+    STAGES_AGAIN = "back to where the outlet stages began, the stages below it solved again, each to convergence"
     FINER_GRID = "solved again on a finer grid"
     KEPT_COARSER = "the converged coarser solution kept"
     FIRST_KEPT = "no retry did better: the first attempt reported"

@@ -164,6 +164,10 @@ def test_a_stage_that_fails_reports_the_uniform_solution(monkeypatch):
     assert "outlet_patch_start" not in failed.scalars
     last = failed.record.retries[-1]  # (after the attempts the relaxation needed, as for `plain`)
     assert (last.reason, last.action) == (Reason.STAGE_FAILED, Action.DROPPED)
+    # each stage_coarse_cycles value but the last was tried and failed before it: recorded, in order
+    tried = [r for r in failed.record.retries if r.action is Action.MORE_COARSE_CYCLES]
+    assert [r.detail.split(":")[0] for r in tried] == [f"outlet patch 1, {cycles} per correction"
+                                                       for cycles in outlet.TUNING.stage_coarse_cycles[:-1]]
 
 
 def test_a_stage_that_converges_is_reported_with_its_patch(monkeypatch):
@@ -215,6 +219,8 @@ def test_a_nested_stage_that_fails_reports_the_first_patch(monkeypatch):
         assert failed.scalars[name] == first.scalars[name], name
     last = failed.record.retries[-1]
     assert (last.reason, last.action) == (Reason.STAGE_FAILED, Action.KEPT_COARSER)
+    tried = [r.detail.split(":")[0] for r in failed.record.retries if r.action is Action.MORE_COARSE_CYCLES]
+    assert tried == [f"outlet patch 2, {cycles} per correction" for cycles in two.stage_coarse_cycles[:-1]]
 
 
 def test_a_stage_stops_once_its_hot_spot_has_settled():
@@ -354,3 +360,34 @@ def test_auto_goes_on_while_the_reported_estimate_misses_its_bound():
     assert (60.00 - 56.28) / 3 / 60.00 == pytest.approx(0.0207, abs=1e-4)  # the estimate, written out
     assert outlet._estimate_above({"dT_max": 56.28, "mu": 0.013894 * 1.015}, uniform, 1)
     assert not outlet._estimate_above({"dT_max": 56.28 * 1.019, "mu": 0.013894 * 1.009}, uniform, 1)
+
+
+def test_a_stage_failing_on_a_provisional_one_has_the_stages_below_solved_again(monkeypatch):
+    """The quick S2 with `always` and two patches, the first ending provisionally and the nested one running away
+    (its energy equation poisoned with NaN): the solve goes back to where the stages began and solves the first
+    patch to convergence, the result exactly that of a solve with the first patch alone, and the record says so."""
+    case, point = _face_gear("S2")
+    settings = replace(case.solver, grid=129, grid_y=17, outlet_refinement="always")
+    with monkeypatch.context() as one:
+        one.setattr(outlet, "TUNING", replace(outlet.TUNING, nested_patch_starts=()))
+        first = solve_point(point, case.lubricant, settings)
+    monkeypatch.setattr(outlet, "TUNING", replace(outlet.TUNING,
+                                                  nested_patch_starts=outlet.TUNING.nested_patch_starts[:1]))
+    real_update, spacings = PatchFilmModel.update, []
+
+    def poisoned(self, *args, **kwargs):
+        state = real_update(self, *args, **kwargs)
+        spacings.append(self.dx)
+        if self.dx < max(spacings):  # the nested patch
+            return replace(state, temperature=np.full_like(state.temperature, np.nan))
+        return state
+
+    monkeypatch.setattr(PatchFilmModel, "update", poisoned)
+    again = solve_point(point, case.lubricant, settings)
+    assert again.outcome == Outcome.CONVERGED and again.scalars["outlet_patches"][0] == 1
+    for name in ("h_c", "h_min", "p_max", "dT_max", "mu", "error_estimate_dT_max"):
+        assert again.scalars[name] == first.scalars[name], name
+    actions = [r.action for r in again.record.retries if r.reason is Reason.STAGE_FAILED]
+    assert Action.STAGES_AGAIN in actions and actions[-1] is Action.KEPT_COARSER
+    assert "on top of a provisional stage" in next(r.detail for r in again.record.retries
+                                                   if r.action is Action.STAGES_AGAIN)

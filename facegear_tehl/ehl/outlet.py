@@ -37,6 +37,7 @@ from facegear_tehl.ehl.snapshot import SolveSnapshot, restore_snapshot, take_sna
 from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.lubricant import Lubricant
+from facegear_tehl.record import Action, Reason, RetryRecord
 from facegear_tehl.settings import OutletRefinement, SolverSettings
 from facegear_tehl.solution import CONVERGED, Outcome, Status
 
@@ -53,6 +54,8 @@ class Staging(Protocol):
     solver: MultigridSolver
     pressure: PressureIteration
     summaries: list[LevelSummary]
+    retries: list[RetryRecord]
+    attempt: int
 
     @property
     def history(self) -> History: ...
@@ -303,6 +306,8 @@ def outlet_stages(solve: Staging, index: int, state: FilmState) -> tuple[Composi
     before: SolveSnapshot | None = take_snapshot(solve) if len(starts) > 1 else None
     result, note, depth, provisional = _in_stages(solve, index, state, starts, early=True)
     if provisional:
+        solve.retries.append(RetryRecord(Reason.STAGE_FAILED, Action.STAGES_AGAIN, solve.attempt,
+                                         f"{note}, on top of a provisional stage"))
         restore_snapshot(solve, before)
         result, _, _, _ = _in_stages(solve, index, state, starts[:depth], early=False)
     return result, note
@@ -323,6 +328,9 @@ def _in_stages(solve: Staging, index: int, state: FilmState, starts: tuple[float
             refined, status = refine_outlet(solve, top, state, cycles, stage, starts[depth], next_certain)
             if refined is not None:
                 break
+            if cycles != TUNING.stage_coarse_cycles[-1]:
+                detail = f"outlet patch {depth + 1}, {cycles} per correction: {status.message}"
+                solve.retries.append(RetryRecord(Reason.STAGE_FAILED, Action.MORE_COARSE_CYCLES, solve.attempt, detail))
         if refined is None:
             what = "outlet patch" if stage is None else f"outlet patch {depth + 1}"
             return result, f"{what}: {status.message}", depth, stage is not None and stage.provisional
