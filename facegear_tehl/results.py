@@ -71,8 +71,8 @@ _RECORD_LISTS = ("plan", "stages", "retries", "notes")  # the solve record's att
 # The 2-D numeric datasets (the points' fields, the tables' vectors) are stored with HDF5's shuffle and deflate filters
 # at this zlib level, one chunk per dataset: any HDF5 reader (h5py, xarray, HDFView) inflates them. The chunks are
 # shuffled and deflated here rather than by the HDF5 library, on up to DEFLATE_THREADS threads (zlib releases the
-# GIL), and written as they are (h5py's write_direct_chunk): the 538 fields of the 41-point isothermal cycle (142 MB)
-# took 1.49 s through the library and 0.76 s on two threads (docs/benchmarks.md).
+# GIL), and written as they are (h5py's write_direct_chunk); level 4 and the threads' gain are measured in
+# docs/benchmarks.md, "Result file".
 DEFLATE_LEVEL = 4
 # At most this many threads (fewer if fewer CPUs are available): measured with two on a 2-core machine; more would
 # only take CPUs from the other writers or solves of a many-core machine for a file written in about a second.

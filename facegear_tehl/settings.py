@@ -38,7 +38,7 @@ class OutletRefinement(str, Enum):
 
 THERMAL_MODELS = tuple(mode.value for mode in ThermalMode)
 OUTLET_REFINEMENTS = tuple(choice.value for choice in OutletRefinement)
-MAX_OUTLET_PATCHES = 3  # the outlet stage's nested patches (ehl/outlet.py PATCH_START, NESTED_PATCH_STARTS)
+MAX_OUTLET_PATCHES = 3  # the outlet stage's nested patches (TUNING.patch_start, nested_patch_starts)
 
 
 @dataclass(frozen=True)

@@ -68,10 +68,7 @@ QUANTITIES = ("p_max", "h_c", "h_min", "dT_max", "mu")
 # dT_max's change between the two finest grids must exceed this multiple of the thermal loop's tolerance (K: the
 # case's thermal_tolerance times the rise) for its order and extrapolation to measure the grid, else the sweep warns:
 # the loop stops once an update moves the temperatures by less than that, and at its contraction of ~0.6 per update
-# (docs/benchmarks.md) each grid keeps up to 1.5 times as much iteration error, two grids up to 3 times apart. S1 of
-# the default face gear case (129, 257, 513): dT_max changes by 0.39 K at a tolerance of 0.20 K, and the default
-# grid's error read -1.1 % and -0.40 % at two versions of the loop, -0.43 % converged to 3e-4 of the rise (0.27 K
-# against 0.03 K; docs/accuracy.md).
+# each grid keeps up to 1.5 times as much iteration error, two grids up to 3 times apart (measured: docs/accuracy.md).
 ITERATION_MARGIN = 5.0
 
 

@@ -7,12 +7,12 @@
    one before, for the map as solved, with parts of the film state held at the reference (the surfaces' Jaeger
    temperatures, the velocities across the film, the dissipation), and with more sweeps per update.
 2. With --forcing F [F ...]: the case's points solved in turn in one process (one BLAS thread) with
-   `solve.ENERGY_FORCING` (the largest share of `solve.energy_forcing`, the energy sweeps' adaptive tolerance) set
-   to each F: outer iterations and CPU time of the solves.
+   `TUNING.energy_forcing` (the largest share of `coupled.energy_forcing`, the energy sweeps' adaptive tolerance)
+   set to each F: outer iterations and CPU time of the solves.
 
     python scripts/film_state_map.py [CASE] [--point S1] [--perturbation 2] [--forcing 0.3 0.15]
 
-docs/benchmarks.md (the thermal loop's film-state map) quotes both.
+docs/benchmarks.md ("Where S1's thermal time goes") and docs/tuning.md (`energy_forcing`) quote both.
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from facegear_tehl.case import load_case
-from facegear_tehl.ehl import solve, thermal
+from facegear_tehl.ehl import coupled, thermal
 from facegear_tehl.ehl.solve import PointSolve
 from facegear_tehl.ehl.staged import solve_point
 from facegear_tehl.points import contact_analysis
@@ -104,12 +104,12 @@ def frozen_map(case, point_name: str, perturbation: float) -> None:
 def forcing_table(case, values: list[float]) -> None:
     points = contact_analysis(case).points
     solve_point(points[0], case.lubricant, case.solver)  # kernels loaded
-    default = solve.ENERGY_FORCING
-    print("\n| ENERGY_FORCING | outer iterations | CPU s | per point (outer iterations) |")
+    default = coupled.TUNING
+    print("\n| energy_forcing | outer iterations | CPU s | per point (outer iterations) |")
     print("|---|---|---|---|")
     try:
         for value in values:
-            solve.ENERGY_FORCING = value
+            coupled.TUNING = replace(default, energy_forcing=value)
             counts, cpu = [], 0.0
             for point in points:
                 start = time.process_time()
@@ -119,7 +119,7 @@ def forcing_table(case, values: list[float]) -> None:
             per_point = ", ".join(f"{p.name} {n}" for p, n in zip(points, counts))
             print(f"| {value:g} | {sum(counts)} | {cpu:.1f} | {per_point} |", flush=True)
     finally:
-        solve.ENERGY_FORCING = default
+        coupled.TUNING = default
 
 
 def main() -> None:

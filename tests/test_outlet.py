@@ -225,9 +225,9 @@ def test_a_nested_stage_that_fails_reports_the_first_patch(monkeypatch):
 
 def test_a_stage_stops_once_its_hot_spot_has_settled():
     """figures_settled on the sequences of S4's third patch (default case): the hottest rise past the transient
-    (35.84, 35.87, 35.73, 35.73 K: 0.4 % of its mean) has settled within a quarter of the 2 % asked of ΔT_max; while it
-    still climbs (35.11 .. 35.52 K) or the temperatures still move by more than FLICKER_BOUND of the rise, it has not;
-    nor while h_c drifts."""
+    (35.84, 35.87, 35.73, 35.73 K: 0.4 % of its mean) has settled within a quarter of the 2 % asked of ΔT_max; while
+    it still climbs (35.11 .. 35.52 K) or the temperatures still move by more than TUNING.flicker_bound of the rise,
+    it has not; nor while h_c drifts."""
     settled_rises, climbing = [35.842, 35.871, 35.731, 35.731], [35.113, 35.379, 35.438, 35.523]
     films = [0.59802, 0.59788, 0.59801, 0.59797]
     flicker = [0.324, 0.222, 0.171, 0.213]  # K per update, past the transient
@@ -243,7 +243,8 @@ def test_a_stage_stops_once_its_hot_spot_has_settled():
 def test_a_stage_pressure_settles_with_a_small_load_bias():
     """stage_pressure_settled: a third nested patch holds a steady composite load error of about -2e-4 (S4 of the
     default case): settled, while 1e-3 of the load moves h_c by 7e-5 (Hamrock & Dowson's W^-0.067); a load error
-    beyond STAGE_LOAD_BAND times the tolerance, or a pressure change per cycle above the algebraic floor, is not."""
+    beyond TUNING.stage_load_band times the tolerance, or a pressure change per cycle above the algebraic floor, is
+    not."""
     settings = SolverSettings()
     changes = [3.6e-4, 2.2e-4, 2.8e-4, 4.4e-4]
 
@@ -313,9 +314,9 @@ def test_the_next_stage_is_certain_beyond_the_margin():
 
 
 def test_a_provisional_stage_leaves_the_result_within_the_last_stage_tolerance(monkeypatch):
-    """The quick S2 with `always` and two patches: the first ends provisionally after PROVISIONAL_MIN_ITERATIONS
+    """The quick S2 with `always` and two patches: the first ends provisionally after TUNING.provisional_min_iterations
     outer iterations, the second converges on top of it. Against the same refinement with the first converged, the
-    figures differ by less than the last stage's own stopping tolerance (FIGURE_SPREAD of ΔT_max, a fifth of the
+    figures differ by less than the last stage's own stopping tolerance (TUNING.figure_spread of ΔT_max, a fifth of the
     accuracy asked of μ, h_c within the spread the outer loops accept, thermal_floor_h_c): the stage below matters
     only through the strip upstream of the next patch."""
     case, point = _face_gear("S2")

@@ -189,7 +189,7 @@ def test_hard_case_script_prints_the_table(tmp_path):
 
 def test_a_film_that_closes_is_solved_again_on_a_finer_grid(tmp_path):
     """The hard case of Moes M = 5000, L = 10 closes its film on 129^2 and 257^2: the run solves it again on
-    grids twice as fine until the film stays open and its estimates allow (1025^2, run.MAX_REFINED_GRID), and says so
+    grids twice as fine until the film stays open and its estimates allow (1025^2, TUNING.max_refined_grid), and says so
     in the log, the point's models, the run's warnings and overrides. Its h_c lies within its own error estimate
     (33 %: 1025^2 is still coarse for this load) plus 15 % (the fit's accuracy and its Barus basis against our
     Roelands film) of the Nijenbanning, Venner & Moes (1994) central film. Not capped at 513^2: that solve converges

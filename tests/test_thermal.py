@@ -273,7 +273,7 @@ def test_error_estimates_of_dT_max_and_mu_come_from_the_coarse_thermal_stage():
 @pytest.mark.slow
 def test_error_estimates_hold_against_a_converged_reference():
     """The estimates of dT_max and mu are differences against the coarse thermal stage, which stops at
-    solve.COARSE_STAGE_TOLERANCE times the thermal tolerance, at most solve.COARSE_STAGE_LIMIT of the rise: its
+    TUNING.coarse_stage_tolerance times the thermal tolerance, at most TUNING.coarse_stage_limit of the rise: its
     iteration error must stay well below that difference, or the estimate measures the iteration and not the grid.
     S1 of the default case (the point whose mu estimate a coarse stage stopped at 1e-2 of the rise made 4.9e-4
     against 4.2e-3), at thermal tolerances of 1e-3 and 2e-3 (the default): each of the four estimates is within
@@ -296,7 +296,7 @@ def test_error_estimates_hold_against_a_converged_reference():
 
 
 def test_the_coarse_stage_seeded_two_grids_down_reaches_the_same_film(monkeypatch):
-    """S1 of the default case (513 x 65): the coupled problem is solved first on 129 x 65 to solve.SEED_STAGE_LIMIT
+    """S1 of the default case (513 x 65): the coupled problem is solved first on 129 x 65 to TUNING.seed_stage_limit
     of the rise and the coarse stage (257 x 65) starts from its interpolated state instead of the inlet temperature.
     The loop's fixed point does not depend on where it starts: h_c, h_min, dT_max and mu within a quarter of their
     error estimates of the solve whose coarse stage starts from the inlet temperature, at a fraction of the coarse

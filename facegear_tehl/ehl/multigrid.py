@@ -50,13 +50,12 @@ def corrected_nodes(pressure: np.ndarray) -> np.ndarray:
     neighbours cavitated (an interior node at P = 0; the domain's boundary nodes, zero by the boundary condition, do
     not count). The coarse grid sees the cavitation boundary smeared over its own cells: added at the last pressurised
     nodes, its correction flipped the boundary by one node every V-cycle, a period-2 limit cycle that held the
-    pressure change at 3-6e-4 per cycle on the default face gear case's 513 x 65 grids, isothermal Newtonian too (the
-    "algebraic floor"); without it the change falls by ~0.55 per cycle to 3e-6 (docs/benchmarks.md). This follows
-    the truncated coarse-grid corrections of multigrid for obstacle problems (Kornhuber 1994, Numer. Math.
+    pressure change at its "algebraic floor" (measured in docs/tuning.md, "Pressure cycles and algebraic floors").
+    This follows the truncated coarse-grid corrections of multigrid for obstacle problems (Kornhuber 1994, Numer. Math.
     69:167-184): a node next to the contact set is left to the relaxation. The discrete solution is unchanged (the
     correction vanishes at convergence). Far from the solution the truncated correction can run away where the
     pressurised zone is a few nodes wide (the circle at M = 20, L = 10 on 513 x 33 from its full-multigrid start):
-    PointSolve.cycle truncates from a stall below TRUNCATION_BAND on (solve.py)."""
+    PressureIteration.cycle truncates from a stall below TUNING.truncation_band on (pressure.py)."""
     wet = pressure > 0.0
     dry = ~wet
     dry[0, :] = dry[-1, :] = False

@@ -302,7 +302,7 @@ class PatchedSolver(MultigridSolver):
 
     def refine(self, index: int) -> None:
         """The grid below's correction, interpolated linearly, at the patch's `corrected_nodes` (always truncated: a
-        patch starts from a converged solution, the closeness the uniform grids wait for, solve.TRUNCATION_BAND; with
+        patch starts from a converged solution, the closeness the uniform grids wait for, TUNING.truncation_band; with
         the full correction the two-patch composite of tests/test_patch.py stalls at 1.1e-4 per cycle); its end
         columns take the grid below's values."""
         place = self._place(index)
