@@ -22,6 +22,7 @@ from facegear_tehl.lubricant import DENSITY_MODELS, KELVIN, OIL_TYPES, RHEOLOGY_
 from facegear_tehl.materials import Solid
 from facegear_tehl.oils import ISO_VG_GRADES, WALTHER_LOWEST, derive, grade_viscosity
 from facegear_tehl.schema import Block, CaseError, attempt, check, collecting, defaults, warn
+from facegear_tehl.scuffing import FZG_STAGES, LUBRICATION_METHODS
 from facegear_tehl.settings import (  # also imported from here
     MAX_OUTLET_PATCHES,
     OUTLET_REFINEMENTS,
@@ -181,6 +182,11 @@ def _lubricant(block: Block) -> tuple[Lubricant, tuple[str, ...]]:
                                    unit="J/(kg K)"),
         oil_type=oil_type,
         scuffing_temperature=_scuffing_temperature(block, temperature),
+        fzg_scuffing_stage=block.number("fzg_scuffing_stage", None, low=FZG_STAGES[0], high=FZG_STAGES[1],
+                                        unit="(FZG A/8.3/90 failure load stage)"),
+        micropitting_test_film=block.number("micropitting_test_film", None, positive=True, high=10.0,
+                                            unit="(lambda_GFT of the oil's FZG GF-C/8.3/90 test)"),
+        lubrication=block.choice("lubrication", LUBRICATION_METHODS, d["lubrication"]),
     )
     check(
         lubricant.roelands_log_term > 0.0 or lubricant.viscosity_model != "roelands",
