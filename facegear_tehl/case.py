@@ -17,6 +17,7 @@ from typing import Any
 
 import yaml
 
+from facegear_tehl.fzg import MICROPITTING_STAGES
 from facegear_tehl.gears.spec import GearSpec, parse_gear_block
 from facegear_tehl.lubricant import DENSITY_MODELS, KELVIN, OIL_TYPES, RHEOLOGY_MODELS, VISCOSITY_MODELS, Lubricant
 from facegear_tehl.materials import Solid
@@ -184,10 +185,15 @@ def _lubricant(block: Block) -> tuple[Lubricant, tuple[str, ...]]:
         scuffing_temperature=_scuffing_temperature(block, temperature),
         fzg_scuffing_stage=block.number("fzg_scuffing_stage", None, low=FZG_STAGES[0], high=FZG_STAGES[1],
                                         unit="(FZG A/8.3/90 failure load stage)"),
+        micropitting_stage=block.number("micropitting_stage", None, low=MICROPITTING_STAGES[0],
+                                        high=MICROPITTING_STAGES[1], unit="(FZG GF-C/8.3/90 failure load stage)"),
         micropitting_test_film=block.number("micropitting_test_film", None, positive=True, high=10.0,
                                             unit="(lambda_GFT of the oil's FZG GF-C/8.3/90 test)"),
         lubrication=block.choice("lubrication", LUBRICATION_METHODS, d["lubrication"]),
     )
+    check(lubricant.micropitting_stage is None or lubricant.micropitting_test_film is None,
+          block.key_path("micropitting_test_film"), lubricant.micropitting_test_film,
+          "either micropitting_stage (its lambda_GFT is computed) or micropitting_test_film, not both")
     check(
         lubricant.roelands_log_term > 0.0 or lubricant.viscosity_model != "roelands",
         block.key_path("viscosity"),

@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from facegear_tehl import micropitting, scuffing
+from facegear_tehl import fzg, micropitting, scuffing
 from facegear_tehl.case import Case
 from facegear_tehl.heat import GAUSSIAN_RA_PER_RQ
 from facegear_tehl.lubricant import KELVIN
@@ -70,8 +70,8 @@ def rate(case: Case, contact: Mapping[str, Field], contact_scalars: Mapping[str,
     else:
         scalars.update(_flash_method(case, path, contact_scalars, cycle, oil_factor, ra))
         scalars.update(_integral_method(case, path, cycle, oil_factor, ra))
-    if lubricant.micropitting_test_film is None:
-        notes.append("micropitting by ISO/TS 6336-22: no lubricant.micropitting_test_film (lambda_GFT) given")
+    if lubricant.micropitting_test_film is None and lubricant.micropitting_stage is None:
+        notes.append("micropitting by ISO/TS 6336-22: no lubricant.micropitting_stage (FZG GF-C/8.3/90) given")
     elif oil_factor is None or ra <= 0.0:
         notes.append("micropitting by ISO/TS 6336-22: needs a roughness and a lubricant factor X_L for the oil")
     else:
@@ -157,6 +157,16 @@ def _integral_method(case: Case, path: PathValues, cycle: Mapping[str, Field], o
     return found
 
 
+def _test_film(case: Case, oil_factor: float) -> float:
+    """lambda_GFT: given, or of the FZG C-type gear at the oil's GF-C/8.3/90 failure stage (fzg.failure_film) with
+    the case's viscosity law and alpha_38 = alpha(T_0) scaled by ISO/TR 15144-1 Formula (8)."""
+    lub = case.lubricant
+    if lub.micropitting_test_film is not None:
+        return lub.micropitting_test_film
+    alpha_38 = lub.pressure_viscosity * micropitting.alpha_ratio(micropitting.ALPHA_REFERENCE, lub.inlet_temperature)
+    return fzg.failure_film(lub.micropitting_stage, lambda t: _at(lub.viscosity_at, t), alpha_38, oil_factor)
+
+
 def _micropitting(case: Case, path: PathValues, contact_scalars: Mapping[str, tuple[float, str]],
                   cycle: Mapping[str, Field], oil_factor: float, ra: float) -> Scalars:
     """ISO/TS 6336-22 method B along the path: lambda_GF(s) = h_Y/Ra, its minimum and where, lambda_GFP, S_lambda;
@@ -182,7 +192,7 @@ def _micropitting(case: Case, path: PathValues, contact_scalars: Mapping[str, tu
         films.append(micropitting.film_thickness(path.radius[i], path.speed_1[i] + path.speed_2[i], path.pressure[i],
                                                  e_r, alpha_bulk, eta_bulk, sliding))
     lambdas = np.array(films) / ra
-    permissible = micropitting.permissible_film(lub.micropitting_test_film)
+    permissible = micropitting.permissible_film(_test_film(case, oil_factor))
     found: Scalars = {"mu_micropitting": (mu, "1"), "bulk_temperature_micropitting": (bulk, "K"),
                       "lambda_gf_min": (float(lambdas.min()), "1"), "lambda_gf_min_s": (float(path.s[np.argmin(
                           lambdas)]), "m"), "lambda_gfp": (permissible, "1"),
