@@ -20,6 +20,8 @@ from facegear_tehl.materials import reduced_modulus
 from facegear_tehl.solution import Field
 
 Scalars = dict[str, tuple[float, str]]
+# A solved point this close to the end of the path (in base pitches) is at the pinion tip (cycle.PATH_END_TOLERANCE).
+PATH_END = 1e-9
 
 
 @dataclass(frozen=True)
@@ -69,7 +71,7 @@ def rate(case: Case, contact: Mapping[str, Field], contact_scalars: Mapping[str,
         notes.append("scuffing by ISO/TS 6336-20/-21: the flanks need a roughness (the mean friction reads R_a)")
     else:
         scalars.update(_flash_method(case, path, contact_scalars, cycle, oil_factor, ra))
-        scalars.update(_integral_method(case, path, cycle, oil_factor, ra))
+        scalars.update(_integral_method(case, path, contact_scalars, cycle, oil_factor, ra))
     if lubricant.micropitting_test_film is None and lubricant.micropitting_stage is None:
         notes.append("micropitting by ISO/TS 6336-22: no lubricant.micropitting_stage (FZG GF-C/8.3/90) given")
     elif oil_factor is None or ra <= 0.0:
@@ -97,9 +99,11 @@ def _flash(path: PathValues, mu: float, coefficients: tuple[float, float], facto
         path.unit_load, path.speed_1, path.speed_2, path.half_width)]) * factor
 
 
-def _solved_rise(cycle: Mapping[str, Field]) -> tuple[np.ndarray, np.ndarray] | None:
-    """(s, the larger solved surface temperature rise of the two flanks) at the solved points, or None."""
-    if not all(name in cycle for name in ("s", "dT_surface_1_max", "dT_surface_2_max")):
+def _solved_rise(case: Case, cycle: Mapping[str, Field]) -> tuple[np.ndarray, np.ndarray] | None:
+    """(s, the larger solved surface temperature rise of the two flanks) at the solved points of a thermal solve, or
+    None (as cycle.py's solved contact temperatures)."""
+    if case.solver.thermal == "off" or not all(name in cycle for name in ("s", "dT_surface_1_max",
+                                                                          "dT_surface_2_max")):
         return None
     return cycle["s"].values, np.maximum(cycle["dT_surface_1_max"].values, cycle["dT_surface_2_max"].values)
 
@@ -123,7 +127,7 @@ def _flash_method(case: Case, path: PathValues, contact_scalars: Mapping[str, tu
     safety = scuffing.flash_safety(theta_s, lub.inlet_temperature, bulk + float(flash.max()))
     if safety is not None:
         found["scuffing_safety_flash"] = (safety, "1")
-    solved = _solved_rise(cycle)
+    solved = _solved_rise(case, cycle)
     if solved is not None:
         hottest = bulk + float(solved[1].max())
         found["contact_temperature_flash_solved_max"] = (hottest, "K")
@@ -133,25 +137,30 @@ def _flash_method(case: Case, path: PathValues, contact_scalars: Mapping[str, tu
     return found
 
 
-def _integral_method(case: Case, path: PathValues, cycle: Mapping[str, Field], oil_factor: float, ra: float
-                     ) -> Scalars:
-    """ISO/TS 6336-21 along the path: mu_mC, theta_fla,int = the path mean of the local flash temperature / X_Q,
-    theta_int, theta_intS, S_intS; beside them theta_int with the path mean of the solved surface rise."""
+def _integral_method(case: Case, path: PathValues, contact_scalars: Mapping[str, tuple[float, str]],
+                     cycle: Mapping[str, Field], oil_factor: float, ra: float) -> Scalars:
+    """ISO/TS 6336-21 along the path: mu_mC, theta_flaE at the pinion tip (the path's end) under the pair's whole load,
+    theta_fla,int = theta_flaE X_eps/X_Q, theta_int, theta_intS, S_intS; beside them the same with the solved surface
+    rise at the solved point at the path's end (S5) in place of theta_flaE, both brought to the whole load by the
+    standard's w^0.75 (the tip carries the share K of it)."""
     lub = case.lubricant
     mu = scuffing.mean_friction_integral(path.at_pitch(path.unit_load), path.at_pitch(path.speed_1 + path.speed_2),
                                          path.at_pitch(path.radius), lub.viscosity, ra, oil_factor)
-    x_q = scuffing.approach_recess_factor(float(path.s[0]), float(path.s[-1]))
-    flash_int = scuffing.path_mean(path.s, _flash(path, mu, _contact_coefficients(case))) / x_q
+    base_pitch, normal_load = contact_scalars["base_pitch"][0], contact_scalars["normal_load"][0]
+    weight = (scuffing.contact_ratio_factor(float(path.s[-1]) / base_pitch, -float(path.s[0]) / base_pitch)
+              / scuffing.approach_recess_factor(float(path.s[0]), float(path.s[-1])))
+    tip = _flash(path, mu, _contact_coefficients(case))[-1] * (normal_load / path.load[-1]) ** 0.75
     nu_40 = _at(lub.viscosity_at, 40.0 + KELVIN) / _at(lub.density_at, 40.0 + KELVIN)
     theta_int_s = scuffing.integral_scuffing_temperature(lub.fzg_scuffing_stage, oil_factor, nu_40)
-    _, theta_int = scuffing.integral_temperature(lub.inlet_temperature, flash_int, lub.lubrication)
-    found: Scalars = {"mu_integral_method": (mu, "1"), "integral_flash_temperature": (flash_int, "K"),
+    _, theta_int = scuffing.integral_temperature(lub.inlet_temperature, tip * weight, lub.lubrication)
+    found: Scalars = {"mu_integral_method": (mu, "1"), "tip_flash_temperature": (tip, "K"),
+                      "integral_flash_temperature": (tip * weight, "K"),
                       "integral_temperature": (theta_int, "K"), "scuffing_integral_temperature": (theta_int_s, "K"),
                       "scuffing_safety_integral": (scuffing.integral_safety(theta_int_s, theta_int), "1")}
-    solved = _solved_rise(cycle)
-    if solved is not None:
-        _, theta_solved = scuffing.integral_temperature(lub.inlet_temperature, scuffing.path_mean(*solved),
-                                                        lub.lubrication)
+    solved = _solved_rise(case, cycle)
+    if solved is not None and abs(solved[0][-1] - path.s[-1]) <= PATH_END * base_pitch:  # the tip is solved
+        tip_solved = float(solved[1][-1]) / float(cycle["load_share"].values[-1]) ** 0.75
+        _, theta_solved = scuffing.integral_temperature(lub.inlet_temperature, tip_solved * weight, lub.lubrication)
         found["integral_temperature_solved"] = (theta_solved, "K")
         found["scuffing_safety_integral_solved"] = (scuffing.integral_safety(theta_int_s, theta_solved), "1")
     return found

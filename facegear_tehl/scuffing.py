@@ -16,7 +16,9 @@ ISO/TR 13989-1:2000 ("Part 1") and ISO/TR 13989-2:2000 ("Part 2").
                       Eq. (45)-(46), Gamma/(Gamma_E - Gamma_A) = s/(s_E - s_A) on the line of action)
   bulk temperature    theta_M = theta_oil + 0.47 X_S X_mp theta_fl,m          (Part 1 Eq. (22))
                       theta_M = theta_oil + 0.70 X_S X_mp theta_fla,int       (Part 2 Eq. (20))
-  integral temp.      theta_int = theta_M + 1.5 theta_fla,int                 (Part 2 Eq. (17))
+  integral temp.      theta_int = theta_M + 1.5 theta_fla,int,  theta_fla,int = theta_flaE X_eps/X_Q  (Part 2 Eq. (17),
+                      (18), (19) with X_E = X_Ca = 1: run in, no tip relief); theta_flaE the flash temperature at the
+                      pinion tip under the pair's whole load; X_eps of the addendum contact ratios (Eq. (39)-(44))
   scuffing temp.      theta_S = 80 degC + (0.85 + 1.4 X_W) X_L S_FZG^2 K      (Part 1 Eq. (99), FZG A/8.3/90 stage)
                       theta_intS = theta_MT + 1.5 X_W theta_flaintT, theta_MT = 80 degC + 0.23 T_1T X_L0,
                       theta_flaintT = 0.2 T_1T (100/nu_40)^0.02 X_L0, T_1T = 3.726 S_FZG^2 N m  (Part 2 Eq. (94)-(97))
@@ -103,9 +105,27 @@ def approach_factor(s: np.ndarray, s_start: float, s_end: float, unit_load: floa
     return np.maximum(1.0 + relief / APPROACH_RELIEF_SCALE * position**3, 1.0)
 
 
+def contact_ratio_factor(eps_1: float, eps_2: float) -> float:
+    """X_eps of Part 2 Eq. (39)-(44), -: the mean flash temperature along the path over the one at the pinion tip,
+    from the addendum contact ratios eps_1 (pinion tip side) and eps_2 (eps_alpha = eps_1 + eps_2 < 3)."""
+    eps = eps_1 + eps_2
+    if eps < 1.0:
+        terms = eps_1**2 + eps_2**2
+    elif eps < 2.0 and eps_1 < 1.0 and eps_2 < 1.0:
+        terms = 0.70 * (eps_1**2 + eps_2**2) - 0.22 * eps + 0.52 - 0.60 * eps_1 * eps_2
+    elif eps < 2.0 and eps_2 < 1.0:
+        terms = 0.18 * eps_1**2 + 0.70 * eps_2**2 + 0.82 * eps_1 - 0.52 * eps_2 - 0.30 * eps_1 * eps_2
+    elif eps < 2.0:
+        terms = 0.70 * eps_1**2 + 0.18 * eps_2**2 - 0.52 * eps_1 + 0.82 * eps_2 - 0.30 * eps_1 * eps_2
+    elif eps_1 >= eps_2:
+        terms = 0.44 * eps_1**2 + 0.59 * eps_2**2 + 0.30 * eps_1 - 0.30 * eps_2 - 0.15 * eps_1 * eps_2
+    else:
+        terms = 0.59 * eps_1**2 + 0.44 * eps_2**2 - 0.30 * eps_1 + 0.30 * eps_2 - 0.15 * eps_1 * eps_2
+    return terms / (2.0 * eps * eps_1)
+
+
 def path_mean(s: Sequence[float], values: Sequence[float]) -> float:
-    """The mean of `values` over the path s (trapezoidal rule in s, any order): Part 1 Eq. (24)'s theta_fl,m and the
-    path average that Part 2's X_eps approximates for theta_fla,int."""
+    """The mean of `values` over the path s (trapezoidal rule in s, any order): Part 1 Eq. (24)'s theta_fl,m."""
     order = np.argsort(s)
     x, y = np.asarray(s, dtype=float)[order], np.asarray(values, dtype=float)[order]
     span = x[-1] - x[0]
