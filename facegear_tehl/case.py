@@ -272,11 +272,11 @@ def _grade(block: Block) -> int:
 
 
 def _pressure_viscosity(block: Block, oil: dict[str, float], oil_type: str) -> float:
-    """lubricant.pressure_viscosity, 1/Pa: given, else derived for a mineral oil given in engineering units."""
+    """lubricant.pressure_viscosity, 1/Pa: given, else derived for an oil given in engineering units (oils.py)."""
     if oil and "pressure_viscosity" not in oil and not block.has("pressure_viscosity"):
         check(False, block.key_path("pressure_viscosity"), None,
-              f"a value in 1/Pa: none is derived for oil_type {oil_type} (the built-in correlation, ISO/TR 15144-1, "
-              "is for mineral oils)")
+              f"a value in 1/Pa: none is derived for oil_type {oil_type} (the built-in correlations, ISO/TR 15144-1, "
+              "are for mineral, pao and pag oils)")
         return math.nan
     default = [oil["pressure_viscosity"]] if "pressure_viscosity" in oil else []
     return block.number("pressure_viscosity", *default, positive=True, high=1e-6, unit="1/Pa")

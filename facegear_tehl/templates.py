@@ -86,7 +86,7 @@ lubricant:                    # an ISO VG 100 mineral gear oil, given as its dat
   grade: VG100                # the SI values derived from it (docs/verdict.md); or nu40: in mm^2/s at 40 degC
   nu100: 11.1                 # mm^2/s at 100 degC (datasheet; VG 100 mineral oils of viscosity index ~97)
   density_15: 880.0           # kg/m^3 at 15 degC (datasheet)
-  oil_type: mineral           # mineral | pao | ester | pag (not mineral: give pressure_viscosity, 1/Pa)
+  oil_type: mineral           # mineral | pao | ester | pag (ester: give pressure_viscosity, 1/Pa)
   inlet_temperature: 80.0     # degC (not kelvin)
   fzg_scuffing_stage: 12      # FZG A/8.3/90 failure load stage (datasheet): scuffing by ISO/TS 6336-20/-21
   micropitting_stage: 9       # FZG GF-C/8.3/90 failure load stage (datasheet): micropitting by ISO/TS 6336-22
