@@ -4,7 +4,8 @@ oil injected), by method B on the gear's involute path (ISO/TR 15144-1:2014 Form
 (48), (80)-(92); the local laws in micropitting.py). SI inside.
 
 Test gear (Hoehn, Oster, Tobie & Michaelis 2008, Goriva i maziva 47(2):129, table 1): z 16/24, m 4.5 mm, alpha 20 deg,
-a 91.5 mm, b 14 mm, x 0.1817/0.1715, tip diameters 82.46/118.36 mm, 16MnCr5 case carburized, ground to Ra 0.5 um;
+a 91.5 mm, b 14 mm, x 0.1817/0.1715, tip diameters 82.46/118.36 mm (the table rounds them to 82.5/118.4),
+16MnCr5 case carburized, ground to Ra 0.5 um;
 pinion torque of load stage S: T_1 = 3.726 S^2 N m (ISO 14635-1, as ISO/TR 13989-2 Eq. (97) writes it).
 """
 

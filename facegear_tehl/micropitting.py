@@ -11,7 +11,7 @@ inside; Formula numbers are those of ISO/TR 15144-1:2014.
                        + B_M2 sqrt v_2)  (Formula (80) with b_H = 4 rho_n p_dyn/E_r the Hertz semi-width)
   bulk temperature     theta_M = theta_oil + 7400 K (P_VZP/(a b))^0.72 X_S/(1.2 X_Ca),  P_VZP = P mu_m H_V in kW, a and
                        b in mm                                                                 (Formula (84))
-  permissible          lambda_GFP = 1.4 W_W lambda_GFT                                          (Formula (A.1))
+  permissible          lambda_GFP = 1.4 W_W lambda_GFT                                          (Annex A, from the test)
   safety               S_lambda = lambda_GF,min / lambda_GFP                                    (Formula (1))
 """
 
@@ -25,8 +25,8 @@ FLASH_COEFFICIENT = math.sqrt(math.pi / 2.0)  # Formula (80): sqrt(pi)/2 on sqrt
 BULK_COEFFICIENT = 7400.0  # K, Formula (84)
 BULK_EXPONENT = 0.72
 BULK_REFERENCE_LUBRICATION = 1.2  # the X_S of spray lubrication the coefficient belongs to, Formula (84)
-PERMISSIBLE_FACTOR = 1.4  # Formula (A.1)
-# Material factor W_W (ISO/TR 15144-1 Table 4): 1.0 for case-carburized steel with the test gears' surface.
+PERMISSIBLE_FACTOR = 1.4  # Annex A: lambda_GFP from the test gear's lambda_GFT
+# Material factor W_W: 1.0 for case-carburized steel, the test gears' material (ISO/TR 15144-1 Annex A).
 MATERIAL_FACTOR_CARBURIZED = 1.0
 
 
@@ -74,5 +74,5 @@ def bulk_temperature(oil_temperature: float, loss_power: float, centre_distance:
 
 
 def permissible_film(test_film: float, material_factor: float = MATERIAL_FACTOR_CARBURIZED) -> float:
-    """lambda_GFP = 1.4 W_W lambda_GFT, - (Formula (A.1)); lambda_GFT of the oil's FZG GF-C/8.3/90 test."""
+    """lambda_GFP = 1.4 W_W lambda_GFT, - (ISO/TR 15144-1 Annex A); lambda_GFT of the oil's FZG GF-C/8.3/90 test."""
     return PERMISSIBLE_FACTOR * material_factor * test_film
