@@ -139,6 +139,11 @@ def test_a_case_in_pa_s_derives_nothing():
     ("  grade: VG100\n  nu100: 11\n  density_15: 850\n  oil_type: ester\n", "lubricant.pressure_viscosity"),
     ("  viscosity: 0.04\n  pressure_viscosity: 2.2e-8\n  inlet_temperature: 90\n  scuffing_temperature: 80\n",
      "lubricant.scuffing_temperature"),
+    ("  viscosity: 0.04\n  pressure_viscosity: 2.2e-8\n  fzg_scuffing_stage: 15\n", "lubricant.fzg_scuffing_stage"),
+    ("  viscosity: 0.04\n  pressure_viscosity: 2.2e-8\n  micropitting_stage: 4\n", "lubricant.micropitting_stage"),
+    ("  viscosity: 0.04\n  pressure_viscosity: 2.2e-8\n  micropitting_stage: 8\n  micropitting_test_film: 0.1\n",
+     "lubricant.micropitting_test_film"),
+    ("  viscosity: 0.04\n  pressure_viscosity: 2.2e-8\n  lubrication: splash\n", "lubricant.lubrication"),
 ])
 def test_bad_oil_inputs_name_their_key(lines, key):
     with pytest.raises(CaseError) as error:
