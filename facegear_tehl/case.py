@@ -17,11 +17,13 @@ from typing import Any
 
 import yaml
 
+from facegear_tehl.fzg import MICROPITTING_STAGES
 from facegear_tehl.gears.spec import GearSpec, parse_gear_block
 from facegear_tehl.lubricant import DENSITY_MODELS, KELVIN, OIL_TYPES, RHEOLOGY_MODELS, VISCOSITY_MODELS, Lubricant
 from facegear_tehl.materials import Solid
 from facegear_tehl.oils import ISO_VG_GRADES, WALTHER_LOWEST, derive, grade_viscosity
 from facegear_tehl.schema import Block, CaseError, attempt, check, collecting, defaults, warn
+from facegear_tehl.scuffing import FZG_STAGES, LUBRICATION_METHODS
 from facegear_tehl.settings import (  # also imported from here
     MAX_OUTLET_PATCHES,
     OUTLET_REFINEMENTS,
@@ -181,7 +183,17 @@ def _lubricant(block: Block) -> tuple[Lubricant, tuple[str, ...]]:
                                    unit="J/(kg K)"),
         oil_type=oil_type,
         scuffing_temperature=_scuffing_temperature(block, temperature),
+        fzg_scuffing_stage=block.number("fzg_scuffing_stage", None, low=FZG_STAGES[0], high=FZG_STAGES[1],
+                                        unit="(FZG A/8.3/90 failure load stage)"),
+        micropitting_stage=block.number("micropitting_stage", None, low=MICROPITTING_STAGES[0],
+                                        high=MICROPITTING_STAGES[1], unit="(FZG GF-C/8.3/90 failure load stage)"),
+        micropitting_test_film=block.number("micropitting_test_film", None, positive=True, high=10.0,
+                                            unit="(lambda_GFT of the oil's FZG GF-C/8.3/90 test)"),
+        lubrication=block.choice("lubrication", LUBRICATION_METHODS, d["lubrication"]),
     )
+    check(lubricant.micropitting_stage is None or lubricant.micropitting_test_film is None,
+          block.key_path("micropitting_test_film"), lubricant.micropitting_test_film,
+          "either micropitting_stage (its lambda_GFT is computed) or micropitting_test_film, not both")
     check(
         lubricant.roelands_log_term > 0.0 or lubricant.viscosity_model != "roelands",
         block.key_path("viscosity"),
@@ -260,11 +272,11 @@ def _grade(block: Block) -> int:
 
 
 def _pressure_viscosity(block: Block, oil: dict[str, float], oil_type: str) -> float:
-    """lubricant.pressure_viscosity, 1/Pa: given, else derived for a mineral oil given in engineering units."""
+    """lubricant.pressure_viscosity, 1/Pa: given, else derived for an oil given in engineering units (oils.py)."""
     if oil and "pressure_viscosity" not in oil and not block.has("pressure_viscosity"):
         check(False, block.key_path("pressure_viscosity"), None,
-              f"a value in 1/Pa: none is derived for oil_type {oil_type} (the built-in correlation, ISO/TR 15144-1, "
-              "is for mineral oils)")
+              f"a value in 1/Pa: none is derived for oil_type {oil_type} (the built-in correlations, ISO/TR 15144-1, "
+              "are for mineral, pao and pag oils)")
         return math.nan
     default = [oil["pressure_viscosity"]] if "pressure_viscosity" in oil else []
     return block.number("pressure_viscosity", *default, positive=True, high=1e-6, unit="1/Pa")

@@ -63,6 +63,10 @@ class Lubricant:
     specific_heat: float = 2000.0  # c_f, J/(kg K)
     oil_type: str = "mineral"  # base oil, one of OIL_TYPES: only ISO/TR 14179-2's friction coefficient reads it
     scuffing_temperature: float | None = None  # theta_S, K, of the oil on the flanks (scuffing.py); None: not given
+    fzg_scuffing_stage: float | None = None  # failure load stage of the FZG A/8.3/90 test (ISO 14635-1); None
+    micropitting_stage: float | None = None  # failure load stage of the FZG GF-C/8.3/90 test (FVA 54/7); None
+    micropitting_test_film: float | None = None  # its lambda_GFT (ISO/TS 6336-22) given instead of the stage; None
+    lubrication: str = "dip"  # dip | spray: the standards' lubrication factor X_S (scuffing.py)
 
     @property
     def roelands_log_term(self) -> float:

@@ -9,8 +9,9 @@ SI properties of `Lubricant` at the inlet temperature (docs/verdict.md, "Oil inp
   dynamic visc.     eta_0 = nu(T_0) rho(T_0)
   beta              -d ln(eta)/dT at T_0 = B (nu + 0.7) ln(nu + 0.7)/(nu T) - d ln(rho)/dT  (Walther, differentiated)
   thermal exp.      eps_T = -d ln(rho)/dT at T_0 = a_15 (1 + 1.6 a_15 dt)
-  alpha (mineral)   alpha_38 = 2.657e-8 eta_38^0.1348 (eta_38 in Pa s, alpha in 1/Pa),
-                    alpha(T) = alpha_38 [1 + 516 (1/T - 1/311.15)]  (ISO/TR 15144-1:2014, mineral oils)
+  alpha             alpha_38 = C eta_38^X (eta_38 in Pa s, alpha in 1/Pa): mineral 2.657e-8, 0.1348; PAO 1.466e-8,
+                    0.0507; PAG 1.392e-8, 0.1572; alpha(T) = alpha_38 [1 + 516 K (1/T - 1/311 K)]
+                    (ISO/TR 15144-1:2014 Formulae (8)-(11); none for esters)
   conductivity      k = 0.1172 (1 - 5.4e-4 t)/s_15 W/(m K)        (Cragoe 1929, US Bureau of Standards Misc.
   heat capacity     c = (1685 + 3.39 t)/sqrt(s_15) J/(kg K)         Publ. 97; petroleum oils; s_15 = rho_15/1000)
 
@@ -23,6 +24,7 @@ from dataclasses import dataclass
 import math
 
 from facegear_tehl.lubricant import KELVIN
+from facegear_tehl.micropitting import ALPHA_REFERENCE, alpha_ratio
 
 # ISO 3448:1992 viscosity grades: the grade number is the midpoint kinematic viscosity at 40 degC in mm^2/s
 # (limits +-10 %); VG 22 to VG 1000 are the gear and bearing oils.
@@ -35,12 +37,10 @@ WALTHER_LOWEST = 2.0  # mm^2/s
 # API MPMS 11.1 (1980) / ASTM D1250 Table 54D (lubricating oils): a_15 = K_0/rho_15^2 + K_1/rho_15, K_0 = 0.
 API_LUBE_K1 = 0.6278  # kg/(m^3 K)
 DENSITY_REFERENCE = 15.0  # degC
-# ISO/TR 15144-1:2014 pressure-viscosity coefficient of mineral oils: alpha_38 = C eta_38^X at 38 degC (311.15 K),
-# its temperature factor 1 + 516 K (1/T - 1/311.15 K).
-ALPHA_38_COEFFICIENT = 2.657e-8  # 1/Pa at eta_38 = 1 Pa s
-ALPHA_38_EXPONENT = 0.1348
-ALPHA_REFERENCE_TEMPERATURE = 38.0 + KELVIN  # K
-ALPHA_TEMPERATURE_CONSTANT = 516.0  # K
+# ISO/TR 15144-1:2014 Formulae (9)-(11), the pressure-viscosity coefficient at 38 degC by base oil: alpha_38 = C
+# eta_38^X, (C in 1/Pa at eta_38 = 1 Pa s, X); its temperature factor is micropitting.alpha_ratio (Formula (8)).
+PRESSURE_VISCOSITY_38 = {"mineral": (2.657e-8, 0.1348), "pao": (1.466e-8, 0.0507), "pag": (1.392e-8, 0.1572)}
+ALPHA_REFERENCE_TEMPERATURE = 38.0 + KELVIN  # K, where eta_38 is read
 # Cragoe (1929), US Bureau of Standards Misc. Publ. 97, for petroleum oils (t in degC, s_15 specific gravity):
 CRAGOE_CONDUCTIVITY = 0.1172  # W/(m K): 0.813 Btu in/(h ft^2 degF)
 CRAGOE_CONDUCTIVITY_SLOPE = 5.4e-4  # 1/degC: 0.0003 per degF
@@ -97,11 +97,11 @@ def thermal_expansion_at(density_15: float, temperature: float) -> float:
     return a15 * (1.0 + 1.6 * a15 * dt)
 
 
-def mineral_pressure_viscosity(eta_38: float, temperature: float) -> float:
-    """alpha(T) = 2.657e-8 eta_38^0.1348 [1 + 516 (1/T - 1/311.15)], 1/Pa (ISO/TR 15144-1:2014, mineral oils);
-    eta_38 the dynamic viscosity at 38 degC in Pa s, T in K."""
-    alpha_38 = ALPHA_38_COEFFICIENT * eta_38**ALPHA_38_EXPONENT
-    return alpha_38 * (1.0 + ALPHA_TEMPERATURE_CONSTANT * (1.0 / temperature - 1.0 / ALPHA_REFERENCE_TEMPERATURE))
+def pressure_viscosity(eta_38: float, temperature: float, oil_type: str = "mineral") -> float:
+    """alpha(T) = C eta_38^X [1 + 516 K (1/T - 1/311 K)], 1/Pa (ISO/TR 15144-1:2014 Formulae (8)-(11), C and X of
+    `PRESSURE_VISCOSITY_38`); eta_38 the dynamic viscosity at 38 degC in Pa s, T in K."""
+    coefficient, exponent = PRESSURE_VISCOSITY_38[oil_type]
+    return coefficient * eta_38**exponent * alpha_ratio(temperature, ALPHA_REFERENCE)
 
 
 def cragoe_conductivity(density_15: float, temperature: float) -> float:
@@ -136,8 +136,8 @@ def derive(nu_40: float, nu_100: float, density_15: float, temperature: float, o
            source: str, density: float | None = None) -> OilDerivation:
     """The SI inputs of an oil of nu_40, nu_100 (mm^2/s) and rho_15 (kg/m^3) at the inlet temperature T (K);
     `source` says where nu_40 came from (e.g. "ISO VG 100 midpoint"); `density` (kg/m^3 at T) replaces the one
-    derived from rho_15 where given. Mineral oils get alpha (ISO/TR 15144-1) and k, c (Cragoe 1929); the other oil
-    types none of the three."""
+    derived from rho_15 where given. Mineral, PAO and PAG oils get alpha (ISO/TR 15144-1), mineral oils k, c (Cragoe
+    1929); esters none of the three."""
     line = Walther.through(nu_40, nu_100)
     nu = line.viscosity(temperature)
     rho = density_at(density_15, temperature) if density is None else density
@@ -154,15 +154,16 @@ def derive(nu_40: float, nu_100: float, density_15: float, temperature: float, o
         f"thermal_expansion = {eps:.4g} 1/K: -d ln(rho)/dT at {celsius:g} degC (API MPMS 11.1 Table 54D)",
     ]
     alpha = conductivity = heat_capacity = None
-    if oil_type == "mineral":
+    if oil_type in PRESSURE_VISCOSITY_38:
         eta_38 = line.viscosity(ALPHA_REFERENCE_TEMPERATURE) * 1e-6 * density_at(density_15,
                                                                                 ALPHA_REFERENCE_TEMPERATURE)
-        alpha = mineral_pressure_viscosity(eta_38, temperature)
+        alpha = pressure_viscosity(eta_38, temperature, oil_type)
+        provenance.append(f"pressure_viscosity = {alpha:.4g} 1/Pa: ISO/TR 15144-1 ({oil_type} oils) at eta_38 = "
+                          f"{eta_38:.4g} Pa s and {celsius:g} degC")
+    if oil_type == "mineral":
         conductivity = cragoe_conductivity(density_15, temperature)
         heat_capacity = cragoe_heat_capacity(density_15, temperature)
         provenance += [
-            f"pressure_viscosity = {alpha:.4g} 1/Pa: ISO/TR 15144-1 (mineral oils) at eta_38 = {eta_38:.4g} Pa s "
-            f"and {celsius:g} degC",
             f"thermal_conductivity = {conductivity:.4g} W/(m K): Cragoe (1929), petroleum oils",
             f"specific_heat = {heat_capacity:.4g} J/(kg K): Cragoe (1929), petroleum oils",
         ]

@@ -10,6 +10,7 @@ from facegear_tehl.gears.spec import GearSpec
 from facegear_tehl.lubricant import DENSITY_MODELS, KELVIN, RHEOLOGY_MODELS, VISCOSITY_MODELS, Lubricant
 from facegear_tehl.materials import Solid
 from facegear_tehl.schema import defaults
+from facegear_tehl.scuffing import LUBRICATION_METHODS
 from facegear_tehl.settings import THERMAL_MODELS, SolverSettings
 
 _SOLID, _LUBRICANT, _SOLVER, _GEAR = defaults(Solid), defaults(Lubricant), defaults(SolverSettings), defaults(GearSpec)
@@ -85,8 +86,11 @@ lubricant:                    # an ISO VG 100 mineral gear oil, given as its dat
   grade: VG100                # the SI values derived from it (docs/verdict.md); or nu40: in mm^2/s at 40 degC
   nu100: 11.1                 # mm^2/s at 100 degC (datasheet; VG 100 mineral oils of viscosity index ~97)
   density_15: 880.0           # kg/m^3 at 15 degC (datasheet)
-  oil_type: mineral           # mineral | pao | ester | pag (not mineral: give pressure_viscosity, 1/Pa)
+  oil_type: mineral           # mineral | pao | ester | pag (ester: give pressure_viscosity, 1/Pa)
   inlet_temperature: 80.0     # degC (not kelvin)
+  fzg_scuffing_stage: 12      # FZG A/8.3/90 failure load stage (datasheet): scuffing by ISO/TS 6336-20/-21
+  micropitting_stage: 9       # FZG GF-C/8.3/90 failure load stage (datasheet): micropitting by ISO/TS 6336-22
+  lubrication: dip            # {lubrication_methods}: the standards' bulk temperature
   viscosity_model: roelands   # {viscosity_models}
   density_model: dowson_higginson  # {density_models}
   rheology: ree_eyring        # {rheology_models}
@@ -130,7 +134,7 @@ def case_template(kind: str, file_name: str) -> str:
         materials = _MATERIALS.format(body_1="pinion", body_2="face gear", modulus="2.06e11",
                                       steel="case-carburised gear steel, nominal values", **_SOLID,
                                       roughness_line=_GEAR_ROUGHNESS, body_2_roughness=", roughness: 3.0e-7")
-        lubricant = _GEAR_LUBRICANT.format(**models)
+        lubricant = _GEAR_LUBRICANT.format(**models, lubrication_methods=" | ".join(LUBRICATION_METHODS))
         # a long contact ellipse: 4 times fewer nodes along its major axis; the full thermal model
         solver.update(grid_y_line="grid_y: 65                  # nodes along the major axis y (default: as grid)",
                       thermal="full")

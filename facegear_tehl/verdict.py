@@ -19,6 +19,7 @@ from facegear_tehl.film_regime import (
     with_central_film_parameter,
 )
 from facegear_tehl.lubricant import Lubricant
+from facegear_tehl.ratings import rate
 from facegear_tehl.results import Result, RunResult
 from facegear_tehl.scuffing import flash_safety
 from facegear_tehl.units import CELSIUS, MILLIMETRE, PERCENT
@@ -49,6 +50,10 @@ def assess(run: RunResult) -> RunResult:
     scalars.update(_temperature_verdict(run))
     scalars.update(_scuffing_verdict(run.case.lubricant, scalars))
     scalars.update(_efficiency_verdict(run.cycle_scalars))
+    rated, not_rated = rate(run.case, run.contact, run.contact_scalars, run.cycle)
+    scalars.update(rated)
+    if not_rated:
+        labels["not_rated"] = "; ".join(not_rated)
     return replace(run, verdict=scalars, verdict_labels=labels)
 
 
@@ -111,12 +116,43 @@ def _efficiency_verdict(cycle: Mapping[str, tuple[float, str]]) -> dict[str, tup
 
 def verdict_text(result: Result) -> str:
     """The verdict of a result file, a few lines; '' when it has none."""
-    lines = [*_film_lines(result), *_temperature_lines(result), *_scuffing_lines(result), *_efficiency_lines(result)]
+    lines = [*_film_lines(result), *_temperature_lines(result), *_scuffing_lines(result),
+             *_standard_lines(result), *_efficiency_lines(result)]
     if not lines:
         return ""
-    lines.append("  not assessed         scuffing by ISO/TS 6336-20 (its mean mu, theta_S from the FZG stage) and -21 "
-                 "(integral temperature); micropitting (ISO/TS 6336-22)")
+    if "not_rated" in result.verdict_labels:
+        lines.append(f"  not assessed         {result.verdict_labels['not_rated']}")
     return "\n".join(["verdict:", *lines])
+
+
+def _pair(v: Mapping[str, tuple[float, str]] | Mapping[str, float], key: str) -> str:
+    """'<formula> formula, <solved> solved' of a verdict value and its `_solved` partner, 2 decimals."""
+    solved = f", {v[key + '_solved']:.2f} solved" if key + "_solved" in v else ""
+    return f"{v[key]:.2f} formula{solved}"
+
+
+def _standard_lines(result: Result) -> list[str]:
+    """The ISO/TS 6336-20/-21/-22 lines of the verdict (ratings.py), where rated."""
+    v, lines = result.verdict, []
+    if "scuffing_safety_flash" in v:
+        solved = (f", {CELSIUS(v['contact_temperature_flash_solved_max']):.1f} °C solved"
+                  if "contact_temperature_flash_solved_max" in v else "")
+        lines.append(f"  scuffing, flash      S_B {_pair(v, 'scuffing_safety_flash')} (ISO/TS 6336-20): theta_B,max "
+                     f"{CELSIUS(v['contact_temperature_flash_max']):.1f} °C formula{solved}, theta_M "
+                     f"{CELSIUS(v['bulk_temperature_flash']):.1f} °C, theta_S "
+                     f"{CELSIUS(v['scuffing_temperature_fzg']):.0f} °C (FZG stage), mu_m {v['mu_flash_method']:.3f}")
+    if "scuffing_safety_integral" in v:
+        solved = (f", {CELSIUS(v['integral_temperature_solved']):.1f} °C solved"
+                  if "integral_temperature_solved" in v else "")
+        lines.append(f"  scuffing, integral   S_intS {_pair(v, 'scuffing_safety_integral')} (ISO/TS 6336-21): "
+                     f"theta_int {CELSIUS(v['integral_temperature']):.1f} °C formula{solved}, theta_intS "
+                     f"{CELSIUS(v['scuffing_integral_temperature']):.0f} °C (FZG stage)")
+    if "micropitting_safety" in v:
+        where = f" at s {MILLIMETRE(v['lambda_gf_min_s']):.2f} mm"
+        solved = f", {v['lambda_gf_min_solved']:.2f} solved h_min/Ra" if "lambda_gf_min_solved" in v else ""
+        lines.append(f"  micropitting         S_lambda {_pair(v, 'micropitting_safety')} (ISO/TS 6336-22 method B): "
+                     f"lambda_GF,min {v['lambda_gf_min']:.2f}{where}{solved}, lambda_GFP {v['lambda_gfp']:.3f}")
+    return lines
 
 
 def _film_lines(result: Result) -> list[str]:

@@ -97,3 +97,11 @@ def test_the_gear_template_made_into_the_90_degree_design_runs_to_a_verdict(tmp_
     assert "% recommended: film mu (solved) x sliding speed" in solved.stdout
     result = read_result(tmp_path / "design.h5", fields=False)
     assert result.verdict["lambda_min"] < 1.0 and result.verdict_labels["regime"] == "boundary"
+    # the template's oil carries its FZG stages: scuffing (ISO/TS 6336-20, -21) and micropitting (-22) by formula
+    # over the whole path; thermal off: no solved surface rise, so no "solved" scuffing beside them
+    for line in ("  scuffing, flash      S_B ", "  scuffing, integral   S_intS ", "  micropitting         S_lambda "):
+        assert line in solved.stdout
+    assert result.verdict["scuffing_safety_flash"] > 1.0 and result.verdict["scuffing_safety_integral"] > 1.0
+    assert "scuffing_safety_flash_solved" not in result.verdict and "micropitting_safety_solved" in result.verdict
+    assert result.verdict["micropitting_safety"] == pytest.approx(
+        result.verdict["lambda_gf_min"] / result.verdict["lambda_gfp"])

@@ -8,7 +8,7 @@ import pytest
 from facegear_tehl.case import parse_case
 from facegear_tehl.cli import info_text, tehl
 from facegear_tehl.lubricant import KELVIN
-from facegear_tehl.oils import Walther, density_at, derive, mineral_pressure_viscosity
+from facegear_tehl.oils import Walther, density_at, derive, pressure_viscosity
 from facegear_tehl.results import read_result, write_result
 from facegear_tehl.schema import CaseError
 
@@ -85,7 +85,7 @@ def test_mineral_pressure_viscosity_against_measured_values(oil):
     line, _ = _walther_through_30_and_100(eta)
     eta_38 = line.viscosity(38.0 + KELVIN) * 1e-6 * density_at(880.0, 38.0 + KELVIN)
     for t, measured in zip(ASME_TEMPERATURES, alpha):
-        assert 0.6 < mineral_pressure_viscosity(eta_38, t) / (measured * 1e-9) < 0.95
+        assert 0.6 < pressure_viscosity(eta_38, t) / (measured * 1e-9) < 0.95
 
 
 def test_beta_and_expansion_are_the_derivatives_of_the_laws():
@@ -136,9 +136,14 @@ def test_a_case_in_pa_s_derives_nothing():
     ("  grade: VG100\n  density_15: 880\n", "lubricant.nu100"),
     ("  nu40: 100\n  nu100: 120\n  density_15: 880\n", "lubricant.nu100"),
     ("  grade: VG100\n  nu100: 11\n", "lubricant.density_15"),
-    ("  grade: VG100\n  nu100: 11\n  density_15: 850\n  oil_type: pao\n", "lubricant.pressure_viscosity"),
+    ("  grade: VG100\n  nu100: 11\n  density_15: 850\n  oil_type: ester\n", "lubricant.pressure_viscosity"),
     ("  viscosity: 0.04\n  pressure_viscosity: 2.2e-8\n  inlet_temperature: 90\n  scuffing_temperature: 80\n",
      "lubricant.scuffing_temperature"),
+    ("  viscosity: 0.04\n  pressure_viscosity: 2.2e-8\n  fzg_scuffing_stage: 15\n", "lubricant.fzg_scuffing_stage"),
+    ("  viscosity: 0.04\n  pressure_viscosity: 2.2e-8\n  micropitting_stage: 4\n", "lubricant.micropitting_stage"),
+    ("  viscosity: 0.04\n  pressure_viscosity: 2.2e-8\n  micropitting_stage: 8\n  micropitting_test_film: 0.1\n",
+     "lubricant.micropitting_test_film"),
+    ("  viscosity: 0.04\n  pressure_viscosity: 2.2e-8\n  lubrication: splash\n", "lubricant.lubrication"),
 ])
 def test_bad_oil_inputs_name_their_key(lines, key):
     with pytest.raises(CaseError) as error:
@@ -156,3 +161,15 @@ def test_derived_values_are_printed_and_stored(tmp_path):
     result = read_result(write_result(run_result(oil_case), tmp_path / "oil.h5"), fields=False)
     assert result.derived == oil_case.derived
     assert "lubricant.pressure_viscosity = " in info_text(result)
+
+
+def test_pressure_viscosity_of_each_base_oil_by_hand():
+    """ISO/TR 15144-1:2014 Formulae (8)-(11) at eta_38 = 0.2 Pa s and 80 degC (factor 1 + 516 (1/353.15 - 1/311)
+    = 0.80197): mineral 2.657e-8 x 0.80498 = 2.1388e-8, PAO 1.466e-8 x 0.92164 = 1.3511e-8, PAG 1.392e-8 x
+    0.77647 = 1.0808e-8 1/Pa at 38 degC; esters have no correlation (pressure_viscosity required)."""
+    for oil, at_38 in (("mineral", 2.1388e-8), ("pao", 1.3511e-8), ("pag", 1.0808e-8)):
+        assert pressure_viscosity(0.2, 311.0, oil) == pytest.approx(at_38, rel=1e-4)
+        assert pressure_viscosity(0.2, 353.15, oil) == pytest.approx(at_38 * 0.80197, rel=1e-4)
+    pao = derive(220.0, 25.2, 866.0, 80.0 + KELVIN, "pao", "given")  # a VG 220 PAO of VI ~170
+    assert pao.pressure_viscosity is not None and pao.thermal_conductivity is None
+    assert derive(220.0, 25.2, 866.0, 80.0 + KELVIN, "ester", "given").pressure_viscosity is None
