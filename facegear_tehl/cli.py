@@ -21,8 +21,10 @@ import click
 import numpy as np
 
 from facegear_tehl import __version__, kernel_cache
+from facegear_tehl.accuracy_record import accuracy_lines, accuracy_to_dict
 from facegear_tehl.case import Case, load_case
 from facegear_tehl.cycle import COARSE_POINT_COUNT, QUADRATURE
+from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.gears.analysis import analyse_gear_pair
 from facegear_tehl.gears.report import contact_table
 from facegear_tehl.output_path import (
@@ -37,7 +39,7 @@ from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.record import record_lines, record_to_dict
 from facegear_tehl.resources import check_fits, estimate, machine_memory, study_estimate
 from facegear_tehl.results import PointResult, Result, ResultFileError, read_result, write_result
-from facegear_tehl.schema import CaseError
+from facegear_tehl.schema import CaseError, check
 from facegear_tehl.solution import PointSolution
 from facegear_tehl.sweep import check_tolerance, parse_grids, report, run_sweep, with_thermal, write_csv
 from facegear_tehl.tables import (
@@ -61,6 +63,8 @@ EXIT_INTERRUPTED = 128 + signal.SIGINT  # 130
 UNEXPECTED = "an unexpected error: tehl --debug with the same arguments shows where; please report it with that output"
 BIG_RUN_SECONDS = 600.0  # a run estimated longer than this says so before it starts
 ANNOUNCED_VARIANTS = 100  # a study of this many variants says its size before validating them (2 s or more) ...
+ACCURACY_HELP = ("Accuracy asked of h_c, h_min, p_max, dT_max and mu, a fraction or a percentage (1%): the solver "
+                 "chooses each point's grid and cheaper models (overrides solver.accuracy).")
 VALIDATION_SECONDS = 0.02  # ... at about this many seconds a variant (1000 face gear variants validated in 20 s)
 
 
@@ -111,6 +115,7 @@ Examples:
 @click.option("--grid", type=int, help="Nodes per side of the finest grid, 2^n + 1 (overrides solver.grid).")
 @click.option("--points", help="Comma-separated point names to solve (e.g. S1,S3); default all.")
 @click.option("--thermal", help="Thermal model, overrides solver.thermal: off | reduced | full | auto.")
+@click.option("--accuracy", help=ACCURACY_HELP)
 @click.option("--jobs", type=int, help="Worker processes solving points side by side (default: all cores).")
 @click.option("--force", is_flag=True, help="Overwrite an existing output file that tehl did not write; run even "
                                            "when the memory estimate passes this machine's memory.")
@@ -122,6 +127,7 @@ def run(
     grid: int | None,
     points: str | None,
     thermal: str | None,
+    accuracy: str | None,
     jobs: int | None,
     force: bool,
 ) -> None:
@@ -129,6 +135,10 @@ def run(
     case = _load_case(case_file, solves=True)
     if thermal is not None:
         case = with_thermal(case, thermal)
+    if accuracy is not None:
+        case = case.with_accuracy(accuracy)
+    check(grid is None or case.solver.accuracy is None, "--grid", grid,
+          "no --grid with an accuracy target (solver.accuracy, --accuracy): the target chooses the grid")
     workers = worker_count(jobs)
     solver = (case if grid is None else case.with_grid(grid)).solver
     names = _point_names(points)
@@ -138,9 +148,11 @@ def run(
     processes = min(workers, len(selected))
     _guard([(p, case.lubricant, solver) for p in selected], processes, ("--grid", grid) if grid else
            ("solver.grid", case.solver.grid), force)
+    grid_words = (f"to {100 * solver.accuracy:g} % accuracy (the grid and cheaper models chosen per point, from "
+                  f"{TUNING.accuracy_start_grid} nodes along x)" if solver.accuracy is not None else
+                  f"on a {solver.grid}x{solver.nodes_y} grid")
     click.echo(
-        f"tehl run: {case.name}: {', '.join(p.name for p in selected)} on a {solver.grid}x{solver.nodes_y} grid, "
-        f"thermal {solver.thermal}"
+        f"tehl run: {case.name}: {', '.join(p.name for p in selected)} {grid_words}, thermal {solver.thermal}"
         + (f", {processes} worker processes" if processes > 1 else "")
         + " (the grid as asked; each point's line gives the grid solved on, with the lengthened inlet)",
         err=True,
@@ -362,6 +374,7 @@ def validate(case_file: str) -> None:
         f"ok: {case.name}: {kind}; grid {case.solver.grid}x{case.solver.nodes_y}; models: viscosity "
         f"{lubricant.viscosity_model}, density {lubricant.density_model}, rheology {lubricant.rheology}, "
         f"thermal {case.solver.thermal}"
+        + ("" if case.solver.accuracy is None else f"; accuracy {100 * case.solver.accuracy:g} %")
     )
 
 
@@ -511,7 +524,7 @@ def compare_command(result_files: tuple[str, ...], output: str | None) -> None:
 def info_json(result: Result) -> dict[str, Any]:
     """{'case', 'status', 'message', 'format_version', 'points': {name: {scalar: SI value, 'converged',
     'message'}}, 'units': {name: {scalar: unit}}, 'solve': {name: the solve record (record.record_to_dict)}}, and
-    'cycle' and 'verdict' where the file has them."""
+    'accuracy' (accuracy_record.accuracy_to_dict), 'cycle' and 'verdict' where the file has them."""
     return {
         "case": result.case_name,
         "status": result.status,
@@ -522,6 +535,8 @@ def info_json(result: Result) -> dict[str, Any]:
         },
         "units": {name: dict(p.units) for name, p in result.points.items()},
         "solve": {name: record_to_dict(p.record) for name, p in result.points.items() if p.record is not None},
+        **({"accuracy": {name: accuracy_to_dict(p.accuracy) for name, p in result.points.items()
+                         if p.accuracy is not None}} if any(p.accuracy for p in result.points.values()) else {}),
         **({"cycle": {**result.cycle_scalars, "units": dict(result.cycle_units),
                       "columns": {name: column.values.tolist() for name, column in result.cycle.items()}}}
            if result.cycle else {}),
@@ -573,6 +588,8 @@ def info_text(result: Result, si: bool = False) -> str:
     for p in points:
         if p.record is not None:
             lines += ["", *record_lines(p.name, p.record)]
+        if p.accuracy is not None:
+            lines += ["", *accuracy_lines(p.name, p.accuracy)]
     if result.contact_scalars:
         contact_rows = [_scalar_row(key, result.contact_units[key], [value], abs(value), si)
                         for key, value in result.contact_scalars.items()]
