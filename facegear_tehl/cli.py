@@ -22,7 +22,7 @@ import numpy as np
 
 from facegear_tehl import __version__, kernel_cache
 from facegear_tehl.accuracy_record import accuracy_lines, accuracy_to_dict
-from facegear_tehl.case import Case, load_case
+from facegear_tehl.case import Case, accuracy_fraction, load_case
 from facegear_tehl.cycle import COARSE_POINT_COUNT, QUADRATURE
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.gears.analysis import analyse_gear_pair
@@ -229,6 +229,8 @@ Examples:
 @click.option("--thermal", help="Thermal model, overrides solver.thermal: off | reduced | full | auto.")
 @click.option("--tol", "tolerance", type=float, default=0.01, show_default=True,
               help="Relative change to the next grid below which a quantity counts as grid-independent.")
+@click.option("--accuracy", help="Also solve the point to this accuracy (a fraction or 1%; overrides "
+                                 "solver.accuracy) and compare it with the sweep's extrapolated values.")
 @click.option("-o", "--output",
               help="Sweep file, HDF5 (default: <case name>_sweep_<point>.h5); the CSV goes next to it.")
 @click.option("--jobs", type=int, help="Worker processes solving grids side by side (default: all cores).")
@@ -242,6 +244,7 @@ def sweep(
     point: str | None,
     thermal: str | None,
     tolerance: float,
+    accuracy: str | None,
     output: str | None,
     jobs: int | None,
     force: bool,
@@ -249,6 +252,8 @@ def sweep(
     """Solve one point of CASE on a sequence of grids and print its mesh-independence table (change per
     grid, observed order, Richardson extrapolation with its GCI uncertainty); writes HDF5 (/sweep) and CSV."""
     case = _load_case(case_file, solves=True)
+    if accuracy is not None:
+        case = case.with_accuracy(accuracy)
     grid_list = parse_grids(grids, case)
     check_tolerance(tolerance)
     workers = worker_count(jobs)
@@ -292,18 +297,21 @@ Examples:
 @click.option("-o", "--output", help="Folder of the study's result files and index.csv (default: <STUDY name>_study).")
 @click.option("--workers", type=int, help="Worker processes of the local Dask cluster (default: all cores).")
 @click.option("--scheduler", help="Address of an existing Dask scheduler (e.g. tcp://host:8786) instead.")
+@click.option("--accuracy", help="Accuracy asked of every variant, a fraction or a percentage (1%): sets "
+                                 "solver.accuracy in each (over the study's set: and base case).")
 @click.option("--force", is_flag=True, help="Run even when the memory estimate of the local cluster passes this "
                                            "machine's memory.")
 @click.pass_context
 def study(ctx: click.Context, study_file: str, output: str | None, workers: int | None, scheduler: str | None,
-          force: bool) -> None:
+          accuracy: str | None, force: bool) -> None:
     """Run every variant of STUDY (a base case and the keys it varies) on a Dask cluster: one result file per
     variant, named by the hash of its case, and index.csv; variants already finished are skipped."""
     # Imported here: only this command needs Dask.
     from facegear_tehl.study import check_folder, run_study
     from facegear_tehl.study_file import load_study
 
-    plan = load_study(study_file, announce=_announce_study)
+    fixed = () if accuracy is None else (("solver.accuracy", accuracy_fraction(accuracy, "--accuracy")),)
+    plan = load_study(study_file, announce=_announce_study, fixed=fixed)
     if kernel_cache.WARNING:
         click.echo(f"warning: {kernel_cache.WARNING}", err=True)
     if scheduler is not None and workers is not None:

@@ -207,3 +207,33 @@ def _with_accuracy(text: str) -> str:
     case = (Path(__file__).parents[1] / "cases" / "ball_on_disc.yaml").read_text(encoding="utf-8")
     assert "\nsolver:\n" in case
     return case.replace("\nsolver:\n", f"\nsolver:\n  accuracy: {text}\n", 1)
+
+
+def test_the_sweep_compares_the_target_with_its_extrapolation():
+    """On the analytic solver the sweep's Richardson value is exact for the second-order figures: the target's h_c
+    differs from it by its true error, within the target."""
+    from facegear_tehl.sweep import report, run_sweep
+
+    solver = AnalyticSolver(c_x=200.0)
+    case = synthetic.ball_on_disc()
+    case = replace(case, solver=replace(case.solver, grid=257, grid_y=65, accuracy=0.01))
+    swept = run_sweep(case, [129, 257, 513], solver=solver, jobs=1)
+    scalars = {k: v for k, (v, _) in swept.run.sweep_scalars.items()}
+    targeted = swept.run.points[-1]
+    assert targeted.name == "contact@accuracy" and scalars["accuracy_grid"] == targeted.scalar("grid")
+    assert scalars["h_c_accuracy_error"] == pytest.approx(_true_error(solver, targeted, "h_c"), rel=1e-6)
+    assert abs(scalars["h_c_accuracy_error"]) <= 0.01
+    text = report(swept.run.sweep, scalars)
+    assert "accuracy target 1 %: solved on 257 x 33" in text
+
+
+def test_the_study_sets_the_accuracy_in_every_variant_over_its_set(tmp_path):
+    from facegear_tehl.study_file import load_study
+
+    study = tmp_path / "study.yaml"
+    study.write_text(f"base: {synthetic.BALL_ON_DISC}\nvary:\n  contact.load: [5.0, 6.0]\n"
+                     "set: {solver.accuracy: 0.05}\n", encoding="utf-8")
+    assert {v.case.solver.accuracy for v in load_study(study).variants} == {0.05}
+    plan = load_study(study, fixed=(("solver.accuracy", 0.01),))
+    assert {v.case.solver.accuracy for v in plan.variants} == {0.01}
+    assert all("accuracy: 0.01" in v.text for v in plan.variants)
