@@ -27,6 +27,7 @@ from facegear_tehl.solution import Field, Outcome, PointSolution
 import synthetic
 
 ORDERS = {"h_c": 2, "h_min": 2, "p_max": 2, "dT_max": 1, "mu": 1}
+FEWER = TUNING.accuracy_fewer_layers
 EXACT = {"h_c": 1.0e-6, "h_min": 0.8e-6, "p_max": 6.0e8, "dT_max": 50.0, "mu": 0.01}
 
 
@@ -118,7 +119,8 @@ def test_the_axis_whose_estimate_dominates_is_refined_y_from_the_check_solve():
 
 @pytest.mark.parametrize("effect, taken", [(0.002, True), (0.02, False)])
 def test_a_cheaper_model_is_taken_only_where_its_measured_effect_is_within_the_share(effect, taken):
-    solver = AnalyticSolver(c_x=1.0, factors={("thermal", "reduced"): 1.0 + effect, ("layers", 5): 1.0 + 10 * effect})
+    factors = {("thermal", "reduced"): 1.0 + effect, ("layers", FEWER): 1.0 + 10 * effect}
+    solver = AnalyticSolver(c_x=1.0, factors=factors)
     (solution,) = solve_to_accuracy([_task(ThermalMode.FULL)], solver, jobs=1)
     choices = {c.what: c.chosen for c in solution.accuracy.choices}
     assert choices["thermal"] == ("reduced" if taken else "as the case")
@@ -132,11 +134,12 @@ def test_a_cheaper_model_is_taken_only_where_its_measured_effect_is_within_the_s
 
 
 def test_two_cheaper_models_are_combined_and_their_combination_measured():
-    solver = AnalyticSolver(c_x=1.0, factors={("thermal", "reduced"): 1.05, ("layers", 5): 1.001,
+    solver = AnalyticSolver(c_x=1.0, factors={("thermal", "reduced"): 1.05, ("layers", FEWER): 1.001,
                                           ("rheology", "newtonian"): 1.001})
     (solution,) = solve_to_accuracy([_task(ThermalMode.FULL, "ree_eyring")], solver, jobs=1)
     choices = {c.what: c.chosen for c in solution.accuracy.choices}
-    assert (choices["thermal"], choices["thermal_layers"], choices["rheology"]) == ("as the case", "5", "newtonian")
+    chosen = (choices["thermal"], choices["thermal_layers"], choices["rheology"])
+    assert chosen == ("as the case", str(FEWER), "newtonian")
     assert "model check: combined" in [s.purpose for s in solution.accuracy.steps]
     figure = next(f for f in solution.accuracy.figures if f.name == "h_c")
     assert figure.model_effect == pytest.approx(1.001**2 - 1.0, rel=1e-9)  # measured, not summed

@@ -110,7 +110,7 @@ class Tuning:
     accuracy_max_grid: int = 1025  # x nodes it refines to at most (2049 solved over the lengthened inlet)
     accuracy_max_grid_y: int = 513  # y nodes it refines to at most
     accuracy_model_share: float = 0.5  # share of the target a cheaper model's measured effect may take (grid: the rest)
-    accuracy_fewer_layers: int = 5  # the cheaper layer count across the film it tries for thermal full (case: 9)
+    accuracy_fewer_layers: int = 7  # the cheaper layer count across the film it tries for thermal full (default 9)
 
 
 TUNING = Tuning()
