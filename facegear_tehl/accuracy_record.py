@@ -110,3 +110,11 @@ def accuracy_lines(name: str, record: AccuracyRecord) -> list[str]:
     lines.append(f"  cost     {len(record.steps)} solves, {record.wall_time:.1f} s; reported grid {record.nodes} "
                  f"nodes, the case's grid {record.case_nodes} ({record.nodes / record.case_nodes:.2g}x)")
     return lines
+
+
+def accuracy_summary(name: str, record: AccuracyRecord) -> str:
+    """One line for point `name`: its grid, each figure's bound and verdict, and the cost."""
+    grid = next((c.chosen for c in record.choices if c.what == "grid"), "")
+    figures = ", ".join(f"{f.name} " + ("unresolved" if math.isnan(f.bound) else
+                                        f"{100 * f.bound:.2g} % {f.verdict.value}") for f in record.figures)
+    return f"{name}: {grid}; {figures}; {len(record.steps)} solves, {record.wall_time:.1f} s"

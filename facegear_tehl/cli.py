@@ -21,7 +21,7 @@ import click
 import numpy as np
 
 from facegear_tehl import __version__, kernel_cache
-from facegear_tehl.accuracy_record import accuracy_lines, accuracy_to_dict
+from facegear_tehl.accuracy_record import accuracy_lines, accuracy_summary, accuracy_to_dict
 from facegear_tehl.case import Case, accuracy_fraction, load_case
 from facegear_tehl.cycle import COARSE_POINT_COUNT, QUADRATURE
 from facegear_tehl.ehl.tuning import TUNING
@@ -65,6 +65,8 @@ BIG_RUN_SECONDS = 600.0  # a run estimated longer than this says so before it st
 ANNOUNCED_VARIANTS = 100  # a study of this many variants says its size before validating them (2 s or more) ...
 ACCURACY_HELP = ("Accuracy asked of h_c, h_min, p_max, dT_max and mu, a fraction or a percentage (1%): the solver "
                  "chooses each point's grid and cheaper models (overrides solver.accuracy).")
+ACCURACY_TITLE = ("accuracy target {:g} % per point: the grid chosen (asked, solved), each figure's bound (grid and "
+                  "cheaper model) against it, the solves and their wall time (tehl info: the choices and each solve):")
 VALIDATION_SECONDS = 0.02  # ... at about this many seconds a variant (1000 face gear variants validated in 20 s)
 
 
@@ -175,6 +177,9 @@ def run(
     write_result(run_result, target)
     result = read_result(target, fields=False)  # the tables print what the file holds
     click.echo(SUMMARY_TITLE + "\n" + summary_table(result.points.values()))
+    if any(p.accuracy is not None for p in result.points.values()):
+        click.echo(ACCURACY_TITLE.format(100 * run_result.case.solver.accuracy) + "\n" + "\n".join(
+            accuracy_summary(p.name, p.accuracy) for p in result.points.values() if p.accuracy is not None))
     if result.heat and "point" in result.heat:
         click.echo(HEAT_TITLE + "\n" + heat_budget_table(result))
     if result.cycle:

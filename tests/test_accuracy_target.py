@@ -240,3 +240,32 @@ def test_the_study_sets_the_accuracy_in_every_variant_over_its_set(tmp_path):
     plan = load_study(study, fixed=(("solver.accuracy", 0.01),))
     assert {v.case.solver.accuracy for v in plan.variants} == {0.01}
     assert all("accuracy: 0.01" in v.text for v in plan.variants)
+
+
+@pytest.mark.slow
+def test_tehl_run_to_an_accuracy_target_end_to_end(tmp_path):
+    """`tehl run --accuracy 2%` on the shipped ball-on-disc contact (isothermal): exit 0, the record in the file and in
+    `tehl info`, every bounded figure met, and h_c and h_min within 2 % of the same contact solved on 513^2."""
+    from click.testing import CliRunner
+
+    from facegear_tehl.cli import tehl
+    from facegear_tehl.results import read_result
+
+    target, reference = tmp_path / "target.h5", tmp_path / "reference.h5"
+    case = str(synthetic.BALL_ON_DISC)
+    result = CliRunner().invoke(tehl, ["run", case, "--thermal", "off", "--accuracy", "2%", "--jobs", "1",
+                                       "-o", str(target)])
+    assert result.exit_code == 0, result.output
+    assert "accuracy target 2 % per point" in result.output
+    point = read_result(target, fields=False).points["contact"]
+    assert point.accuracy.stop == "every bounded figure within the target"
+    assert {f.name: f.verdict for f in point.accuracy.figures} == {
+        "h_c": Verdict.MET, "h_min": Verdict.MET, "p_max": Verdict.UNRESOLVED}
+    info = CliRunner().invoke(tehl, ["info", str(target)])
+    assert "accuracy of contact: target 2 %" in info.output
+    fine = CliRunner().invoke(tehl, ["run", case, "--thermal", "off", "--grid", "513", "--jobs", "1",
+                                     "-o", str(reference)])
+    assert fine.exit_code == 0, fine.output
+    exact = read_result(reference, fields=False).points["contact"]
+    for name in ("h_c", "h_min"):
+        assert abs(point.scalars[name] / exact.scalars[name] - 1.0) <= 0.02, name
