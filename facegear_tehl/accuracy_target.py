@@ -25,6 +25,8 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 import math
 
+import numpy as np
+
 from facegear_tehl.accuracy_record import AccuracyRecord, Choice, FigureBound, SolveStep, Verdict
 from facegear_tehl.ehl.domain import solution_domain
 from facegear_tehl.ehl.report import ORDER_DT_MAX, ORDER_MU
@@ -313,7 +315,9 @@ def combined(screens: Sequence[Screened], solve: Batch, target: float) -> list[P
 
 
 def with_y_checks(points: list[Progressing], fresh: Sequence[int], solve: Batch) -> list[Progressing]:
-    """The points `fresh` (just solved) with their y-estimates: from `y_check` solves where the solve reports none."""
+    """The points `fresh` (just solved) with their y-estimates: from `y_check` solves where the solve reports none and
+    the point was not just refined along y alone (`refined`)."""
+    fresh = [i for i in fresh if not points[i].e_y]  # a point refined along y has its estimates from the pair
     checks = {i: y_check(points[i].task, points[i].solution) for i in fresh}
     wanted = [i for i, check in checks.items() if check is not None]
     solved = dict(zip(wanted, solve([checks[i] for i in wanted])))
@@ -351,7 +355,19 @@ def refined(point: Progressing, task: SolveTask, solution: PointSolution) -> Pro
     if point.solution.converged and not solution.converged:
         return replace(point, steps=steps, stop=f"{grid_words(task.settings)} ended {solution.outcome.value}; the "
                                                 f"converged {grid_words(point.task.settings)} solution kept")
-    return replace(point, task=task, solution=solution, e_y={}, steps=steps)
+    # refined along y alone on the same domain: the solve before is the finer one's y-check
+    same = axis == "y" and _same_domain(point.solution, solution)
+    return replace(point, task=task, solution=solution, e_y=y_estimates(solution, point.solution) if same else {},
+                   steps=steps)
+
+
+def _same_domain(coarse: PointSolution, fine: PointSolution) -> bool:
+    """Both solutions span the same domain, with twice the rows and the same columns on `fine`."""
+    if not (coarse.converged and "x" in coarse.axes and "x" in fine.axes):
+        return False
+    (cx, cy), (fx, fy) = ((s.axes["x"].values, s.axes["y"].values) for s in (coarse, fine))
+    return (np.array_equal(cx, fx) and fy.size == 2 * cy.size - 1
+            and np.allclose((cy[0], cy[-1]), (fy[0], fy[-1]), rtol=1e-12, atol=0.0))
 
 
 def solve_to_accuracy(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *, jobs: int | None = None,

@@ -114,7 +114,8 @@ def test_the_axis_whose_estimate_dominates_is_refined_y_from_the_check_solve():
     assert solution.scalar("grid_y") == _smallest_grid(20.0, 0.01, start=33) > 33
     assert _true_error(solver, solution, "h_c") <= 0.01
     purposes = [s.purpose for s in solution.accuracy.steps]
-    assert "refine y" in purposes and "refine x" not in purposes and "y-check" in purposes
+    assert "refine y" in purposes and "refine x" not in purposes
+    assert purposes.count("y-check") == 1  # at the start; each y-refined solve has the one before as its check
 
 
 @pytest.mark.parametrize("effect, taken", [(0.002, True), (0.02, False)])
