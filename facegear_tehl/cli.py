@@ -23,6 +23,7 @@ import numpy as np
 from facegear_tehl import __version__, kernel_cache
 from facegear_tehl.accuracy_record import accuracy_lines, accuracy_summary, accuracy_to_dict
 from facegear_tehl.case import Case, accuracy_fraction, load_case
+from facegear_tehl.contact import ContactPoint
 from facegear_tehl.cycle import COARSE_POINT_COUNT, QUADRATURE
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.gears.analysis import analyse_gear_pair
@@ -40,6 +41,7 @@ from facegear_tehl.record import record_lines, record_to_dict
 from facegear_tehl.resources import check_fits, estimate, machine_memory, study_estimate
 from facegear_tehl.results import PointResult, Result, ResultFileError, read_result, write_result
 from facegear_tehl.schema import CaseError, check
+from facegear_tehl.settings import SolverSettings
 from facegear_tehl.solution import PointSolution
 from facegear_tehl.sweep import check_tolerance, parse_grids, report, run_sweep, with_thermal, write_csv
 from facegear_tehl.tables import (
@@ -134,13 +136,7 @@ def run(
     force: bool,
 ) -> None:
     """Solve CASE and write the result file."""
-    case = _load_case(case_file, solves=True)
-    if thermal is not None:
-        case = with_thermal(case, thermal)
-    if accuracy is not None:
-        case = case.with_accuracy(accuracy)
-    check(grid is None or case.solver.accuracy is None, "--grid", grid,
-          "no --grid with an accuracy target (solver.accuracy, --accuracy): the target chooses the grid")
+    case = _with_options(_load_case(case_file, solves=True), thermal, accuracy, grid)
     workers = worker_count(jobs)
     solver = (case if grid is None else case.with_grid(grid)).solver
     names = _point_names(points)
@@ -150,15 +146,7 @@ def run(
     processes = min(workers, len(selected))
     _guard([(p, case.lubricant, solver) for p in selected], processes, ("--grid", grid) if grid else
            ("solver.grid", case.solver.grid), force)
-    grid_words = (f"to {100 * solver.accuracy:g} % accuracy (the grid and cheaper models chosen per point, from "
-                  f"{TUNING.accuracy_start_grid} nodes along x)" if solver.accuracy is not None else
-                  f"on a {solver.grid}x{solver.nodes_y} grid")
-    click.echo(
-        f"tehl run: {case.name}: {', '.join(p.name for p in selected)} {grid_words}, thermal {solver.thermal}"
-        + (f", {processes} worker processes" if processes > 1 else "")
-        + " (the grid as asked; each point's line gives the grid solved on, with the lengthened inlet)",
-        err=True,
-    )
+    click.echo(_run_banner(case, selected, solver, processes), err=True)
     for warning in analysis.warnings:
         click.echo(f"warning: {warning}", err=True)
     # Imported once the input is checked: only this command needs the solver (Numba kernels).
@@ -178,7 +166,7 @@ def run(
     result = read_result(target, fields=False)  # the tables print what the file holds
     click.echo(SUMMARY_TITLE + "\n" + summary_table(result.points.values()))
     if any(p.accuracy is not None for p in result.points.values()):
-        click.echo(ACCURACY_TITLE.format(100 * run_result.case.solver.accuracy) + "\n" + "\n".join(
+        click.echo(ACCURACY_TITLE.format(100 * case.solver.accuracy) + "\n" + "\n".join(
             accuracy_summary(p.name, p.accuracy) for p in result.points.values() if p.accuracy is not None))
     if result.heat and "point" in result.heat:
         click.echo(HEAT_TITLE + "\n" + heat_budget_table(result))
@@ -189,6 +177,31 @@ def run(
         click.echo(verdict_text(result))
     click.echo(f"result: {target} (status {result.status})")
     _exit_on_status(ctx, result)
+
+
+def _with_options(case: Case, thermal: str | None, accuracy: str | None, grid: int | None) -> Case:
+    """The case with the command line's thermal model and accuracy target (CaseError for --grid with a target: the
+    target chooses the grid)."""
+    if thermal is not None:
+        case = with_thermal(case, thermal)
+    if accuracy is not None:
+        case = case.with_accuracy(accuracy)
+    check(grid is None or case.solver.accuracy is None, "--grid", grid,
+          "no --grid with an accuracy target (solver.accuracy, --accuracy): the target chooses the grid")
+    return case
+
+
+def _run_banner(case: Case, selected: Sequence[ContactPoint], solver: SolverSettings, processes: int) -> str:
+    """The first line of `tehl run`: the case, its points, the grid asked (or the accuracy target), the model."""
+    if solver.accuracy is None:
+        grid = (f"on a {solver.grid}x{solver.nodes_y} grid", " (the grid as asked; each point's line gives the grid "
+                "solved on, with the lengthened inlet)")
+    else:
+        grid = (f"to {100 * solver.accuracy:g} % accuracy", f" (each point's grid and cheaper models chosen from "
+                f"{TUNING.accuracy_start_grid} nodes along x; a line per solve, with the grid solved on)")
+    workers = f", {processes} worker processes" if processes > 1 else ""
+    return (f"tehl run: {case.name}: {', '.join(p.name for p in selected)} {grid[0]}, thermal {solver.thermal}"
+            f"{workers}{grid[1]}")
 
 
 def _load_case(case_file: str, solves: bool = False) -> Case:
