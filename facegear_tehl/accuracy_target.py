@@ -29,7 +29,6 @@ import numpy as np
 
 from facegear_tehl.accuracy_record import AccuracyRecord, Choice, FigureBound, SolveStep, Verdict
 from facegear_tehl.ehl.domain import solution_domain
-from facegear_tehl.ehl.report import ORDER_DT_MAX, ORDER_MU
 from facegear_tehl.ehl.richardson import ORDER, richardson_error
 from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.ehl.tuning import TUNING
@@ -42,7 +41,16 @@ NEVER_BOUNDED = ("p_max",)  # module docstring
 # Roache's (1994, J. Fluids Eng. 116: 405-413) safety factor of a two-grid estimate at an assumed order: the bound of a
 # solve that reports no error_bound_<name> of its own
 FALLBACK_SAFETY = 3.0
-ORDERS = {"h_c": ORDER, "h_min": ORDER, "p_max": ORDER, "dT_max": ORDER_DT_MAX, "mu": ORDER_MU}  # ehl/report.py
+
+
+def figure_order(name: str) -> int:
+    """The order a figure's Richardson estimates assume (ehl/report.py): first for dT_max and mu, else second."""
+    # imported on first use: ehl.report loads the solver's kernels, which the command line does not need
+    from facegear_tehl.ehl.report import ORDER_DT_MAX, ORDER_MU
+
+    return {"dT_max": ORDER_DT_MAX, "mu": ORDER_MU}.get(name, ORDER)
+
+
 Effects = Mapping[str, float]  # relative change of each figure
 
 
@@ -189,14 +197,14 @@ def y_check(task: SolveTask, solution: PointSolution) -> SolveTask | None:
 
 
 def y_estimates(solution: PointSolution, check: PointSolution | None) -> dict[str, float]:
-    """e_y of each figure from the y-check (Richardson at the figure's order, ORDERS); 0 on a square grid, NaN
+    """e_y of each figure from the y-check (Richardson at the figure's order, figure_order); 0 on a square grid, NaN
     where the check is missing or did not converge."""
     names = [name for name in FIGURES if name in solution.scalars]
     if "x" in solution.axes and solution.axes["x"].values.size == solution.axes["y"].values.size:
         return dict.fromkeys(names, 0.0)
     if check is None or not check.converged:
         return dict.fromkeys(names, math.nan)
-    return {name: richardson_error(solution.scalar(name), check.scalar(name), ORDERS[name])
+    return {name: richardson_error(solution.scalar(name), check.scalar(name), figure_order(name))
             if name in check.scalars and solution.scalar(name) != 0.0 else math.nan for name in names}
 
 

@@ -16,7 +16,7 @@ import argparse
 import math
 from pathlib import Path
 
-from facegear_tehl.accuracy_target import FIGURES, ORDERS
+from facegear_tehl.accuracy_target import FIGURES, figure_order
 from facegear_tehl.ehl.richardson import richardson_error
 from facegear_tehl.results import read_result
 from facegear_tehl.tables import format_table
@@ -27,7 +27,7 @@ def reference(name: str, point: str, fine, finer) -> float:
     if finer is None:
         return fine.points[point].scalars[name]
     f_h, f_2h = finer.points[point].scalars[name], fine.points[point].scalars[name]
-    return f_h * (1.0 - richardson_error(f_h, f_2h, ORDERS[name]))
+    return f_h * (1.0 - richardson_error(f_h, f_2h, figure_order(name)))
 
 
 def figure_rows(target, fine, finer) -> list[list[str]]:
