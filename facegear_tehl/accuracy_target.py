@@ -220,6 +220,7 @@ class Progressing:
     choices: tuple[Choice, ...]
     steps: tuple[SolveStep, ...]
     stop: str = ""
+    failed: str = ""  # the finer grid, refined along one axis, that did not converge: the next refines both
 
     def bounds(self) -> dict[str, Bound]:
         return {name: figure_bound(self.solution, name, self.e_y.get(name, math.nan))
@@ -342,7 +343,7 @@ def next_step(point: Progressing, target: float) -> tuple[Progressing, SolveTask
     missing = point.missing(target)
     if not missing:
         return replace(point, stop="every bounded figure within the target"), None
-    axis = refined_axis(missing)
+    axis = "xy" if point.failed else refined_axis(missing)
     finer = refined_settings(point.task.settings, axis)
     above = ", ".join(missing)
     if finer is None:
@@ -355,18 +356,23 @@ def next_step(point: Progressing, target: float) -> tuple[Progressing, SolveTask
 
 
 def refined(point: Progressing, task: SolveTask, solution: PointSolution) -> Progressing:
-    """The point after its finer solve: the finer solution, or the converged coarser one kept (and stopped) where the
-    finer one did not converge."""
+    """The point after its finer solve: the finer solution; where it did not converge after a converged one, the
+    coarser one kept, refined next along both axes if this solve refined one alone (the cells' aspect kept: the
+    default case's S2 and S4 diverge on 513 x 65 and converge on 1025 x 129, docs/accuracy.md), else stopped."""
     axis = "x" if task.settings.nodes_y == point.task.settings.nodes_y else (
         "y" if task.settings.grid == point.task.settings.grid else "xy")
     steps = point.steps + (step(task, solution, f"refine {axis}"),)
     if point.solution.converged and not solution.converged:
-        return replace(point, steps=steps, stop=f"{grid_words(task.settings)} ended {solution.outcome.value}; the "
-                                                f"converged {grid_words(point.task.settings)} solution kept")
+        ended = f"{grid_words(task.settings)} ended {solution.outcome.value}"
+        if axis != "xy":
+            return replace(point, steps=steps, failed=ended)
+        before = f" (after {point.failed})" if point.failed else ""
+        return replace(point, steps=steps, stop=f"{ended}{before}; the converged {grid_words(point.task.settings)} "
+                                                "solution kept")
     # refined along y alone on the same domain: the solve before is the finer one's y-check
     same = axis == "y" and _same_domain(point.solution, solution)
     return replace(point, task=task, solution=solution, e_y=y_estimates(solution, point.solution) if same else {},
-                   steps=steps)
+                   steps=steps, failed="")
 
 
 def _same_domain(coarse: PointSolution, fine: PointSolution) -> bool:

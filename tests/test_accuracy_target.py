@@ -161,11 +161,26 @@ def test_the_time_budget_stops_the_refinement_before_a_grid_that_would_pass_it()
     assert "time budget" in solution.accuracy.stop and "257 x 33 not started" in solution.accuracy.stop
 
 
-def test_a_finer_solve_that_does_not_converge_keeps_the_coarser_converged_one():
+def test_a_finer_solve_that_does_not_converge_keeps_the_coarser_one_and_refines_both_axes_next():
     solver = AnalyticSolver(c_x=600.0, fails_from=513)
     (solution,) = solve_to_accuracy([_task()], solver, jobs=1)
     assert solution.converged and solution.scalar("grid") == 257
-    assert "513 x 33 ended not converged" in solution.accuracy.stop
+    assert solver.grids[-2:] == [(513, 33), (513, 65)]  # x alone, then both (failing as well here)
+    assert solution.accuracy.stop == ("513 x 65 ended not converged (after 513 x 33 ended not converged); the "
+                                      "converged 257 x 33 solution kept")
+
+
+def test_refining_both_axes_after_one_failed_goes_on_from_the_finer_grid():
+    solver = AnalyticSolver(c_x=600.0)
+
+    def failing(point, lubricant, settings):  # the analytic solver, its first 513 x 33 solve not converging
+        solution = solver(point, lubricant, settings)
+        first = solver.grids.count((513, 33)) == 1 and solver.grids[-1] == (513, 33)
+        return replace(solution, outcome=Outcome.NOT_CONVERGED) if first else solution
+
+    (solution,) = solve_to_accuracy([_task()], failing, jobs=1)
+    assert (solution.scalar("grid"), solution.scalar("grid_y")) == (513, 65) and solution.converged
+    assert solution.accuracy.stop == "every bounded figure within the target"
 
 
 def test_the_bound_is_the_solves_own_where_it_gives_one_else_the_estimates_times_the_safety():
