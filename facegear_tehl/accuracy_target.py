@@ -266,7 +266,8 @@ def over_budget(point: Progressing, finer: SolverSettings) -> bool:
     return spent + 1.5 * ratio * last > settings.time_budget
 
 
-Batch = Callable[[Sequence[SolveTask]], list[PointSolution]]  # solves tasks side by side, in task order
+# solves tasks side by side, each with its purpose (for the progress lines), in task order
+Batch = Callable[[Sequence[tuple[SolveTask, str]]], list[PointSolution]]
 
 
 def screened(tasks: Sequence[SolveTask], solve: Batch, target: float) -> list[Progressing]:
@@ -274,7 +275,8 @@ def screened(tasks: Sequence[SolveTask], solve: Batch, target: float) -> list[Pr
     cheaper models chosen (`choose_models`); where two or more are taken, `combined`."""
     starts = [start_task(task) for task in tasks]
     trials = [[c for c in CHEAPER if c.applies(start)] for start in starts]
-    solutions = solve(starts + [c.apply(start) for start, each in zip(starts, trials) for c in each])
+    checks = [(c.apply(start), f"model check: {c.what}") for start, each in zip(starts, trials) for c in each]
+    solutions = solve([(start, "start") for start in starts] + checks)
     rest = iter(solutions[len(starts):])
     points = []
     for start, base, each in zip(starts, solutions, trials):
@@ -307,7 +309,7 @@ def combined(screens: Sequence[Screened], solve: Batch, target: float) -> list[P
     points = [screen.point for screen in screens]
     together = [i for i, screen in enumerate(screens) if len(screen.taken) > 1]
     share = TUNING.accuracy_model_share * target
-    for i, solution in zip(together, solve([points[i].task for i in together])):
+    for i, solution in zip(together, solve([(points[i].task, "model check: combined") for i in together])):
         screen, effects = screens[i], model_effect(screens[i].base, solution)
         point = replace(points[i], steps=points[i].steps + (step(points[i].task, solution, "model check: combined"),))
         if max(effects.values(), default=math.inf) <= share:
@@ -329,7 +331,7 @@ def with_y_checks(points: list[Progressing], fresh: Sequence[int], solve: Batch)
     fresh = [i for i in fresh if not points[i].e_y]  # a point refined along y has its estimates from the pair
     checks = {i: y_check(points[i].task, points[i].solution) for i in fresh}
     wanted = [i for i, check in checks.items() if check is not None]
-    solved = dict(zip(wanted, solve([checks[i] for i in wanted])))
+    solved = dict(zip(wanted, solve([(checks[i], "y-check") for i in wanted])))
     for i in fresh:
         point, check = points[i], solved.get(i)
         steps = point.steps if check is None else point.steps + (step(checks[i], check, "y-check"),)
@@ -390,8 +392,8 @@ def solve_to_accuracy(tasks: Sequence[SolveTask], solver: Solver | StagedSolver,
     worker processes; each solution carries its AccuracyRecord and the wall time of all its solves."""
     target = float(tasks[0].settings.accuracy)
 
-    def solve(batch: Sequence[SolveTask]) -> list[PointSolution]:
-        return solve_all(batch, solver, jobs=jobs, progress=progress)[0] if batch else []
+    def solve(batch: Sequence[tuple[SolveTask, str]]) -> list[PointSolution]:
+        return _solved_batch(batch, solver, jobs, progress)
 
     points = screened(tasks, solve, target)
     fresh = list(range(len(points)))
@@ -402,10 +404,21 @@ def solve_to_accuracy(tasks: Sequence[SolveTask], solver: Solver | StagedSolver,
             if not point.stop:
                 points[i], finer = next_step(point, target)
                 planned.update({} if finer is None else {i: finer})
-        for i, solution in zip(planned, solve(list(planned.values()))):
+        for i, solution in zip(planned, solve([(task, "refine") for task in planned.values()])):
             points[i] = refined(points[i], planned[i], solution)
         fresh = [i for i in planned if not points[i].stop]
     return [finished(point, task, target) for point, task in zip(points, tasks)]
+
+
+def _solved_batch(batch: Sequence[tuple[SolveTask, str]], solver: Solver | StagedSolver, jobs: int | None,
+                  progress: Progress | None) -> list[PointSolution]:
+    """`solve_all` of the tasks, each progress line naming the point with the solve's purpose ("S1 (y-check)");
+    the solutions keep the point's name."""
+    if not batch:
+        return []
+    named = [replace(task, point=replace(task.point, name=f"{task.point.name} ({purpose})")) for task, purpose in batch]
+    solved = solve_all(named, solver, jobs=jobs, progress=progress)[0]
+    return [replace(solution, name=task.point.name) for (task, _), solution in zip(batch, solved)]
 
 
 def finished(point: Progressing, case_task: SolveTask, target: float) -> PointSolution:
