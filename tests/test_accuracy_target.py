@@ -285,3 +285,16 @@ def test_tehl_run_to_an_accuracy_target_end_to_end(tmp_path):
     exact = read_result(reference, fields=False).points["contact"]
     for name in ("h_c", "h_min"):
         assert abs(point.scalars[name] / exact.scalars[name] - 1.0) <= 0.02, name
+
+
+def test_the_record_is_written_to_the_result_file_and_read_back_by_tehl_info(tmp_path):
+    from facegear_tehl.cli import info_json, info_text
+    from facegear_tehl.results import read_result, write_result
+
+    (targeted,) = solve_to_accuracy([_task()], AnalyticSolver(c_x=200.0), jobs=1)
+    run = synthetic.run_result()
+    run = replace(run, points=(replace(run.points[0], accuracy=targeted.accuracy),))
+    result = read_result(write_result(run, tmp_path / "target.h5"))  # the reader checks the layout (h5_guard)
+    assert result.points["contact"].accuracy == targeted.accuracy
+    assert "accuracy of contact: target 1 %, every bounded figure within the target" in info_text(result)
+    assert info_json(result)["accuracy"]["contact"]["stop"] == "every bounded figure within the target"
