@@ -9,7 +9,9 @@ Per point, on a start grid of TUNING.accuracy_start_grid nodes along x (the case
    own solutions, docs/accuracy.md).
 2. The chosen model is refined, x (`grid`) or y (`grid_y`) twice as fine, the axis whose estimate dominates the
    figures above the target, until each figure's bound plus its model effect is within the target, or the next grid
-   passes TUNING.accuracy_max_grid / accuracy_max_grid_y or the point's time budget (`solver.time_budget`).
+   passes TUNING.accuracy_max_grid / accuracy_max_grid_y or the point's time budget (`solver.time_budget`); a finer
+   grid along one axis that does not converge is followed by one along both, and where that fails too the converged
+   coarser solution is kept.
 
 A figure's bound (`figure_bound`) is the solve's own `error_bound_<name>` where it reports one (ehl error bounds),
 else FALLBACK_SAFETY (|e_x| + |e_y|): e_x its Richardson estimate from the grid one coarser along x
