@@ -5,9 +5,9 @@
 TARGET.h5 from `tehl run CASE --accuracy 1%`; FINE.h5 and FINER.h5 from `tehl run CASE --grid N` on two grids, the
 second twice as fine (both axes); DEFAULT.h5 from `tehl run CASE` on the case's own grid, for the cost. The reference
 is the Richardson value of FINE and FINER at each figure's order (second for the film and p_max, first for dT_max
-and mu: ehl/report.py), or FINER (or FINE) alone without a pair. Per point and figure it prints the target's value,
-its bound and verdict, the reference and the target's error against it; per point the grid chosen, the solves and
-their wall time against the default run's.
+and mu: ehl/report.py), or FINE alone where FINER is not given or did not converge. Per point and figure it prints
+the target's value, its bound and verdict, the reference and the target's error against it; per point the grid
+chosen, the solves and their wall time against the default run's.
 """
 
 from __future__ import annotations
@@ -23,8 +23,9 @@ from facegear_tehl.tables import format_table
 
 
 def reference(name: str, point: str, fine, finer) -> float:
-    """The Richardson value of the figure from the two reference grids, or the finest one alone."""
-    if finer is None:
+    """The Richardson value of the figure from the two reference grids, or FINE alone where FINER is not given or its
+    point did not converge."""
+    if finer is None or not finer.points[point].converged:
         return fine.points[point].scalars[name]
     f_h, f_2h = finer.points[point].scalars[name], fine.points[point].scalars[name]
     return f_h * (1.0 - richardson_error(f_h, f_2h, figure_order(name)))
