@@ -200,11 +200,15 @@ def y_check(task: SolveTask, solution: PointSolution) -> SolveTask | None:
 
 def y_estimates(solution: PointSolution, check: PointSolution | None) -> dict[str, float]:
     """e_y of each figure from the y-check (Richardson at the figure's order, figure_order); 0 on a square grid, NaN
-    where the check is missing or did not converge."""
+    where the check is missing, did not converge or was reported on another grid than asked."""
     names = [name for name in FIGURES if name in solution.scalars]
-    if "x" in solution.axes and solution.axes["x"].values.size == solution.axes["y"].values.size:
+    if "x" not in solution.axes:
+        return dict.fromkeys(names, math.nan)
+    x, y = solution.axes["x"].values, solution.axes["y"].values
+    if x.size == y.size:
         return dict.fromkeys(names, 0.0)
-    if check is None or not check.converged:
+    if check is None or not check.converged or check.axes["x"].values.size != x.size or (
+            check.axes["y"].values.size != (y.size + 1) // 2):  # a retry of the solver may report a coarser grid
         return dict.fromkeys(names, math.nan)
     return {name: richardson_error(solution.scalar(name), check.scalar(name), figure_order(name))
             if name in check.scalars and solution.scalar(name) != 0.0 else math.nan for name in names}

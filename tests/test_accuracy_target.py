@@ -298,3 +298,19 @@ def test_the_record_is_written_to_the_result_file_and_read_back_by_tehl_info(tmp
     assert result.points["contact"].accuracy == targeted.accuracy
     assert "accuracy of contact: target 1 %, every bounded figure within the target" in info_text(result)
     assert info_json(result)["accuracy"]["contact"]["stop"] == "every bounded figure within the target"
+
+
+def test_a_y_check_reported_on_another_grid_than_asked_gives_no_y_estimate():
+    """The solver's own retry may keep a coarser grid's solution of a check that ran away: it is no y-check."""
+    from facegear_tehl.accuracy_target import y_check, y_estimates
+
+    task = replace(_task(), settings=replace(_task().settings, grid=257, grid_y=65))
+    solver = AnalyticSolver(c_y=20.0)
+    solution = solver(task.point, task.lubricant, task.settings)
+    check = y_check(task, solution)
+    assert (check.settings.grid, check.settings.nodes_y) == (257, 33)
+    good = y_estimates(solution, solver(check.point, check.lubricant, check.settings))
+    assert good["h_c"] == pytest.approx(richardson_error(solution.scalar("h_c"), solver.value(
+        "h_c", 257, 33, check.settings, check.lubricant), 2))
+    coarser = solver(check.point, check.lubricant, replace(check.settings, grid=129, grid_y=33))
+    assert all(math.isnan(e) for e in y_estimates(solution, coarser).values())
