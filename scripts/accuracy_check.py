@@ -28,7 +28,7 @@ def reference(name: str, point: str, fine, finer) -> float:
     if finer is None or not finer.points[point].converged:
         return fine.points[point].scalars[name]
     f_h, f_2h = finer.points[point].scalars[name], fine.points[point].scalars[name]
-    return f_h * (1.0 - richardson_error(f_h, f_2h, figure_order(name)))
+    return f_h * (1.0 + richardson_error(f_h, f_2h, figure_order(name)))  # f* = f_h + (f_h - f_2h)/(2^p - 1)
 
 
 def figure_rows(target, fine, finer) -> list[list[str]]:
