@@ -34,6 +34,9 @@ from facegear_tehl.settings import (  # also imported from here
 from facegear_tehl.yaml_numbers import Yaml12Loader
 
 MAX_GRID = 4097  # nodes per side: 16.8 million nodes, beyond what one machine solves
+# solver.accuracy: below 0.1 % the loops' own floors (h_c steady to 5e-4, TUNING.thermal_floor_h_c) are of the size
+# of the target; above 50 % no figure is worth reporting
+ACCURACY_RANGE = (0.001, 0.5)
 # Ranges of real lubricated contacts: a value outside is accepted with a warning (a unit mistaken, most likely).
 OIL_HOTTEST = 200.0  # degC: the flash points of gear and bearing oils start near 200 degC (ISO 6743-6 grades)
 USUAL_VISCOSITY = (1e-4, 10.0)  # Pa s: a tenth of water's 1e-3 up to a heavy gear oil near its pour point
@@ -103,6 +106,28 @@ class Case:
         if grid_y is not None:  # keep the case's aspect: grid_y refines (or coarsens) with grid, to coarsest_grid
             grid_y = max((grid_y - 1) * (grid - 1) // (self.solver.grid - 1) + 1, self.solver.coarsest_grid)
         return replace(self, solver=replace(self.solver, grid=grid, grid_y=grid_y))
+
+    def with_accuracy(self, accuracy: object) -> Case:
+        """The same case with the accuracy target `accuracy` (validated like solver.accuracy, under --accuracy)."""
+        return replace(self, solver=replace(self.solver, accuracy=accuracy_fraction(accuracy, "--accuracy")))
+
+
+def accuracy_fraction(value: object, key: str) -> float:
+    """The accuracy asked (`solver.accuracy`, `--accuracy`) as a fraction: a number (0.01) or a percentage ("1%").
+    CaseError under `key` unless it lies in ACCURACY_RANGE."""
+    fraction: object = value
+    if isinstance(value, str):
+        text = value.strip()
+        number = text[:-1] if text.endswith("%") else text
+        try:
+            fraction = float(number) / (100.0 if text.endswith("%") else 1.0)
+        except ValueError:
+            fraction = None
+    low, high = ACCURACY_RANGE
+    check(isinstance(fraction, (int, float)) and not isinstance(fraction, bool) and low <= fraction <= high, key,
+          value, f"a relative accuracy from {low:g} to {high:g} or a percentage from {100 * low:g}% to "
+          f"{100 * high:g}% (e.g. 0.01 or 1%)")
+    return float(fraction)
 
 
 def _check_grid(n: int, key: str) -> None:
@@ -357,6 +382,8 @@ def _solver(block: Block) -> SolverSettings:
         outlet_refinement=block.choice("outlet_refinement", OUTLET_REFINEMENTS, d["outlet_refinement"]),
         outlet_patches=block.integer("outlet_patches", d["outlet_patches"], low=1, high=MAX_OUTLET_PATCHES),
         time_budget=block.number("time_budget", d["time_budget"], positive=True, high=1e6, unit="s"),
+        accuracy=accuracy_fraction(block.get("accuracy"), block.key_path("accuracy")) if block.has("accuracy")
+        else d["accuracy"],
     )
     check(settings.thermal_layers % 2 == 1, block.key_path("thermal_layers"), settings.thermal_layers,
           "an odd number of layer nodes (Simpson's rule across the film), e.g. 7, 9 or 11")

@@ -21,8 +21,11 @@ import click
 import numpy as np
 
 from facegear_tehl import __version__, kernel_cache
-from facegear_tehl.case import Case, load_case
+from facegear_tehl.accuracy_record import accuracy_lines, accuracy_summary, accuracy_to_dict
+from facegear_tehl.case import Case, accuracy_fraction, load_case
+from facegear_tehl.contact import ContactPoint
 from facegear_tehl.cycle import COARSE_POINT_COUNT, QUADRATURE
+from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.gears.analysis import analyse_gear_pair
 from facegear_tehl.gears.report import contact_table
 from facegear_tehl.output_path import (
@@ -37,7 +40,8 @@ from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.record import record_lines, record_to_dict
 from facegear_tehl.resources import check_fits, estimate, machine_memory, study_estimate
 from facegear_tehl.results import PointResult, Result, ResultFileError, read_result, write_result
-from facegear_tehl.schema import CaseError
+from facegear_tehl.schema import CaseError, check
+from facegear_tehl.settings import SolverSettings
 from facegear_tehl.solution import PointSolution
 from facegear_tehl.sweep import check_tolerance, parse_grids, report, run_sweep, with_thermal, write_csv
 from facegear_tehl.tables import (
@@ -61,6 +65,10 @@ EXIT_INTERRUPTED = 128 + signal.SIGINT  # 130
 UNEXPECTED = "an unexpected error: tehl --debug with the same arguments shows where; please report it with that output"
 BIG_RUN_SECONDS = 600.0  # a run estimated longer than this says so before it starts
 ANNOUNCED_VARIANTS = 100  # a study of this many variants says its size before validating them (2 s or more) ...
+ACCURACY_HELP = ("Accuracy asked of h_c, h_min, p_max, dT_max and mu, a fraction or a percentage (1%): the solver "
+                 "chooses each point's grid and cheaper models (overrides solver.accuracy).")
+ACCURACY_TITLE = ("accuracy target {:g} % per point: the grid chosen (asked, solved), each figure's bound (grid and "
+                  "cheaper model) against it, the solves and their wall time (tehl info: the choices and each solve):")
 VALIDATION_SECONDS = 0.02  # ... at about this many seconds a variant (1000 face gear variants validated in 20 s)
 
 
@@ -111,6 +119,7 @@ Examples:
 @click.option("--grid", type=int, help="Nodes per side of the finest grid, 2^n + 1 (overrides solver.grid).")
 @click.option("--points", help="Comma-separated point names to solve (e.g. S1,S3); default all.")
 @click.option("--thermal", help="Thermal model, overrides solver.thermal: off | reduced | full | auto.")
+@click.option("--accuracy", help=ACCURACY_HELP)
 @click.option("--jobs", type=int, help="Worker processes solving points side by side (default: all cores).")
 @click.option("--force", is_flag=True, help="Overwrite an existing output file that tehl did not write; run even "
                                            "when the memory estimate passes this machine's memory.")
@@ -122,13 +131,12 @@ def run(
     grid: int | None,
     points: str | None,
     thermal: str | None,
+    accuracy: str | None,
     jobs: int | None,
     force: bool,
 ) -> None:
     """Solve CASE and write the result file."""
-    case = _load_case(case_file, solves=True)
-    if thermal is not None:
-        case = with_thermal(case, thermal)
+    case = _with_options(_load_case(case_file, solves=True), thermal, accuracy, grid)
     workers = worker_count(jobs)
     solver = (case if grid is None else case.with_grid(grid)).solver
     names = _point_names(points)
@@ -138,13 +146,7 @@ def run(
     processes = min(workers, len(selected))
     _guard([(p, case.lubricant, solver) for p in selected], processes, ("--grid", grid) if grid else
            ("solver.grid", case.solver.grid), force)
-    click.echo(
-        f"tehl run: {case.name}: {', '.join(p.name for p in selected)} on a {solver.grid}x{solver.nodes_y} grid, "
-        f"thermal {solver.thermal}"
-        + (f", {processes} worker processes" if processes > 1 else "")
-        + " (the grid as asked; each point's line gives the grid solved on, with the lengthened inlet)",
-        err=True,
-    )
+    click.echo(_run_banner(case, selected, solver, processes), err=True)
     for warning in analysis.warnings:
         click.echo(f"warning: {warning}", err=True)
     # Imported once the input is checked: only this command needs the solver (Numba kernels).
@@ -163,6 +165,9 @@ def run(
     write_result(run_result, target)
     result = read_result(target, fields=False)  # the tables print what the file holds
     click.echo(SUMMARY_TITLE + "\n" + summary_table(result.points.values()))
+    if any(p.accuracy is not None for p in result.points.values()):
+        click.echo(ACCURACY_TITLE.format(100 * case.solver.accuracy) + "\n" + "\n".join(
+            accuracy_summary(p.name, p.accuracy) for p in result.points.values() if p.accuracy is not None))
     if result.heat and "point" in result.heat:
         click.echo(HEAT_TITLE + "\n" + heat_budget_table(result))
     if result.cycle:
@@ -172,6 +177,31 @@ def run(
         click.echo(verdict_text(result))
     click.echo(f"result: {target} (status {result.status})")
     _exit_on_status(ctx, result)
+
+
+def _with_options(case: Case, thermal: str | None, accuracy: str | None, grid: int | None) -> Case:
+    """The case with the command line's thermal model and accuracy target (CaseError for --grid with a target: the
+    target chooses the grid)."""
+    if thermal is not None:
+        case = with_thermal(case, thermal)
+    if accuracy is not None:
+        case = case.with_accuracy(accuracy)
+    check(grid is None or case.solver.accuracy is None, "--grid", grid,
+          "no --grid with an accuracy target (solver.accuracy, --accuracy): the target chooses the grid")
+    return case
+
+
+def _run_banner(case: Case, selected: Sequence[ContactPoint], solver: SolverSettings, processes: int) -> str:
+    """The first line of `tehl run`: the case, its points, the grid asked (or the accuracy target), the model."""
+    if solver.accuracy is None:
+        grid = (f"on a {solver.grid}x{solver.nodes_y} grid", " (the grid as asked; each point's line gives the grid "
+                "solved on, with the lengthened inlet)")
+    else:
+        grid = (f"to {100 * solver.accuracy:g} % accuracy", f" (each point's grid and cheaper models chosen from "
+                f"{TUNING.accuracy_start_grid} nodes along x; a line per solve, with the grid solved on)")
+    workers = f", {processes} worker processes" if processes > 1 else ""
+    return (f"tehl run: {case.name}: {', '.join(p.name for p in selected)} {grid[0]}, thermal {solver.thermal}"
+            f"{workers}{grid[1]}")
 
 
 def _load_case(case_file: str, solves: bool = False) -> Case:
@@ -217,6 +247,8 @@ Examples:
 @click.option("--thermal", help="Thermal model, overrides solver.thermal: off | reduced | full | auto.")
 @click.option("--tol", "tolerance", type=float, default=0.01, show_default=True,
               help="Relative change to the next grid below which a quantity counts as grid-independent.")
+@click.option("--accuracy", help="Also solve the point to this accuracy (a fraction or 1%; overrides "
+                                 "solver.accuracy) and compare it with the sweep's extrapolated values.")
 @click.option("-o", "--output",
               help="Sweep file, HDF5 (default: <case name>_sweep_<point>.h5); the CSV goes next to it.")
 @click.option("--jobs", type=int, help="Worker processes solving grids side by side (default: all cores).")
@@ -230,6 +262,7 @@ def sweep(
     point: str | None,
     thermal: str | None,
     tolerance: float,
+    accuracy: str | None,
     output: str | None,
     jobs: int | None,
     force: bool,
@@ -237,6 +270,8 @@ def sweep(
     """Solve one point of CASE on a sequence of grids and print its mesh-independence table (change per
     grid, observed order, Richardson extrapolation with its GCI uncertainty); writes HDF5 (/sweep) and CSV."""
     case = _load_case(case_file, solves=True)
+    if accuracy is not None:
+        case = case.with_accuracy(accuracy)
     grid_list = parse_grids(grids, case)
     check_tolerance(tolerance)
     workers = worker_count(jobs)
@@ -280,18 +315,21 @@ Examples:
 @click.option("-o", "--output", help="Folder of the study's result files and index.csv (default: <STUDY name>_study).")
 @click.option("--workers", type=int, help="Worker processes of the local Dask cluster (default: all cores).")
 @click.option("--scheduler", help="Address of an existing Dask scheduler (e.g. tcp://host:8786) instead.")
+@click.option("--accuracy", help="Accuracy asked of every variant, a fraction or a percentage (1%): sets "
+                                 "solver.accuracy in each (over the study's set: and base case).")
 @click.option("--force", is_flag=True, help="Run even when the memory estimate of the local cluster passes this "
                                            "machine's memory.")
 @click.pass_context
 def study(ctx: click.Context, study_file: str, output: str | None, workers: int | None, scheduler: str | None,
-          force: bool) -> None:
+          accuracy: str | None, force: bool) -> None:
     """Run every variant of STUDY (a base case and the keys it varies) on a Dask cluster: one result file per
     variant, named by the hash of its case, and index.csv; variants already finished are skipped."""
     # Imported here: only this command needs Dask.
     from facegear_tehl.study import check_folder, run_study
     from facegear_tehl.study_file import load_study
 
-    plan = load_study(study_file, announce=_announce_study)
+    fixed = () if accuracy is None else (("solver.accuracy", accuracy_fraction(accuracy, "--accuracy")),)
+    plan = load_study(study_file, announce=_announce_study, fixed=fixed)
     if kernel_cache.WARNING:
         click.echo(f"warning: {kernel_cache.WARNING}", err=True)
     if scheduler is not None and workers is not None:
@@ -362,6 +400,7 @@ def validate(case_file: str) -> None:
         f"ok: {case.name}: {kind}; grid {case.solver.grid}x{case.solver.nodes_y}; models: viscosity "
         f"{lubricant.viscosity_model}, density {lubricant.density_model}, rheology {lubricant.rheology}, "
         f"thermal {case.solver.thermal}"
+        + ("" if case.solver.accuracy is None else f"; accuracy {100 * case.solver.accuracy:g} %")
     )
 
 
@@ -511,7 +550,7 @@ def compare_command(result_files: tuple[str, ...], output: str | None) -> None:
 def info_json(result: Result) -> dict[str, Any]:
     """{'case', 'status', 'message', 'format_version', 'points': {name: {scalar: SI value, 'converged',
     'message'}}, 'units': {name: {scalar: unit}}, 'solve': {name: the solve record (record.record_to_dict)}}, and
-    'cycle' and 'verdict' where the file has them."""
+    'accuracy' (accuracy_record.accuracy_to_dict), 'cycle' and 'verdict' where the file has them."""
     return {
         "case": result.case_name,
         "status": result.status,
@@ -522,6 +561,8 @@ def info_json(result: Result) -> dict[str, Any]:
         },
         "units": {name: dict(p.units) for name, p in result.points.items()},
         "solve": {name: record_to_dict(p.record) for name, p in result.points.items() if p.record is not None},
+        **({"accuracy": {name: accuracy_to_dict(p.accuracy) for name, p in result.points.items()
+                         if p.accuracy is not None}} if any(p.accuracy for p in result.points.values()) else {}),
         **({"cycle": {**result.cycle_scalars, "units": dict(result.cycle_units),
                       "columns": {name: column.values.tolist() for name, column in result.cycle.items()}}}
            if result.cycle else {}),
@@ -573,6 +614,8 @@ def info_text(result: Result, si: bool = False) -> str:
     for p in points:
         if p.record is not None:
             lines += ["", *record_lines(p.name, p.record)]
+        if p.accuracy is not None:
+            lines += ["", *accuracy_lines(p.name, p.accuracy)]
     if result.contact_scalars:
         contact_rows = [_scalar_row(key, result.contact_units[key], [value], abs(value), si)
                         for key, value in result.contact_scalars.items()]

@@ -27,7 +27,9 @@ if TYPE_CHECKING:  # h5py is imported where a file is read, as in results.py: `t
 MAX_INFLATION = 1032  # deflate's largest compression ratio, 1032:1 (zlib technical details, Adler): no filtered
 # dataset of ours (shuffle + deflate) can hold more than this many bytes per byte stored
 MAX_DEPTH = 2  # groups below the root: /points/<name>; /contact, /heat, /sweep, /cycle hold datasets only
-RECORD = "solve"  # /points/<name>/solve, the solve record: a group of attributes alone, one level deeper
+# /points/<name>/solve, the solve record, and /points/<name>/accuracy, the accuracy target's record: groups of
+# attributes alone, one level deeper
+RECORDS = ("solve", "accuracy")
 MAX_DIMENSIONS = 2  # fields (ny, nx) and vector columns (rows, components)
 ROOT_TEXT = ("format_version", "tehl_version", "created", "case_name", "case_yaml", "status", "message",
              "warnings", "models", "overrides")
@@ -106,7 +108,7 @@ def _check_point(group: h5py.Group, where: str, path: Path) -> None:
         raise _damaged(path, f"{where}.message", "a text attribute")
     shapes: dict[str, list[tuple[int, ...]]] = {kind: [] for kind in POINT_KINDS}
     for name, dataset in group.items():
-        if name == RECORD and not hasattr(dataset, "dtype"):  # the solve record (checked by the walk)
+        if name in RECORDS and not hasattr(dataset, "dtype"):  # a record (checked by the walk)
             continue
         kind = dataset.attrs.get("kind")
         if kind not in POINT_KINDS or dataset.dtype.kind not in "biuf":
@@ -128,9 +130,9 @@ def _walk(group: h5py.Group, where: str, depth: int, path: Path) -> None:
         if isinstance(link, (h5py.SoftLink, h5py.ExternalLink)):
             raise _damaged(path, at, "no soft or external link (a tehl result holds none; links are not followed)")
         item = group.get(name)
-        if isinstance(item, h5py.Group) and depth == MAX_DEPTH and name == RECORD:
+        if isinstance(item, h5py.Group) and depth == MAX_DEPTH and name in RECORDS:
             if len(item):
-                raise _damaged(path, at, "the solve record holds attributes alone")
+                raise _damaged(path, at, f"the {name} record holds attributes alone")
         elif isinstance(item, h5py.Group):
             if depth >= MAX_DEPTH:
                 raise _damaged(path, at, f"groups at most {MAX_DEPTH} deep")

@@ -14,6 +14,10 @@ Layout (format 1.x; docs/cli.md describes it for readers):
                         the planned stages in words; per stage run: stage, nx, ny, cycles, outer, outcome;
                         per retry: reason, action, attempt, detail), attempt, relaxation, iteration,
                         stage_seconds (the wall time of each stage, s)
+    /points/<name>/accuracy  the accuracy target's record (from 1.4, with solver.accuracy; accuracy_record.py):
+                        attrs target, stop, nodes, case_nodes, figures, choices, steps (JSON lists: per asked
+                        figure: name, bound, model_effect, verdict; per choice: what, chosen, reason; per solve:
+                        grid, model, purpose, outcome, seconds)
     /contact/           gear contact analysis, written if given: one dataset per path column (kind
                         'table'); attrs: scalar geometry (SI) and its units (JSON)
     /heat/              table over points, written if given
@@ -51,9 +55,10 @@ import zlib
 import numpy as np
 
 from facegear_tehl import __version__
+from facegear_tehl.accuracy_record import AccuracyRecord, accuracy_from_dict, accuracy_to_dict
 from facegear_tehl.atomic_files import remove_stale, temporary_beside
 from facegear_tehl.case import Case
-from facegear_tehl.h5_guard import ResultFileError, check_layout
+from facegear_tehl.h5_guard import RECORDS, ResultFileError, check_layout
 from facegear_tehl.record import SolveRecord, record_from_dict, record_to_dict
 from facegear_tehl.solution import Field, PointSolution
 
@@ -62,12 +67,13 @@ if TYPE_CHECKING:  # h5py is imported where a file is written or read: `tehl val
 
 FILETYPE = "facegear_tehl result"
 # 1.1: /points/<name> attrs outcome; 1.2: dimension scales, integer counts; 1.3: /points/<name>/solve, root attr
-# convergence_bands
-FORMAT_VERSION = "1.3"
+# convergence_bands; 1.4: /points/<name>/accuracy
+FORMAT_VERSION = "1.4"
 STATUSES = ("ok", "not_converged", "failed")
 # Group attributes that are not scalars.
 _RESERVED_ATTRS = ("units", "converged", "outcome", "message", "models", "labels")
 _RECORD_LISTS = ("plan", "stages", "retries", "notes")  # the solve record's attributes held as JSON
+_ACCURACY_LISTS = ("figures", "choices", "steps")  # the accuracy record's attributes held as JSON
 # The 2-D numeric datasets (the points' fields, the tables' vectors) are stored with HDF5's shuffle and deflate filters
 # at this zlib level, one chunk per dataset: any HDF5 reader (h5py, xarray, HDFView) inflates them. The chunks are
 # shuffled and deflated here rather than by the HDF5 library, on up to DEFLATE_THREADS threads (zlib releases the
@@ -164,6 +170,7 @@ class PointResult:
     history: Mapping[str, Field]
     models: Mapping[str, str]
     record: SolveRecord | None = None  # the solve record (None in a file before format 1.3)
+    accuracy: AccuracyRecord | None = None  # the accuracy target's record (None without solver.accuracy, before 1.4)
 
 
 @dataclass(frozen=True)
@@ -305,6 +312,10 @@ def _write_point(points: h5py.Group, solution: PointSolution, chunks: _Chunks) -
             _write_dataset(group, name, column, kind, chunks)
     if solution.record is not None:
         _write_record(group.create_group("solve"), solution.record)
+    if solution.accuracy is not None:
+        accuracy = group.create_group("accuracy")
+        for key, value in accuracy_to_dict(solution.accuracy).items():
+            accuracy.attrs[key] = json.dumps(value) if key in _ACCURACY_LISTS else value
     for axis in solution.axes:
         group[axis].make_scale(axis)
     for name in solution.fields:
@@ -325,8 +336,18 @@ def _write_record(group: h5py.Group, record: SolveRecord) -> None:
 
 
 def name_is_record(name: str, item: h5py.Group | h5py.Dataset) -> bool:
-    """The item of a point group is its solve record (a group, not a dataset of the point)."""
-    return name == "solve" and hasattr(item, "keys")
+    """The item of a point group is its solve or accuracy record (a group, not a dataset of the point)."""
+    return name in RECORDS and hasattr(item, "keys")
+
+
+def _read_accuracy(group: h5py.Group) -> AccuracyRecord | None:
+    """The accuracy record of a point group (None without one)."""
+    if "accuracy" not in group or not name_is_record("accuracy", group["accuracy"]):
+        return None
+    attrs = group["accuracy"].attrs
+    data = {key: json.loads(attrs[key]) if key in _ACCURACY_LISTS else attrs[key] for key in attrs}
+    return accuracy_from_dict({key: value.item() if isinstance(value, np.generic) else value
+                               for key, value in data.items()})
 
 
 def _read_record(group: h5py.Group) -> SolveRecord | None:
@@ -596,6 +617,7 @@ def _read_point(name: str, group: h5py.Group, fields: bool = True) -> PointResul
         history=by_kind["history"],
         models=json.loads(group.attrs["models"]),
         record=_read_record(group),
+        accuracy=_read_accuracy(group),
     )
 
 

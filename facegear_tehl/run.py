@@ -7,6 +7,7 @@ from dataclasses import dataclass, replace
 import math
 from typing import Sequence
 
+from facegear_tehl.accuracy_target import solve_to_accuracy
 from facegear_tehl.case import Case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.cycle import MeshCycle, mesh_cycle, with_film_parameter
@@ -20,7 +21,7 @@ from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.record import Action, Reason, RetryRecord, SolveRecord
 from facegear_tehl.results import RunResult
 from facegear_tehl.settings import SolverSettings
-from facegear_tehl.solution import PointSolution
+from facegear_tehl.solution import Outcome, PointSolution
 
 
 def ehl_solver() -> StagedSolver:
@@ -57,7 +58,12 @@ def run_case(
         selected = select_points(selected, points)
         overrides["points"] = [p.name for p in selected]
     tasks = [SolveTask(point, case.lubricant, case.solver) for point in selected]
-    solved, failed, refined = solve_refining(tasks, solver or ehl_solver(), jobs=jobs, progress=progress)
+    if case.solver.accuracy is None:
+        solved, failed, refined = solve_refining(tasks, solver or ehl_solver(), jobs=jobs, progress=progress)
+    else:  # the grid and models the accuracy target chooses, each point's record holding them
+        solved = solve_to_accuracy(tasks, solver or ehl_solver(), jobs=jobs, progress=progress)
+        failed, refined = tuple(i for i, s in enumerate(solved) if s.outcome is Outcome.FAILED), {}
+        overrides["accuracy"] = case.solver.accuracy
     by_name = {s.name: s for s in solved}
     warnings = analysis.warnings + tuple(refinement_note(name, refinement, by_name[name])
                                          for name, refinement in refined.items())

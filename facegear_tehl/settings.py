@@ -76,6 +76,9 @@ class SolverSettings:
     # next grid is not started when the time spent times the next grid's node ratio would pass it (the point then
     # reports its best solution so far, with its estimate and why); several times the envelope's slowest point
     time_budget: float = 600.0
+    # the accuracy asked of h_c, h_min, p_max, dT_max and mu, relative (0.01: 1 %); None: the grid and models as given.
+    # Set, the solver chooses the grid in x and y and the cheaper models itself (accuracy_target.py)
+    accuracy: float | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "thermal", ThermalMode(self.thermal))

@@ -7,6 +7,7 @@ from typing import Mapping
 
 import numpy as np
 
+from facegear_tehl.accuracy_record import AccuracyRecord
 from facegear_tehl.outcome import CONVERGED, Outcome, Status
 from facegear_tehl.record import SolveRecord
 
@@ -45,6 +46,7 @@ class PointSolution:
     history: Mapping[str, Field] = field(default_factory=dict)
     models: Mapping[str, str] = field(default_factory=dict)
     record: SolveRecord | None = None  # how the solve ran (planned and run stages, retries); None for a stand-in
+    accuracy: AccuracyRecord | None = None  # what the accuracy target chose (solver.accuracy); None without one
 
     @property
     def converged(self) -> bool:

@@ -110,16 +110,20 @@ def digest(text: str) -> str:
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
-def load_study(path: str | Path, announce: Callable[[int], None] | None = None) -> Study:
+def load_study(path: str | Path, announce: Callable[[int], None] | None = None,
+               fixed: tuple[tuple[str, Any], ...] = ()) -> Study:
     """Read and validate a study file and every variant it makes (CaseError on any problem, nothing run);
-    `announce` is told the number of variants before they are validated."""
+    `announce` is told the number of variants before they are validated; `fixed`: (path, value) pairs of the
+    command line set in every variant over the file's `set:` (`tehl study --accuracy`)."""
     path = Path(path)
-    return parse_study(read_input(path, "study file"), path, announce)
+    return parse_study(read_input(path, "study file"), path, announce, fixed)
 
 
-def parse_study(text: str, path: Path, announce: Callable[[int], None] | None = None) -> Study:
+def parse_study(text: str, path: Path, announce: Callable[[int], None] | None = None,
+                overrides: tuple[tuple[str, Any], ...] = ()) -> Study:
     """Parse and validate the YAML text of the study file at `path` (base is relative to its folder); at most
-    MAX_VARIANTS variants, their number told to `announce` before they are validated."""
+    MAX_VARIANTS variants, their number told to `announce` before they are validated; `overrides` replace the
+    `set:` values of their paths."""
     top = Block(_yaml(text, "(file)", "a study: base:, vary:, optional set:"), "")
     base_path = path.parent / top.string("base")
     base_text = _read_base(base_path)
@@ -130,7 +134,8 @@ def parse_study(text: str, path: Path, announce: Callable[[int], None] | None = 
     check(bool(vary), "vary", {}, "at least one case key with a list of values, e.g. gear.pinion_torque: [250, 500]")
     set_raw = top.get("set", {})
     check(isinstance(set_raw, dict), "set", set_raw, "a mapping of case keys to values")
-    fixed = tuple((str(key), value) for key, value in set_raw.items())
+    replaced = {key for key, _ in overrides}
+    fixed = tuple((str(key), value) for key, value in set_raw.items() if str(key) not in replaced) + overrides
     top.finish()
     paths = [("vary", key) for key, _ in vary] + [("set", key) for key, _ in fixed]
     _check_paths(paths)

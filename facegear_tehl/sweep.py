@@ -40,6 +40,7 @@ from pathlib import Path
 
 import numpy as np
 
+from facegear_tehl.accuracy_target import solve_to_accuracy
 from facegear_tehl.atomic_files import remove_stale, temporary_beside
 from facegear_tehl.case import THERMAL_MODELS, Case
 from facegear_tehl.contact import ContactPoint
@@ -222,14 +223,19 @@ def run_sweep(
     overrides: dict[str, object] = {"point": target.name, "grids": list(grids)}
     if thermal is not None:
         overrides["thermal"] = thermal
+    targeted: list[PointSolution] = []
+    if case.solver.accuracy is not None:  # the point solved to the accuracy target, against the sweep's f*
+        targeted = solve_to_accuracy([SolveTask(replace(target, name=f"{target.name}@accuracy"), case.lubricant,
+                                                case.solver)], solver or ehl_solver(), jobs=jobs, progress=progress)
+        overrides["accuracy"] = case.solver.accuracy
     run = RunResult(
         case=case,
-        points=tuple(solutions),
+        points=tuple(solutions + targeted),
         failed=tuple(solutions[i].name for i in sorted(failed)),
         contact=analysis.path,
         contact_scalars=analysis.scalars,
         sweep=sweep_table(grids, solutions, quantities),
-        sweep_scalars=_sweep_scalars(tolerance, quantities),
+        sweep_scalars=_sweep_scalars(tolerance, quantities) | _accuracy_scalars(targeted, quantities),
         warnings=analysis.warnings + _model_warnings(case, solutions)
         + iteration_warnings(quantities, case.solver.thermal_tolerance),
         overrides=overrides,
@@ -335,6 +341,36 @@ def _sweep_scalars(tolerance: float, quantities: Sequence[Convergence]) -> dict[
     return scalars
 
 
+def _accuracy_scalars(targeted: Sequence[PointSolution], quantities: Sequence[Convergence]
+                      ) -> dict[str, tuple[float, str]]:
+    """The accuracy target's solution against the sweep: the target, the grid it was solved on and the relative
+    difference of each quantity from the extrapolated value f* of the three finest grids (where there is one)."""
+    if not targeted or not targeted[0].accuracy or "grid" not in targeted[0].scalars:
+        return {}
+    solution = targeted[0]
+    scalars = {"accuracy": (solution.accuracy.target, "1"), "accuracy_grid": (solution.scalar("grid"), "1"),
+               "accuracy_grid_y": (solution.scalar("grid_y"), "1")}
+    for q in quantities:
+        best = q.extrapolated[-1]
+        if q.name in solution.scalars and math.isfinite(best) and best != 0.0:
+            scalars[f"{q.name}_accuracy_error"] = ((solution.scalar(q.name) - best) / abs(best), "1")
+    return scalars
+
+
+def _accuracy_lines(table: Mapping[str, Field], scalars: Mapping[str, float]) -> list[str]:
+    """The accuracy target's solution against the sweep's extrapolation, one line per quantity."""
+    if "accuracy" not in scalars:
+        return []
+    grid = f"{scalars['accuracy_grid']:.0f} x {scalars['accuracy_grid_y']:.0f}"
+    lines = [f"accuracy target {PERCENT(scalars['accuracy']):g} %: solved on {grid} (the point @accuracy; its "
+             "figures' bounds: tehl info)"]
+    for name in tabulated(table):
+        error = scalars.get(f"{name}_accuracy_error")
+        against = "no extrapolated value" if error is None else f"{PERCENT(error):+.2f} % from the extrapolated value"
+        lines.append(f"  {name}: {against}")
+    return lines
+
+
 def write_csv(table: Mapping[str, Field], path: str | Path) -> Path:
     """The table as CSV (header `name [units]`, SI, an empty cell where a value is not defined), written
     to a temporary file and renamed onto `path`."""
@@ -371,7 +407,7 @@ def report(table: Mapping[str, Field], scalars: Mapping[str, float]) -> str:
                 for i, grid in enumerate(grids)]
         headers = [f"{name} [{unit.label}]", "value", "change %", "order", "extrapolated", "± GCI", "error %"]
         tables.append(format_table(headers, rows))
-    return "\n\n".join(tables) + "\n\n" + "\n".join(_summary_lines(table, scalars))
+    return "\n\n".join(tables) + "\n\n" + "\n".join(_summary_lines(table, scalars) + _accuracy_lines(table, scalars))
 
 
 def _summary_lines(table: Mapping[str, Field], scalars: Mapping[str, float]) -> list[str]:

@@ -131,6 +131,9 @@ def test_bad_case_exits_2_in_a_subprocess(tmp_path, kind):
         (["--grid", "9"], "--grid", "at least solver.coarsest_grid"),
         (["-o", "."], "--output", "not a directory"),
         (["--jobs", "0"], "--jobs", ">= 1"),
+        (["--accuracy", "200%"], "--accuracy", "from 0.1% to 50%"),
+        (["--accuracy", "one percent"], "--accuracy", "e.g. 0.01 or 1%"),
+        (["--accuracy", "1%", "--grid", "129"], "--grid", "the target chooses the grid"),
     ],
 )
 def test_bad_options_exit_2(tmp_path, monkeypatch, options, key, expected):

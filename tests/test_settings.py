@@ -51,7 +51,7 @@ def test_every_solver_key_round_trips():
     written = SolverSettings(grid=129, domain_x=(-5.0, 2.0), domain_y=(-2.5, 2.5), thermal="full", coarsest_grid=9,
                              cycles_per_level=3, max_cycles=12, tolerance=2e-5, load_tolerance=3e-4, thermal_layers=7,
                              max_thermal_iterations=25, thermal_tolerance=5e-4, eyring_tolerance=3e-4, grid_y=65,
-                             outlet_refinement="never", outlet_patches=1, time_budget=120.0)
+                             outlet_refinement="never", outlet_patches=1, time_budget=120.0, accuracy=0.02)
     default = SolverSettings()
     assert all(getattr(written, f.name) != getattr(default, f.name) for f in fields(SolverSettings))
     block = {f.name: getattr(written, f.name) for f in fields(SolverSettings)}

@@ -1,0 +1,457 @@
+"""The accuracy target (`solver.accuracy`, `--accuracy 1%`): each point's grid along x and y and its cheaper models
+chosen by the solver until the error bound of every asked figure (h_c, h_min, p_max, dT_max, mu) is within the target.
+
+Per point, on a start grid of TUNING.accuracy_start_grid nodes along x (the case's aspect along y):
+1. The case's model (thermal `auto`: `full`) and each cheaper one (thermal `reduced`, TUNING.accuracy_fewer_layers
+   layers, Newtonian instead of Ree-Eyring) are solved; a cheaper model is taken where its measured change of every
+   asked figure, summed over the cheaper models taken, stays within TUNING.accuracy_model_share of the target (the
+   solve's own measured effect, not a correlation: Gupta et al.'s 1992 thermal factor is pessimistic on the project's
+   own solutions, docs/accuracy.md).
+2. The chosen model is refined, x (`grid`) or y (`grid_y`) twice as fine, the axis whose estimate dominates the
+   figures above the target, until each figure's bound plus its model effect is within the target, or the next grid
+   passes TUNING.accuracy_max_grid / accuracy_max_grid_y or the point's time budget (`solver.time_budget`); a finer
+   grid along one axis that does not converge is followed by one along both, and where that fails too the converged
+   coarser solution is kept.
+
+A figure's bound (`figure_bound`) is the solve's own `error_bound_<name>` where it reports one (ehl error bounds),
+else FALLBACK_SAFETY (|e_x| + |e_y|): e_x its Richardson estimate from the grid one coarser along x
+(`error_estimate_<name>`, ehl/report.py), e_y from a check solve of the same point and model on the same domain with
+half the nodes along y (`y_check`), unless the solve reports `error_estimate_y_<name>`. p_max is never bounded: the
+pressure maximum is the outlet spike, which grows with every refinement on practical grids (Venner & Lubrecht 2000,
+ch. 8): it is reported as achieved, "unresolved", and never refined for.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, replace
+import math
+
+import numpy as np
+
+from facegear_tehl.accuracy_record import AccuracyRecord, Choice, FigureBound, SolveStep, Verdict
+from facegear_tehl.ehl.domain import solution_domain
+from facegear_tehl.ehl.richardson import ORDER, richardson_error
+from facegear_tehl.ehl.scaling import scaling_for
+from facegear_tehl.ehl.tuning import TUNING
+from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
+from facegear_tehl.settings import SolverSettings, ThermalMode
+from facegear_tehl.solution import PointSolution
+
+FIGURES = ("h_c", "h_min", "p_max", "dT_max", "mu")  # the figures the target asks for, where the model reports them
+NEVER_BOUNDED = ("p_max",)  # module docstring
+# Roache's (1994, J. Fluids Eng. 116: 405-413) safety factor of a two-grid estimate at an assumed order: the bound of a
+# solve that reports no error_bound_<name> of its own
+FALLBACK_SAFETY = 3.0
+
+
+def figure_order(name: str) -> int:
+    """The order a figure's Richardson estimates assume (ehl/report.py): first for dT_max and mu, else second."""
+    # imported on first use: ehl.report loads the solver's kernels, which the command line does not need
+    from facegear_tehl.ehl.report import ORDER_DT_MAX, ORDER_MU
+
+    return {"dT_max": ORDER_DT_MAX, "mu": ORDER_MU}.get(name, ORDER)
+
+
+Effects = Mapping[str, float]  # relative change of each figure
+
+
+@dataclass(frozen=True)
+class Bound:
+    """One figure's relative bound (inf where none can be given), its estimates along x and y (NaN: none)."""
+
+    bound: float
+    e_x: float
+    e_y: float
+
+
+def figure_bound(solution: PointSolution, name: str, e_y: float = math.nan) -> Bound:
+    """The bound of figure `name` of `solution` (module docstring); `e_y` the driver's own y-estimate, used where the
+    solve reports none."""
+    scalars = solution.scalars
+    e_x = scalars.get(f"error_estimate_{name}", (math.nan, "1"))[0]
+    e_y = scalars.get(f"error_estimate_y_{name}", (e_y, "1"))[0]
+    if name in NEVER_BOUNDED or not solution.converged or name not in scalars:
+        return Bound(math.inf, e_x, e_y)
+    if f"unresolved_{name}" in scalars:
+        unresolved = scalars[f"unresolved_{name}"][0] != 0.0
+        return Bound(math.inf if unresolved else scalars.get(f"error_bound_{name}", (math.inf, "1"))[0], e_x, e_y)
+    bound = FALLBACK_SAFETY * (abs(e_x) + abs(e_y))
+    return Bound(bound if math.isfinite(bound) else math.inf, e_x, e_y)
+
+
+def model_words(task: SolveTask) -> str:
+    """The model of a task in words: thermal model (with its layers when full) and rheology."""
+    settings = task.settings
+    layers = f" {settings.thermal_layers} layers" if settings.thermal is ThermalMode.FULL else ""
+    return f"thermal {settings.thermal}{layers}, {task.lubricant.rheology}"
+
+
+def grid_words(settings: SolverSettings) -> str:
+    return f"{settings.grid} x {settings.nodes_y}"
+
+
+def start_task(task: SolveTask) -> SolveTask:
+    """The task on the start grid: TUNING.accuracy_start_grid along x, y at the case's aspect (not below the
+    coarsest grid), thermal `auto` solved `full` (the cheaper models are the target's to choose)."""
+    settings = task.settings
+    grid = TUNING.accuracy_start_grid
+    grid_y = None if settings.grid_y is None else max((settings.grid_y - 1) * (grid - 1) // (settings.grid - 1) + 1,
+                                                      settings.coarsest_grid)
+    thermal = ThermalMode.FULL if settings.thermal is ThermalMode.AUTO else settings.thermal
+    return replace(task, settings=replace(settings, grid=grid, grid_y=grid_y, thermal=thermal))
+
+
+@dataclass(frozen=True)
+class Cheaper:
+    """A cheaper model: what it changes, to what, and the change made to a task."""
+
+    what: str
+    chosen: str
+    apply: Callable[[SolveTask], SolveTask]
+    applies: Callable[[SolveTask], bool]
+
+
+def _reduced(task: SolveTask) -> SolveTask:
+    return replace(task, settings=replace(task.settings, thermal=ThermalMode.REDUCED))
+
+
+def _fewer_layers(task: SolveTask) -> SolveTask:
+    return replace(task, settings=replace(task.settings, thermal_layers=TUNING.accuracy_fewer_layers))
+
+
+def _newtonian(task: SolveTask) -> SolveTask:
+    return replace(task, lubricant=replace(task.lubricant, rheology="newtonian"))
+
+
+def _full(task: SolveTask) -> bool:
+    return task.settings.thermal is ThermalMode.FULL
+
+
+CHEAPER = (  # in the order they are tried: the largest saving first
+    Cheaper("thermal", "reduced", _reduced, _full),
+    Cheaper("thermal_layers", str(TUNING.accuracy_fewer_layers), _fewer_layers,
+            lambda task: _full(task) and task.settings.thermal_layers > TUNING.accuracy_fewer_layers),
+    Cheaper("rheology", "newtonian", _newtonian, lambda task: task.lubricant.rheology == "ree_eyring"),
+)
+
+
+def model_effect(reference: PointSolution, cheaper: PointSolution) -> dict[str, float]:
+    """Relative change of each asked figure the reference reports from the reference to the cheaper model's solve
+    of the same grid (inf where the cheaper one did not converge or does not report it)."""
+    names = [name for name in FIGURES if name in reference.scalars]
+    if not (reference.converged and cheaper.converged):
+        return dict.fromkeys(names, math.inf)
+    return {name: abs(cheaper.scalar(name) - reference.scalar(name)) / abs(reference.scalar(name))
+            if name in cheaper.scalars and reference.scalar(name) != 0.0 else math.inf for name in names}
+
+
+def _summed(first: Effects, second: Effects) -> dict[str, float]:
+    return {name: first.get(name, 0.0) + second.get(name, math.inf) for name in second}
+
+
+def _percent(effects: Effects) -> str:
+    return ", ".join(f"{name} {100 * value:.2g} %" for name, value in effects.items())
+
+
+def choose_models(reference: SolveTask, solved: Mapping[str, PointSolution], base: PointSolution, target: float
+                  ) -> tuple[tuple[Cheaper, ...], dict[str, float], tuple[Choice, ...]]:
+    """The cheaper models taken, in CHEAPER's order, while the sum of their measured effects on every figure stays
+    within TUNING.accuracy_model_share of `target`; `solved` the cheaper models' solves by `what`, `base` the
+    reference's. Returns the models taken, their summed effects and a choice per model considered."""
+    share = TUNING.accuracy_model_share * target
+    task, total, taken, choices = reference, {name: 0.0 for name in FIGURES if name in base.scalars}, [], []
+    for cheaper in CHEAPER:
+        if cheaper.what not in solved or not cheaper.applies(task):
+            continue
+        effect = model_effect(base, solved[cheaper.what])
+        summed = _summed(total, effect)
+        against = f"changes {_percent(effect)} against {model_words(reference)} on {grid_words(reference.settings)}"
+        if max(summed.values(), default=math.inf) <= share:
+            task, total = cheaper.apply(task), summed
+            taken.append(cheaper)
+            choices.append(Choice(cheaper.what, cheaper.chosen, f"{against}: within {100 * share:.2g} %, "
+                                  f"{TUNING.accuracy_model_share:g} of the target"))
+        else:
+            choices.append(Choice(cheaper.what, "as the case", f"{cheaper.chosen} {against}: beyond "
+                                  f"{100 * share:.2g} %, {TUNING.accuracy_model_share:g} of the target"))
+    return tuple(taken), total, tuple(choices)
+
+
+def _applied(task: SolveTask, taken: Sequence[Cheaper]) -> SolveTask:
+    for cheaper in taken:
+        task = cheaper.apply(task)
+    return task
+
+
+def y_check(task: SolveTask, solution: PointSolution) -> SolveTask | None:
+    """The check solve of `solution`'s y-error: the same point and model on its domain with (ny + 1)/2 nodes along
+    y; None where the solution has its own y-estimates, a square grid (the hierarchy's estimate refines both axes),
+    no film, or too few rows to halve (then its y-estimate stays unknown)."""
+    if not solution.converged or "x" not in solution.axes or "error_estimate_y_h_c" in solution.scalars:
+        return None
+    x, y = solution.axes["x"].values, solution.axes["y"].values
+    if x.size == y.size or (y.size + 1) // 2 < task.settings.coarsest_grid:
+        return None
+    a, b = solution.scalar("a"), solution.scalar("b")
+    return replace(task, settings=replace(task.settings, grid=x.size, grid_y=(y.size + 1) // 2,
+                                          domain_x=(x[0] / b, x[-1] / b), domain_y=(y[0] / a, y[-1] / a)))
+
+
+def y_estimates(solution: PointSolution, check: PointSolution | None) -> dict[str, float]:
+    """e_y of each figure from the y-check (Richardson at the figure's order, figure_order); 0 on a square grid, NaN
+    where the check is missing, did not converge or was reported on another grid than asked."""
+    names = [name for name in FIGURES if name in solution.scalars]
+    if "x" not in solution.axes:
+        return dict.fromkeys(names, math.nan)
+    x, y = solution.axes["x"].values, solution.axes["y"].values
+    if x.size == y.size:
+        return dict.fromkeys(names, 0.0)
+    if check is None or not check.converged or check.axes["x"].values.size != x.size or (
+            check.axes["y"].values.size != (y.size + 1) // 2):  # a retry of the solver may report a coarser grid
+        return dict.fromkeys(names, math.nan)
+    return {name: richardson_error(solution.scalar(name), check.scalar(name), figure_order(name))
+            if name in check.scalars and solution.scalar(name) != 0.0 else math.nan for name in names}
+
+
+@dataclass(frozen=True)
+class Progressing:
+    """One point under the target: its task and latest solution (with the y-estimates measured for it), the
+    model's effects, the choices and solves so far, and why it stopped ("" while refining)."""
+
+    task: SolveTask
+    solution: PointSolution
+    e_y: Mapping[str, float]
+    effects: Mapping[str, float]
+    choices: tuple[Choice, ...]
+    steps: tuple[SolveStep, ...]
+    stop: str = ""
+    failed: str = ""  # the finer grid, refined along one axis, that did not converge: the next refines both
+
+    def bounds(self) -> dict[str, Bound]:
+        return {name: figure_bound(self.solution, name, self.e_y.get(name, math.nan))
+                for name in FIGURES if name in self.solution.scalars}
+
+    def missing(self, target: float) -> dict[str, Bound]:
+        """The figures (p_max aside) whose bound plus model effect exceeds `target`."""
+        return {name: bound for name, bound in self.bounds().items()
+                if name not in NEVER_BOUNDED and bound.bound + self.effects.get(name, 0.0) > target}
+
+
+def step(task: SolveTask, solution: PointSolution, purpose: str) -> SolveStep:
+    return SolveStep(grid_words(task.settings), model_words(task), purpose, solution.outcome.value,
+                     solution.scalars.get("wall_time", (0.0, "s"))[0])
+
+
+def refined_axis(missing: Mapping[str, Bound]) -> str:
+    """The axis to refine for the figures above the target: the one whose largest estimate among them is larger
+    (an unknown estimate counts as infinite); both where neither is known."""
+    along_x = max((abs(b.e_x) if math.isfinite(b.e_x) else math.inf for b in missing.values()), default=0.0)
+    along_y = max((abs(b.e_y) if math.isfinite(b.e_y) else math.inf for b in missing.values()), default=0.0)
+    if math.isinf(along_x) and math.isinf(along_y):
+        return "xy"
+    return "x" if along_x >= along_y else "y"
+
+
+def refined_settings(settings: SolverSettings, axis: str) -> SolverSettings | None:
+    """`settings` twice as fine along `axis` (x, y or xy); None past TUNING.accuracy_max_grid / accuracy_max_grid_y."""
+    grid = 2 * settings.grid - 1 if "x" in axis else settings.grid
+    grid_y = 2 * settings.nodes_y - 1 if "y" in axis else settings.nodes_y
+    if grid > TUNING.accuracy_max_grid or grid_y > TUNING.accuracy_max_grid_y:
+        return None
+    return replace(settings, grid=grid, grid_y=grid_y)
+
+
+def over_budget(point: Progressing, finer: SolverSettings) -> bool:
+    """The finer solve would pass the point's time budget: time spent plus the last solve's time scaled by the
+    finer grid's nodes (multigrid work grows with the nodes) and a y-check at half of it."""
+    settings = point.task.settings
+    spent = sum(s.seconds for s in point.steps)
+    last = point.solution.scalars.get("wall_time", (0.0, "s"))[0]
+    ratio = (finer.grid * finer.nodes_y) / (settings.grid * settings.nodes_y)
+    return spent + 1.5 * ratio * last > settings.time_budget
+
+
+# solves tasks side by side, each with its purpose (for the progress lines), in task order
+Batch = Callable[[Sequence[tuple[SolveTask, str]]], list[PointSolution]]
+
+
+def screened(tasks: Sequence[SolveTask], solve: Batch, target: float) -> list[Progressing]:
+    """Step 1 (module docstring): each point on the start grid in its case's model and each cheaper one, and the
+    cheaper models chosen (`choose_models`); where two or more are taken, `combined`."""
+    starts = [start_task(task) for task in tasks]
+    trials = [[c for c in CHEAPER if c.applies(start)] for start in starts]
+    checks = [(c.apply(start), f"model check: {c.what}") for start, each in zip(starts, trials) for c in each]
+    solutions = solve([(start, "start") for start in starts] + checks)
+    rest = iter(solutions[len(starts):])
+    points = []
+    for start, base, each in zip(starts, solutions, trials):
+        by_what = {c.what: next(rest) for c in each}
+        steps = (step(start, base, "start"),) + tuple(step(c.apply(start), by_what[c.what], f"model check: {c.what}")
+                                                      for c in each)
+        taken, effects, choices = choose_models(start, by_what, base, target)
+        solution = by_what[taken[0].what] if len(taken) == 1 else base
+        points.append(Screened(Progressing(_applied(start, taken), solution, {}, effects, choices, steps), start,
+                               base, taken, by_what))
+    return combined(points, solve, target)
+
+
+@dataclass(frozen=True)
+class Screened:
+    """A point after the model checks: its progress, the start task and solve in the case's model, the cheaper
+    models taken and each cheaper model's solve by `what`."""
+
+    point: Progressing
+    start: SolveTask
+    base: PointSolution
+    taken: tuple[Cheaper, ...]
+    solved: Mapping[str, PointSolution]
+
+
+def combined(screens: Sequence[Screened], solve: Batch, target: float) -> list[Progressing]:
+    """The points that took two or more cheaper models solved in their combination: its measured effect against the
+    case's model replaces the sum, and beyond TUNING.accuracy_model_share of the target the first model alone is
+    kept, with its effect measured alone."""
+    points = [screen.point for screen in screens]
+    together = [i for i, screen in enumerate(screens) if len(screen.taken) > 1]
+    share = TUNING.accuracy_model_share * target
+    for i, solution in zip(together, solve([(points[i].task, "model check: combined") for i in together])):
+        screen, effects = screens[i], model_effect(screens[i].base, solution)
+        point = replace(points[i], steps=points[i].steps + (step(points[i].task, solution, "model check: combined"),))
+        if max(effects.values(), default=math.inf) <= share:
+            note = Choice("model", model_words(point.task), f"the combination changes {_percent(effects)}")
+            points[i] = replace(point, solution=solution, effects=effects, choices=point.choices + (note,))
+            continue
+        first = screen.taken[0]
+        alone = screen.solved[first.what]
+        note = Choice("model", model_words(first.apply(screen.start)), f"the combination changes {_percent(effects)}:"
+                      f" beyond {100 * share:.2g} %; {first.what} {first.chosen} alone kept")
+        points[i] = replace(point, task=first.apply(screen.start), solution=alone,
+                            effects=model_effect(screen.base, alone), choices=point.choices + (note,))
+    return points
+
+
+def with_y_checks(points: list[Progressing], fresh: Sequence[int], solve: Batch) -> list[Progressing]:
+    """The points `fresh` (just solved) with their y-estimates: from `y_check` solves where the solve reports none and
+    the point was not just refined along y alone (`refined`)."""
+    fresh = [i for i in fresh if not points[i].e_y]  # a point refined along y has its estimates from the pair
+    checks = {i: y_check(points[i].task, points[i].solution) for i in fresh}
+    wanted = [i for i, check in checks.items() if check is not None]
+    solved = dict(zip(wanted, solve([(checks[i], "y-check") for i in wanted])))
+    for i in fresh:
+        point, check = points[i], solved.get(i)
+        steps = point.steps if check is None else point.steps + (step(checks[i], check, "y-check"),)
+        points[i] = replace(point, e_y=y_estimates(point.solution, check), steps=steps)
+    return points
+
+
+def next_step(point: Progressing, target: float) -> tuple[Progressing, SolveTask | None]:
+    """The point's next solve (None: it stops, with the reason): twice as fine along the axis that dominates the
+    figures above the target, unless the grid cap or the time budget comes first."""
+    missing = point.missing(target)
+    if not missing:
+        return replace(point, stop="every bounded figure within the target"), None
+    axis = "xy" if point.failed else refined_axis(missing)
+    finer = refined_settings(point.task.settings, axis)
+    above = ", ".join(missing)
+    if finer is None:
+        return replace(point, stop=f"{above} above the target; refining {axis} would pass the largest grid "
+                                   f"{TUNING.accuracy_max_grid} x {TUNING.accuracy_max_grid_y}"), None
+    if over_budget(point, finer):
+        return replace(point, stop=f"{above} above the target; {grid_words(finer)} not started: it would pass the "
+                                   f"time budget {point.task.settings.time_budget:g} s (solver.time_budget)"), None
+    return point, replace(point.task, settings=finer)
+
+
+def refined(point: Progressing, task: SolveTask, solution: PointSolution) -> Progressing:
+    """The point after its finer solve: the finer solution; where it did not converge after a converged one, the
+    coarser one kept, refined next along both axes if this solve refined one alone (the cells' aspect kept: the
+    default case's S2 and S4 diverge on 513 x 65 and converge on 1025 x 129, docs/accuracy.md), else stopped."""
+    axis = "x" if task.settings.nodes_y == point.task.settings.nodes_y else (
+        "y" if task.settings.grid == point.task.settings.grid else "xy")
+    steps = point.steps + (step(task, solution, f"refine {axis}"),)
+    if point.solution.converged and not solution.converged:
+        ended = f"{grid_words(task.settings)} ended {solution.outcome.value}"
+        if axis != "xy":
+            return replace(point, steps=steps, failed=ended)
+        before = f" (after {point.failed})" if point.failed else ""
+        return replace(point, steps=steps, stop=f"{ended}{before}; the converged {grid_words(point.task.settings)} "
+                                                "solution kept")
+    # refined along y alone on the same domain: the solve before is the finer one's y-check
+    same = axis == "y" and _same_domain(point.solution, solution)
+    return replace(point, task=task, solution=solution, e_y=y_estimates(solution, point.solution) if same else {},
+                   steps=steps, failed="")
+
+
+def _same_domain(coarse: PointSolution, fine: PointSolution) -> bool:
+    """Both solutions span the same domain, with twice the rows and the same columns on `fine`."""
+    if not (coarse.converged and "x" in coarse.axes and "x" in fine.axes):
+        return False
+    (cx, cy), (fx, fy) = ((s.axes["x"].values, s.axes["y"].values) for s in (coarse, fine))
+    return (np.array_equal(cx, fx) and fy.size == 2 * cy.size - 1
+            and np.allclose((cy[0], cy[-1]), (fy[0], fy[-1]), rtol=1e-12, atol=0.0))
+
+
+def solve_to_accuracy(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *, jobs: int | None = None,
+                      progress: Progress | None = None) -> list[PointSolution]:
+    """Every task solved to its settings' accuracy target (module docstring), the points side by side on `jobs`
+    worker processes; each solution carries its AccuracyRecord and the wall time of all its solves."""
+    target = float(tasks[0].settings.accuracy)
+
+    def solve(batch: Sequence[tuple[SolveTask, str]]) -> list[PointSolution]:
+        return _solved_batch(batch, solver, jobs, progress)
+
+    points = screened(tasks, solve, target)
+    fresh = list(range(len(points)))
+    while fresh:
+        points = with_y_checks(points, fresh, solve)
+        planned = {}
+        for i, point in enumerate(points):
+            if not point.stop:
+                points[i], finer = next_step(point, target)
+                planned.update({} if finer is None else {i: finer})
+        for i, solution in zip(planned, solve([(task, "refine") for task in planned.values()])):
+            points[i] = refined(points[i], planned[i], solution)
+        fresh = [i for i in planned if not points[i].stop]
+    return [finished(point, task, target) for point, task in zip(points, tasks)]
+
+
+def _solved_batch(batch: Sequence[tuple[SolveTask, str]], solver: Solver | StagedSolver, jobs: int | None,
+                  progress: Progress | None) -> list[PointSolution]:
+    """`solve_all` of the tasks, each progress line naming the point with the solve's purpose ("S1 (y-check)");
+    the solutions keep the point's name."""
+    if not batch:
+        return []
+    named = [replace(task, point=replace(task.point, name=f"{task.point.name} ({purpose})")) for task, purpose in batch]
+    solved = solve_all(named, solver, jobs=jobs, progress=progress)[0]
+    return [replace(solution, name=task.point.name) for (task, _), solution in zip(batch, solved)]
+
+
+def finished(point: Progressing, case_task: SolveTask, target: float) -> PointSolution:
+    """The point's reported solution with its AccuracyRecord: each figure's bound and verdict, the choices (the
+    grid's with the reason the refinement stopped), the solves and their cost."""
+    figures = []
+    for name, bound in point.bounds().items():
+        effect = point.effects.get(name, 0.0)
+        if name in NEVER_BOUNDED or math.isinf(bound.bound):
+            figures.append(FigureBound(name, math.nan, effect, Verdict.UNRESOLVED))
+        else:
+            verdict = Verdict.MET if bound.bound + effect <= target else Verdict.NOT_MET
+            figures.append(FigureBound(name, bound.bound + effect, effect, verdict))
+    solution = point.solution
+    solved = f"{int(solution.scalars.get('grid', (0, ''))[0])} x {int(solution.scalars.get('grid_y', (0, ''))[0])}"
+    grid = Choice("grid", f"{grid_words(point.task.settings)} ({solved} solved)", point.stop)
+    record = AccuracyRecord(target, tuple(figures), point.choices + (grid,), point.steps, point.stop,
+                            _nodes(solution), case_nodes(case_task))
+    scalars = {**solution.scalars, "wall_time": (record.wall_time, "s")}
+    return replace(solution, scalars=scalars, accuracy=record)
+
+
+def _nodes(solution: PointSolution) -> int:
+    return int(solution.scalars.get("grid", (0, ""))[0] * solution.scalars.get("grid_y", (0, ""))[0])
+
+
+def case_nodes(task: SolveTask) -> int:
+    """Nodes the case's own settings solve the point on (the lengthened inlet's, ehl.domain)."""
+    domain = solution_domain(scaling_for(task.point, task.lubricant), task.settings)
+    return domain.nx * domain.ny

@@ -1,0 +1,84 @@
+"""The accuracy target against fine-grid references of the same case and model (docs/accuracy.md, the accuracy target).
+
+    python scripts/accuracy_check.py TARGET.h5 --fine FINE.h5 [--finer FINER.h5] [--default DEFAULT.h5]
+
+TARGET.h5 from `tehl run CASE --accuracy 1%`; FINE.h5 and FINER.h5 from `tehl run CASE --grid N` on two grids, the
+second twice as fine (both axes); DEFAULT.h5 from `tehl run CASE` on the case's own grid, for the cost. The reference
+is the Richardson value of FINE and FINER at each figure's order (second for the film and p_max, first for dT_max
+and mu: ehl/report.py), or FINE alone where FINER is not given or did not converge. Per point and figure it prints
+the target's value, its bound and verdict, the reference and the target's error against it; per point the grid
+chosen, the solves and their wall time against the default run's.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+
+from facegear_tehl.accuracy_target import FIGURES, figure_order
+from facegear_tehl.ehl.richardson import richardson_error
+from facegear_tehl.results import read_result
+from facegear_tehl.tables import format_table
+
+
+def reference(name: str, point: str, fine, finer) -> float:
+    """The Richardson value of the figure from the two reference grids, or FINE alone where FINER is not given or its
+    point did not converge."""
+    if finer is None or not finer.points[point].converged:
+        return fine.points[point].scalars[name]
+    f_h, f_2h = finer.points[point].scalars[name], fine.points[point].scalars[name]
+    return f_h * (1.0 + richardson_error(f_h, f_2h, figure_order(name)))  # f* = f_h + (f_h - f_2h)/(2^p - 1)
+
+
+def figure_rows(target, fine, finer) -> list[list[str]]:
+    """One row per point and figure: value, bound, verdict, reference, error against it."""
+    rows = []
+    for point, solved in target.points.items():
+        figures = {f.name: f for f in solved.accuracy.figures}
+        for name in FIGURES:
+            if name not in solved.scalars or name not in figures:
+                continue
+            best = reference(name, point, fine, finer)
+            error = (solved.scalars[name] - best) / abs(best)
+            bound = figures[name].bound
+            rows.append([point, name, f"{solved.scalars[name]:.5g}", "-" if math.isnan(bound) else f"{100 * bound:.2f}",
+                         figures[name].verdict.value, f"{best:.5g}", f"{100 * error:+.2f}"])
+    return rows
+
+
+def cost_rows(target, default) -> list[list[str]]:
+    """One row per point: the grid chosen, the models, the solves, their wall time and the default run's."""
+    rows = []
+    for point, solved in target.points.items():
+        record = solved.accuracy
+        grid = next(c.chosen for c in record.choices if c.what == "grid")
+        models = "; ".join(f"{c.what} {c.chosen}" for c in record.choices if c.what not in ("grid", "model"))
+        default_time = "-" if default is None else f"{default.points[point].scalars['wall_time']:.1f}"
+        default_grid = "-" if default is None else (f"{default.points[point].scalars['grid']:.0f} x "
+                                                    f"{default.points[point].scalars['grid_y']:.0f}")
+        rows.append([point, grid, models, str(len(record.steps)), f"{record.wall_time:.1f}", default_grid,
+                     default_time, record.stop])
+    return rows
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("target", type=Path)
+    parser.add_argument("--fine", type=Path, required=True)
+    parser.add_argument("--finer", type=Path)
+    parser.add_argument("--default", type=Path)
+    args = parser.parse_args()
+    target = read_result(args.target, fields=False)
+    fine = read_result(args.fine, fields=False)
+    finer = read_result(args.finer, fields=False) if args.finer else None
+    default = read_result(args.default, fields=False) if args.default else None
+    print(format_table(["point", "figure", "value (SI)", "bound %", "verdict", "reference", "error %"],
+                       figure_rows(target, fine, finer)))
+    print()
+    print(format_table(["point", "grid chosen", "models", "solves", "wall s", "default grid", "default wall s", "stop"],
+                       cost_rows(target, default)))
+
+
+if __name__ == "__main__":
+    main()

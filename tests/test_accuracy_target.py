@@ -1,0 +1,316 @@
+"""The accuracy target's decisions (accuracy_target.py) on a stand-in solver whose error is analytic: every figure
+f(nx, ny) = f* m (1 + C_x h_x^p + C_y h_y^p), h = 1/(n - 1), p its order (2 for the film, 1 for dT_max and mu), m the
+model's factor; it reports the estimate along x as the solver's hierarchy does (Richardson against nx coarser by
+two). The true error is then known, so the chosen grid and the verdicts are checked against it; and the settings'
+validation (solver.accuracy, --accuracy)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from facegear_tehl.accuracy_record import Verdict, accuracy_from_dict, accuracy_lines, accuracy_to_dict
+from facegear_tehl.accuracy_target import FALLBACK_SAFETY, figure_bound, solve_to_accuracy
+from facegear_tehl.case import ACCURACY_RANGE, load_case
+from facegear_tehl.ehl.richardson import richardson_error
+from facegear_tehl.ehl.tuning import TUNING
+from facegear_tehl.parallel import SolveTask
+from facegear_tehl.points import contact_analysis
+from facegear_tehl.schema import CaseError
+from facegear_tehl.settings import ThermalMode
+from facegear_tehl.solution import Field, Outcome, PointSolution
+
+import synthetic
+
+ORDERS = {"h_c": 2, "h_min": 2, "p_max": 2, "dT_max": 1, "mu": 1}
+FEWER = TUNING.accuracy_fewer_layers
+EXACT = {"h_c": 1.0e-6, "h_min": 0.8e-6, "p_max": 6.0e8, "dT_max": 50.0, "mu": 0.01}
+
+
+@dataclass
+class AnalyticSolver:
+    """A stand-in solver with the analytic error of the module docstring; `factors` the model's factor m per
+    (what, word), `fails_from` the x nodes from which a solve does not converge; records the grids it solved."""
+
+    c_x: float = 1.0
+    c_y: float = 0.0
+    factors: dict = field(default_factory=dict)
+    fails_from: int = 10**9
+    seconds_per_node: float = 1e-5
+    grids: list = field(default_factory=list)
+
+    def value(self, name: str, nx: int, ny: int, settings, lubricant) -> float:
+        order = ORDERS[name]
+        scale = 1.0 if order == 2 else 1e-3  # the first-order figures' coefficients a thousandth of the film's
+        model = (self.factors.get(("thermal", str(settings.thermal)), 1.0)
+                 * self.factors.get(("layers", settings.thermal_layers), 1.0)
+                 * self.factors.get(("rheology", lubricant.rheology), 1.0))
+        return EXACT[name] * model * (1.0 + scale * (self.c_x / (nx - 1) ** order + self.c_y / (ny - 1) ** order))
+
+    def __call__(self, point, lubricant, settings) -> PointSolution:
+        nx, ny = settings.grid, settings.nodes_y
+        self.grids.append((nx, ny))
+        scalars = {name: (self.value(name, nx, ny, settings, lubricant), "1") for name in EXACT}
+        for name in ("h_c", "h_min", "dT_max", "mu"):  # the hierarchy's estimate along x; none for p_max
+            coarse = self.value(name, (nx + 1) // 2, ny, settings, lubricant)
+            scalars[f"error_estimate_{name}"] = (richardson_error(scalars[name][0], coarse, ORDERS[name]), "1")
+        dx = settings.domain_x or (-4.5, 1.5)
+        dy = settings.domain_y or (-3.0, 3.0)
+        scalars.update({"a": (1.0, "m"), "b": (1.0, "m"), "grid": (nx, "1"), "grid_y": (ny, "1"),
+                        "wall_time": (self.seconds_per_node * nx * ny, "s")})
+        converged = nx < self.fails_from
+        return PointSolution(point.name, Outcome.CONVERGED if converged else Outcome.NOT_CONVERGED, "", scalars, {},
+                             {"x": Field(np.linspace(*dx, nx), "m"), "y": Field(np.linspace(*dy, ny), "m")},
+                             models={"thermal": str(settings.thermal)})
+
+
+def _task(thermal: ThermalMode = ThermalMode.OFF, rheology: str = "newtonian", accuracy: float = 0.01,
+          **settings) -> SolveTask:
+    case = synthetic.ball_on_disc()
+    solver = replace(case.solver, grid=257, grid_y=65, thermal=thermal, accuracy=accuracy, **settings)
+    return SolveTask(contact_analysis(case).points[0], replace(case.lubricant, rheology=rheology), solver)
+
+
+def _true_error(solver: AnalyticSolver, solution: PointSolution, name: str) -> float:
+    exact = EXACT[name]
+    return abs(solution.scalar(name) - exact) / exact
+
+
+def _smallest_grid(c: float, target: float, start: int = TUNING.accuracy_start_grid, order: int = 2) -> int:
+    """The first grid from `start` whose fallback bound, F_s times the two-grid Richardson estimate of the analytic
+    error, is within `target`: the grid the target must stop on."""
+    n = start
+    while True:
+        fine, coarse = 1 + c / (n - 1) ** order, 1 + c / ((n + 1) // 2 - 1) ** order
+        if FALLBACK_SAFETY * abs(richardson_error(fine, coarse, order)) <= target:
+            return n
+        n = 2 * n - 1
+
+
+def test_the_target_stops_on_the_first_x_grid_whose_bound_meets_it_and_the_true_error_is_within_it():
+    solver = AnalyticSolver(c_x=200.0)
+    (solution,) = solve_to_accuracy([_task()], solver, jobs=1)
+    expected = _smallest_grid(200.0, 0.01)
+    assert expected > TUNING.accuracy_start_grid  # the case must need refining
+    assert solution.scalar("grid") == expected and solution.scalar("grid_y") == 33  # y kept at the start's aspect
+    for name in ("h_c", "h_min"):
+        assert _true_error(solver, solution, name) <= 0.01
+    record = solution.accuracy
+    verdicts = {f.name: f.verdict for f in record.figures}
+    assert verdicts == {"h_c": Verdict.MET, "h_min": Verdict.MET, "p_max": Verdict.UNRESOLVED,
+                        "dT_max": Verdict.MET, "mu": Verdict.MET}
+    assert record.stop == "every bounded figure within the target"
+    assert solution.scalar("wall_time") == pytest.approx(sum(s.seconds for s in record.steps))
+
+
+def test_the_axis_whose_estimate_dominates_is_refined_y_from_the_check_solve():
+    solver = AnalyticSolver(c_x=0.01, c_y=20.0)
+    (solution,) = solve_to_accuracy([_task()], solver, jobs=1)
+    assert solution.scalar("grid") == TUNING.accuracy_start_grid  # x never refined
+    assert solution.scalar("grid_y") == _smallest_grid(20.0, 0.01, start=33) > 33
+    assert _true_error(solver, solution, "h_c") <= 0.01
+    purposes = [s.purpose for s in solution.accuracy.steps]
+    assert "refine y" in purposes and "refine x" not in purposes
+    assert purposes.count("y-check") == 1  # at the start; each y-refined solve has the one before as its check
+
+
+@pytest.mark.parametrize("effect, taken", [(0.002, True), (0.02, False)])
+def test_a_cheaper_model_is_taken_only_where_its_measured_effect_is_within_the_share(effect, taken):
+    factors = {("thermal", "reduced"): 1.0 + effect, ("layers", FEWER): 1.0 + 10 * effect}
+    solver = AnalyticSolver(c_x=1.0, factors=factors)
+    (solution,) = solve_to_accuracy([_task(ThermalMode.FULL)], solver, jobs=1)
+    choices = {c.what: c.chosen for c in solution.accuracy.choices}
+    assert choices["thermal"] == ("reduced" if taken else "as the case")
+    assert solution.models["thermal"] == ("reduced" if taken else "full")
+    # the layers' effect (10x) passes the share in neither case: with reduced taken it is not tried
+    assert ("thermal_layers" in choices) is (not taken)
+    assert choices.get("thermal_layers", "as the case") == "as the case"
+    figure = next(f for f in solution.accuracy.figures if f.name == "h_c")
+    assert figure.model_effect == pytest.approx(effect if taken else 0.0, rel=1e-9)
+    assert figure.bound <= 0.01 and _true_error(solver, solution, "h_c") <= 0.01 + 1e-12
+
+
+def test_two_cheaper_models_are_combined_and_their_combination_measured():
+    solver = AnalyticSolver(c_x=1.0, factors={("thermal", "reduced"): 1.05, ("layers", FEWER): 1.001,
+                                          ("rheology", "newtonian"): 1.001})
+    (solution,) = solve_to_accuracy([_task(ThermalMode.FULL, "ree_eyring")], solver, jobs=1)
+    choices = {c.what: c.chosen for c in solution.accuracy.choices}
+    chosen = (choices["thermal"], choices["thermal_layers"], choices["rheology"])
+    assert chosen == ("as the case", str(FEWER), "newtonian")
+    assert "model check: combined" in [s.purpose for s in solution.accuracy.steps]
+    figure = next(f for f in solution.accuracy.figures if f.name == "h_c")
+    assert figure.model_effect == pytest.approx(1.001**2 - 1.0, rel=1e-9)  # measured, not summed
+
+
+def test_the_grid_cap_stops_the_refinement_with_the_figures_not_met():
+    solver = AnalyticSolver(c_x=1e4)
+    (solution,) = solve_to_accuracy([_task()], solver, jobs=1)
+    assert solution.scalar("grid") == TUNING.accuracy_max_grid
+    assert "largest grid" in solution.accuracy.stop
+    assert {f.name: f.verdict for f in solution.accuracy.figures}["h_c"] is Verdict.NOT_MET
+
+
+def test_the_time_budget_stops_the_refinement_before_a_grid_that_would_pass_it():
+    solver = AnalyticSolver(c_x=1e4, seconds_per_node=1e-3)  # 129 x 33: 4.2 s; 257 x 33 would take 8.4 s
+    (solution,) = solve_to_accuracy([_task(time_budget=10.0)], solver, jobs=1)
+    assert solution.scalar("grid") == TUNING.accuracy_start_grid
+    assert "time budget" in solution.accuracy.stop and "257 x 33 not started" in solution.accuracy.stop
+
+
+def test_a_finer_solve_that_does_not_converge_keeps_the_coarser_one_and_refines_both_axes_next():
+    solver = AnalyticSolver(c_x=600.0, fails_from=513)
+    (solution,) = solve_to_accuracy([_task()], solver, jobs=1)
+    assert solution.converged and solution.scalar("grid") == 257
+    assert solver.grids[-2:] == [(513, 33), (513, 65)]  # x alone, then both (failing as well here)
+    assert solution.accuracy.stop == ("513 x 65 ended not converged (after 513 x 33 ended not converged); the "
+                                      "converged 257 x 33 solution kept")
+
+
+def test_refining_both_axes_after_one_failed_goes_on_from_the_finer_grid():
+    solver = AnalyticSolver(c_x=600.0)
+
+    def failing(point, lubricant, settings):  # the analytic solver, its first 513 x 33 solve not converging
+        solution = solver(point, lubricant, settings)
+        first = solver.grids.count((513, 33)) == 1 and solver.grids[-1] == (513, 33)
+        return replace(solution, outcome=Outcome.NOT_CONVERGED) if first else solution
+
+    (solution,) = solve_to_accuracy([_task()], failing, jobs=1)
+    assert (solution.scalar("grid"), solution.scalar("grid_y")) == (513, 65) and solution.converged
+    assert solution.accuracy.stop == "every bounded figure within the target"
+
+
+def test_the_bound_is_the_solves_own_where_it_gives_one_else_the_estimates_times_the_safety():
+    solution = AnalyticSolver()(_task().point, _task().lubricant, replace(_task().settings, grid=257, grid_y=65))
+    e_x = solution.scalar("error_estimate_h_c")
+    assert figure_bound(solution, "h_c", 0.001).bound == pytest.approx(FALLBACK_SAFETY * (abs(e_x) + 0.001))
+    assert math.isinf(figure_bound(solution, "h_c").bound)  # no y-estimate yet: unknown
+    assert math.isinf(figure_bound(solution, "p_max", 0.0).bound)  # never bounded
+    bounded = replace(solution, scalars={**solution.scalars, "error_bound_h_c": (0.004, "1"),
+                                         "unresolved_h_c": (0.0, "1"), "unresolved_h_min": (1.0, "1")})
+    assert figure_bound(bounded, "h_c").bound == 0.004
+    assert math.isinf(figure_bound(bounded, "h_min", 0.0).bound)
+
+
+def test_the_record_reads_back_as_written_and_prints():
+    (solution,) = solve_to_accuracy([_task()], AnalyticSolver(c_x=200.0), jobs=1)
+    record = solution.accuracy
+    assert accuracy_from_dict(accuracy_to_dict(record)) == record
+    lines = accuracy_lines("contact", record)
+    assert lines[0] == "accuracy of contact: target 1 %, every bounded figure within the target"
+    assert "  figure   p_max: no bound, unresolved" in lines
+
+
+@pytest.mark.parametrize("text, fraction", [("0.01", 0.01), ("'1%'", 0.01), ("'0.5 %'", 0.005), ("0.5", 0.5)])
+def test_solver_accuracy_reads_a_fraction_or_a_percentage(tmp_path, text, fraction):
+    path = tmp_path / "case.yaml"
+    path.write_text(_with_accuracy(text), encoding="utf-8")
+    assert load_case(path).solver.accuracy == pytest.approx(fraction)
+
+
+@pytest.mark.parametrize("text", ["0", "0.6", "'200%'", "'abc'", "true", "'%'", ".nan"])
+def test_a_bad_solver_accuracy_names_the_key_and_the_range(tmp_path, text):
+    path = tmp_path / "case.yaml"
+    path.write_text(_with_accuracy(text), encoding="utf-8")
+    with pytest.raises(CaseError) as error:
+        load_case(path)
+    message = str(error.value)
+    assert "solver.accuracy" in message and f"from {ACCURACY_RANGE[0]:g} to {ACCURACY_RANGE[1]:g}" in message
+
+
+def _with_accuracy(text: str) -> str:
+    """The shipped ball-on-disc case with `accuracy: text` in its solver block."""
+    case = (Path(__file__).parents[1] / "cases" / "ball_on_disc.yaml").read_text(encoding="utf-8")
+    assert "\nsolver:\n" in case
+    return case.replace("\nsolver:\n", f"\nsolver:\n  accuracy: {text}\n", 1)
+
+
+def test_the_sweep_compares_the_target_with_its_extrapolation():
+    """On the analytic solver the sweep's Richardson value is exact for the second-order figures: the target's h_c
+    differs from it by its true error, within the target."""
+    from facegear_tehl.sweep import report, run_sweep
+
+    solver = AnalyticSolver(c_x=200.0)
+    case = synthetic.ball_on_disc()
+    case = replace(case, solver=replace(case.solver, grid=257, grid_y=65, accuracy=0.01))
+    swept = run_sweep(case, [129, 257, 513], solver=solver, jobs=1)
+    scalars = {k: v for k, (v, _) in swept.run.sweep_scalars.items()}
+    targeted = swept.run.points[-1]
+    assert targeted.name == "contact@accuracy" and scalars["accuracy_grid"] == targeted.scalar("grid")
+    assert scalars["h_c_accuracy_error"] == pytest.approx(_true_error(solver, targeted, "h_c"), rel=1e-6)
+    assert abs(scalars["h_c_accuracy_error"]) <= 0.01
+    text = report(swept.run.sweep, scalars)
+    assert "accuracy target 1 %: solved on 257 x 33" in text
+
+
+def test_the_study_sets_the_accuracy_in_every_variant_over_its_set(tmp_path):
+    from facegear_tehl.study_file import load_study
+
+    study = tmp_path / "study.yaml"
+    study.write_text(f"base: {synthetic.BALL_ON_DISC}\nvary:\n  contact.load: [5.0, 6.0]\n"
+                     "set: {solver.accuracy: 0.05}\n", encoding="utf-8")
+    assert {v.case.solver.accuracy for v in load_study(study).variants} == {0.05}
+    plan = load_study(study, fixed=(("solver.accuracy", 0.01),))
+    assert {v.case.solver.accuracy for v in plan.variants} == {0.01}
+    assert all("accuracy: 0.01" in v.text for v in plan.variants)
+
+
+@pytest.mark.slow
+def test_tehl_run_to_an_accuracy_target_end_to_end(tmp_path):
+    """`tehl run --accuracy 2%` on the shipped ball-on-disc contact (isothermal): exit 0, the record in the file and in
+    `tehl info`, every bounded figure met, and h_c and h_min within 2 % of the same contact solved on 513^2."""
+    from click.testing import CliRunner
+
+    from facegear_tehl.cli import tehl
+    from facegear_tehl.results import read_result
+
+    target, reference = tmp_path / "target.h5", tmp_path / "reference.h5"
+    case = str(synthetic.BALL_ON_DISC)
+    result = CliRunner().invoke(tehl, ["run", case, "--thermal", "off", "--accuracy", "2%", "--jobs", "1",
+                                       "-o", str(target)])
+    assert result.exit_code == 0, result.output
+    assert "accuracy target 2 % per point" in result.output
+    point = read_result(target, fields=False).points["contact"]
+    assert point.accuracy.stop == "every bounded figure within the target"
+    assert {f.name: f.verdict for f in point.accuracy.figures} == {
+        "h_c": Verdict.MET, "h_min": Verdict.MET, "p_max": Verdict.UNRESOLVED}
+    info = CliRunner().invoke(tehl, ["info", str(target)])
+    assert "accuracy of contact: target 2 %" in info.output
+    fine = CliRunner().invoke(tehl, ["run", case, "--thermal", "off", "--grid", "513", "--jobs", "1",
+                                     "-o", str(reference)])
+    assert fine.exit_code == 0, fine.output
+    exact = read_result(reference, fields=False).points["contact"]
+    for name in ("h_c", "h_min"):
+        assert abs(point.scalars[name] / exact.scalars[name] - 1.0) <= 0.02, name
+
+
+def test_the_record_is_written_to_the_result_file_and_read_back_by_tehl_info(tmp_path):
+    from facegear_tehl.cli import info_json, info_text
+    from facegear_tehl.results import read_result, write_result
+
+    (targeted,) = solve_to_accuracy([_task()], AnalyticSolver(c_x=200.0), jobs=1)
+    run = synthetic.run_result()
+    run = replace(run, points=(replace(run.points[0], accuracy=targeted.accuracy),))
+    result = read_result(write_result(run, tmp_path / "target.h5"))  # the reader checks the layout (h5_guard)
+    assert result.points["contact"].accuracy == targeted.accuracy
+    assert "accuracy of contact: target 1 %, every bounded figure within the target" in info_text(result)
+    assert info_json(result)["accuracy"]["contact"]["stop"] == "every bounded figure within the target"
+
+
+def test_a_y_check_reported_on_another_grid_than_asked_gives_no_y_estimate():
+    """The solver's own retry may keep a coarser grid's solution of a check that ran away: it is no y-check."""
+    from facegear_tehl.accuracy_target import y_check, y_estimates
+
+    task = replace(_task(), settings=replace(_task().settings, grid=257, grid_y=65))
+    solver = AnalyticSolver(c_y=20.0)
+    solution = solver(task.point, task.lubricant, task.settings)
+    check = y_check(task, solution)
+    assert (check.settings.grid, check.settings.nodes_y) == (257, 33)
+    good = y_estimates(solution, solver(check.point, check.lubricant, check.settings))
+    assert good["h_c"] == pytest.approx(richardson_error(solution.scalar("h_c"), solver.value(
+        "h_c", 257, 33, check.settings, check.lubricant), 2))
+    coarser = solver(check.point, check.lubricant, replace(check.settings, grid=129, grid_y=33))
+    assert all(math.isnan(e) for e in y_estimates(solution, coarser).values())
