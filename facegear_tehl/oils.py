@@ -5,7 +5,8 @@ SI properties of `Lubricant` at the inlet temperature (docs/verdict.md, "Oil inp
   viscosity index   VI = 100 (L - U)/(L - H) for U >= H, else VI = 100 + (10^N - 1)/0.00715, N = log(H/U)/log(Y)
                     (ASTM D2270-10 Procedures A and B; U = nu_40, Y = nu_100, L and H the nu_40 of the VI 0 and
                     VI 100 reference oils of the same nu_100 by the quadratics of its Appendix X2, Table X2.1);
-                    nu_100 not given = the Y at which the oil type's assumed VI is reached
+                    nu_100 not given = the Y at which the given or the oil type's assumed VI is reached
+  rho_15 not given  the oil type's typical density at 15 degC (ASSUMED_DENSITY_15, from gear oils' data sheets)
   viscosity-temp.   log10 log10(nu + 0.7) = A - B log10 T   (ASTM D341, Walther; nu in mm^2/s >= 2, T in K),
                     A and B through (313.15 K, nu_40) and (373.15 K, nu_100)
   density           rho(t) = rho_15 exp[-a_15 dt (1 + 0.8 a_15 dt)],  a_15 = K_1/rho_15,  dt = t - 15 degC
@@ -54,7 +55,7 @@ WATER_DENSITY = 1000.0  # kg/m^3, to turn rho_15 into the specific gravity s_15 
 # ASTM D2270-10, Appendix X2, Table X2.1: the nu_40 of the reference oils of VI 0 (L) and VI 100 (H) having the
 # oil's nu_100 = Y (mm^2/s), L = a Y^2 + b Y + c and H = d Y^2 + e Y + f from Y = the row's first number up to the
 # next row's (the last row, Y > 70, is the standard's own formula for L and H above its Table 1). The quadratics
-# reproduce Table 1 within 0.12 % (tests/test_oils.py).
+# reproduce Table 1 within 0.1 % (tests/test_oils.py).
 D2270_REFERENCE_OILS = (
     (2.0, 1.14673, 1.7576, -0.109, 0.84155, 1.5521, -0.077),
     (3.8, 3.38095, -15.4952, 33.196, 0.78571, 1.7929, -0.183),

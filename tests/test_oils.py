@@ -72,9 +72,9 @@ ASME_1953 = {
 ASME_TEMPERATURES = (30.0 + KELVIN, 60.0 + KELVIN, 100.0 + KELVIN)
 
 
-def _walther_through_30_and_100(eta_mpas):
+def _walther_through_30_and_100(eta_mpas, density_15=880.0):
     """The Walther line through the kinematic viscosities at 30 and 100 degC (rho_15 = 880 kg/m^3 assumed)."""
-    nu = [eta * 1e-3 / density_at(880.0, t) * 1e6 for eta, t in zip(eta_mpas, ASME_TEMPERATURES)]
+    nu = [eta * 1e-3 / density_at(density_15, t) * 1e6 for eta, t in zip(eta_mpas, ASME_TEMPERATURES)]
     w = [math.log10(math.log10(n + 0.7)) for n in nu]
     b = (w[0] - w[2]) / math.log10(ASME_TEMPERATURES[2] / ASME_TEMPERATURES[0])
     return Walther(w[0] + b * math.log10(ASME_TEMPERATURES[0]), b), nu
@@ -86,15 +86,56 @@ def test_walther_line_predicts_the_measured_viscosity_between_its_points(oil):
     assert line.viscosity(ASME_TEMPERATURES[1]) == pytest.approx(nu[1], rel=0.03)  # measured at 60 degC
 
 
-@pytest.mark.parametrize("oil", ASME_1953)
+# The same table's other petroleum oils (named there light machine, heavy machine, spindle and cylinder oils; here by
+# their viscosity at 30 degC). Its first light machine oil (38, 12.1, 5.3 mPa s) is left out: its three viscosities do
+# not lie on one Walther line (12 % off at 60 degC) and it has no coefficient at 30 degC.
+ASME_1953_MORE = {
+    "heavy machine oil 250": ((250.0, 50.5, 12.6), (25.0, 21.3, 17.6)),
+    "light machine oil 45": ((45.0, 12.0, 3.9), (28.0, 20.0, 16.0)),
+    "heavy machine oil 122": ((122.0, 26.3, 7.3), (27.0, 21.6, 17.5)),
+    "heavy machine oil 171": ((171.0, 31.0, 7.5), (28.0, 23.0, 18.0)),
+    "spindle oil 30.7": ((30.7, 8.6, 3.1), (25.7, 20.3, 15.4)),
+    "heavy machine oil 165": ((165.0, 30.0, 6.8), (33.0, 23.8, 16.0)),
+    "heavy machine oil 310": ((310.0, 44.2, 9.4), (34.6, 26.3, 19.5)),
+    "cylinder oil 2000": ((2000.0, 180.0, 24.0), (41.5, 29.4, 25.0)),
+}
+MINERAL_OILS_MEASURED = {**ASME_1953, **ASME_1953_MORE}
+
+
+def _correlation_over_measured(eta_mpas, alpha_per_gpa, oil_type="mineral", density_15=880.0):
+    """alpha of ISO/TR 15144-1 (eta_38 from the Walther line through 30 and 100 degC) over the measured alpha at 30,
+    60, 100 degC."""
+    line, _ = _walther_through_30_and_100(eta_mpas, density_15)
+    eta_38 = line.viscosity(38.0 + KELVIN) * 1e-6 * density_at(density_15, 38.0 + KELVIN)
+    return [pressure_viscosity(eta_38, t, oil_type) / (measured * 1e-9)
+            for t, measured in zip(ASME_TEMPERATURES, alpha_per_gpa)]
+
+
+@pytest.mark.parametrize("oil", MINERAL_OILS_MEASURED)
 def test_mineral_pressure_viscosity_against_measured_values(oil):
-    # ISO/TR 15144-1's correlation fits secant coefficients; the ASME (1953) values are initial slopes, higher:
-    # over these oils the correlation lies 11-39 % below them (docs/verdict.md), never above.
-    eta, alpha = ASME_1953[oil]
-    line, _ = _walther_through_30_and_100(eta)
-    eta_38 = line.viscosity(38.0 + KELVIN) * 1e-6 * density_at(880.0, 38.0 + KELVIN)
-    for t, measured in zip(ASME_TEMPERATURES, alpha):
-        assert 0.6 < pressure_viscosity(eta_38, t) / (measured * 1e-9) < 0.95
+    # The ASME (1953) coefficients are initial slopes d ln(eta)/dp at p -> 0; over these twelve oils the correlation
+    # lies 11-39 % below them (docs/verdict.md), never above.
+    for ratio in _correlation_over_measured(*MINERAL_OILS_MEASURED[oil]):
+        assert 0.6 < ratio < 0.9
+
+
+def test_the_mineral_correlations_offset_and_scatter_over_the_asme_oils():
+    """Over 36 measured coefficients (12 oils at 30, 60, 100 degC) the correlation over the measured value has mean
+    0.76 and standard deviation 0.075: a systematic offset (initial slopes against the correlation's alpha) with a
+    scatter of +-10 % (one standard deviation) about it."""
+    ratios = [r for eta, alpha in MINERAL_OILS_MEASURED.values() for r in _correlation_over_measured(eta, alpha)]
+    mean = sum(ratios) / len(ratios)
+    deviation = math.sqrt(sum((r - mean) ** 2 for r in ratios) / (len(ratios) - 1))
+    assert len(ratios) == 36
+    assert 0.73 < mean < 0.79 and deviation < 0.09
+
+
+def test_pag_pressure_viscosity_against_the_asme_copolymer():
+    # The same table: ethylene oxide-propylene oxide copolymer (a polyalkylene glycol), 204, 62.5, 22.5 mPa s at 30,
+    # 60, 100 degC and alpha = 17.6 1/GPa at 30 degC (rho_15 = 1000 kg/m^3 assumed). ISO/TR 15144-1 Formula (11)
+    # gives 0.61 of it: 39 % below, the low end of the mineral oils' range.
+    ratio = _correlation_over_measured((204.0, 62.5, 22.5), (17.6, 17.6, 17.6), "pag", 1000.0)[0]
+    assert 0.55 < ratio < 0.7
 
 
 def test_beta_and_expansion_are_the_derivatives_of_the_laws():
@@ -197,8 +238,8 @@ D2270_TABLE_1 = ((2.00, 7.994, 6.394), (3.00, 15.49, 12.15), (4.40, 30.48, 22.92
 @pytest.mark.parametrize("nu_100, low, high", D2270_TABLE_1)
 def test_reference_oils_reproduce_d2270_table_1(nu_100, low, high):
     fitted_low, fitted_high = reference_oils(nu_100)
-    assert fitted_low == pytest.approx(low, rel=1.2e-3)  # the appendix's quadratics miss the table by <= 0.12 %
-    assert fitted_high == pytest.approx(high, rel=1.2e-3)
+    assert fitted_low == pytest.approx(low, rel=1e-3)  # the appendix's quadratics miss the table by < 0.1 %
+    assert fitted_high == pytest.approx(high, rel=1e-3)
 
 
 def test_viscosity_index_of_the_d2270_worked_examples():
