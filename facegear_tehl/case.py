@@ -21,7 +21,15 @@ from facegear_tehl.fzg import MICROPITTING_STAGES
 from facegear_tehl.gears.spec import GearSpec, parse_gear_block
 from facegear_tehl.lubricant import DENSITY_MODELS, KELVIN, OIL_TYPES, RHEOLOGY_MODELS, VISCOSITY_MODELS, Lubricant
 from facegear_tehl.materials import Solid
-from facegear_tehl.oils import ISO_VG_GRADES, WALTHER_LOWEST, derive, grade_viscosity
+from facegear_tehl.oils import (
+    ASSUMED_DENSITY_15,
+    ASSUMED_VISCOSITY_INDEX,
+    ISO_VG_GRADES,
+    WALTHER_LOWEST,
+    derive,
+    grade_viscosity,
+    nu100_for_index,
+)
 from facegear_tehl.schema import Block, CaseError, attempt, check, collecting, defaults, warn
 from facegear_tehl.scuffing import FZG_STAGES, LUBRICATION_METHODS
 from facegear_tehl.settings import (  # also imported from here
@@ -251,7 +259,7 @@ def _scuffing_temperature(block: Block, inlet: float) -> float | None:
 
 
 # The keys of an oil given in engineering units (oils.py) instead of viscosity in Pa s.
-_OIL_KEYS = ("grade", "nu40", "nu100", "density_15")
+_OIL_KEYS = ("grade", "nu40", "nu100", "viscosity_index", "density_15")
 
 
 def _oil(block: Block, temperature: float, oil_type: str) -> tuple[dict[str, float], tuple[str, ...]]:
@@ -269,8 +277,8 @@ def _oil(block: Block, temperature: float, oil_type: str) -> tuple[dict[str, flo
         nu_40, source = grade_viscosity(grade), f"the ISO 3448 VG {grade} midpoint"
     else:
         nu_40 = block.number("nu40", low=WALTHER_LOWEST, high=1e6, unit="mm^2/s")
-    nu_100 = block.number("nu100", low=WALTHER_LOWEST, high=1e6, unit="mm^2/s (from the oil's datasheet)")
-    density_15 = block.number("density_15", low=500.0, high=2000.0, unit="kg/m^3 (from the oil's datasheet)")
+    nu_100, assumed = _nu100(block, nu_40, oil_type)
+    density_15, density_line = _density_15(block, oil_type)
     if not all(math.isfinite(v) for v in (nu_40, nu_100, density_15)):  # recorded by the readers
         return {"viscosity": math.nan}, ()
     check(nu_100 < nu_40, block.key_path("nu100"), nu_100, f"less than nu_40 = {nu_40:g} mm^2/s")
@@ -282,8 +290,43 @@ def _oil(block: Block, temperature: float, oil_type: str) -> tuple[dict[str, flo
     oil = derive(nu_40, nu_100, density_15, temperature, oil_type, source, density)
     values = {key: getattr(oil, key) for key in ("viscosity", "density", "temperature_viscosity", "thermal_expansion",
                                                  "pressure_viscosity", "thermal_conductivity", "specific_heat")}
+    lines = (*assumed, *density_line, *oil.provenance)
     return ({key: value for key, value in values.items() if value is not None},
-            tuple(f"{block.key_path(line)}" for line in oil.provenance))
+            tuple(f"{block.key_path(line)}" for line in lines))
+
+
+def _nu100(block: Block, nu_40: float, oil_type: str) -> tuple[float, tuple[str, ...]]:
+    """lubricant.nu100 in mm^2/s: given, else at lubricant.viscosity_index (given, or the one assumed for the oil
+    type, oils.ASSUMED_VISCOSITY_INDEX) by ASTM D2270; with the provenance line of a derived value."""
+    if block.has("nu100"):
+        check(not block.has("viscosity_index"), block.key_path("viscosity_index"), block.raw.get("viscosity_index"),
+              "no viscosity_index with nu100 (nu100 fixes the index)")
+        return block.number("nu100", low=WALTHER_LOWEST, high=1e6, unit="mm^2/s (from the oil's datasheet)"), ()
+    assumed = ASSUMED_VISCOSITY_INDEX.get(oil_type)
+    if assumed is None and not block.has("viscosity_index"):
+        check(False, block.key_path("nu100"), None, f"a value in mm^2/s from the datasheet (or viscosity_index): no "
+              f"viscosity index is assumed for oil_type {oil_type}")
+        return math.nan, ()
+    index = block.number("viscosity_index", assumed, low=-100.0, high=400.0, unit="(ASTM D2270)")
+    if not math.isfinite(nu_40 + index):
+        return math.nan, ()
+    source = "given" if block.has("viscosity_index") else f"assumed for {oil_type} gear oils"
+    try:
+        nu_100 = nu100_for_index(nu_40, index)
+    except ValueError as error:
+        check(False, block.key_path("viscosity_index"), index, f"an index reached at nu_100 >= 2 mm^2/s ({error})")
+        return math.nan, ()
+    return nu_100, (f"nu100 = {nu_100:.4g} mm^2/s: ASTM D2270-10 (Appendix X2 reference oils) at nu_40 = "
+                    f"{nu_40:g} mm^2/s and viscosity index {index:g} ({source})",)
+
+
+def _density_15(block: Block, oil_type: str) -> tuple[float, tuple[str, ...]]:
+    """lubricant.density_15 in kg/m^3: given, else the one assumed for the oil type (oils.ASSUMED_DENSITY_15)."""
+    if block.has("density_15") or oil_type not in ASSUMED_DENSITY_15:
+        return block.number("density_15", low=500.0, high=2000.0, unit="kg/m^3 (from the oil's datasheet)"), ()
+    density_15 = ASSUMED_DENSITY_15[oil_type]
+    return density_15, (f"density_15 = {density_15:g} kg/m^3: assumed for {oil_type} gear oils (datasheets' range, "
+                        "docs/verdict.md)",)
 
 
 def _grade(block: Block) -> int:

@@ -2,6 +2,11 @@
 SI properties of `Lubricant` at the inlet temperature (docs/verdict.md, "Oil inputs").
 
   grade             nu_40 = the ISO 3448 midpoint of the grade, mm^2/s (ISO 3448:1992, VG 22 .. VG 1000)
+  viscosity index   VI = 100 (L - U)/(L - H) for U >= H, else VI = 100 + (10^N - 1)/0.00715, N = log(H/U)/log(Y)
+                    (ASTM D2270-10 Procedures A and B; U = nu_40, Y = nu_100, L and H the nu_40 of the VI 0 and
+                    VI 100 reference oils of the same nu_100 by the quadratics of its Appendix X2, Table X2.1);
+                    nu_100 not given = the Y at which the given or the oil type's assumed VI is reached
+  rho_15 not given  the oil type's typical density at 15 degC (ASSUMED_DENSITY_15, from gear oils' data sheets)
   viscosity-temp.   log10 log10(nu + 0.7) = A - B log10 T   (ASTM D341, Walther; nu in mm^2/s >= 2, T in K),
                     A and B through (313.15 K, nu_40) and (373.15 K, nu_100)
   density           rho(t) = rho_15 exp[-a_15 dt (1 + 0.8 a_15 dt)],  a_15 = K_1/rho_15,  dt = t - 15 degC
@@ -47,6 +52,38 @@ CRAGOE_CONDUCTIVITY_SLOPE = 5.4e-4  # 1/degC: 0.0003 per degF
 CRAGOE_HEAT_CAPACITY = 1685.0  # J/(kg K): 0.4024 Btu/(lb degF) at 0 degC
 CRAGOE_HEAT_CAPACITY_SLOPE = 3.39  # J/(kg K degC): 0.00045 Btu/(lb degF^2)
 WATER_DENSITY = 1000.0  # kg/m^3, to turn rho_15 into the specific gravity s_15 of Cragoe's formulas
+# ASTM D2270-10, Appendix X2, Table X2.1: the nu_40 of the reference oils of VI 0 (L) and VI 100 (H) having the
+# oil's nu_100 = Y (mm^2/s), L = a Y^2 + b Y + c and H = d Y^2 + e Y + f from Y = the row's first number up to the
+# next row's (the last row, Y > 70, is the standard's own formula for L and H above its Table 1). The quadratics
+# reproduce Table 1 within 0.1 % (tests/test_oils.py).
+D2270_REFERENCE_OILS = (
+    (2.0, 1.14673, 1.7576, -0.109, 0.84155, 1.5521, -0.077),
+    (3.8, 3.38095, -15.4952, 33.196, 0.78571, 1.7929, -0.183),
+    (4.4, 2.5, -7.2143, 13.812, 0.82143, 1.5679, 0.119),
+    (5.0, 0.101, 16.635, -45.469, 0.04985, 9.1613, -18.557),
+    (6.4, 3.35714, -23.5643, 78.466, 0.22619, 7.7369, -16.656),
+    (7.0, 0.01191, 21.475, -72.87, 0.79762, -0.7321, 14.61),
+    (7.7, 0.41858, 16.1558, -56.04, 0.05794, 10.5156, -28.24),
+    (9.0, 0.88779, 7.5527, -16.6, 0.26665, 6.7015, -10.81),
+    (12.0, 0.7672, 10.7972, -38.18, 0.20073, 8.4658, -22.49),
+    (15.0, 0.97305, 5.3135, -2.2, 0.28889, 5.9741, -4.93),
+    (18.0, 0.97256, 5.25, -0.98, 0.24504, 7.416, -16.73),
+    (22.0, 0.91413, 7.4759, -21.82, 0.20323, 9.1267, -34.23),
+    (28.0, 0.87031, 9.7157, -50.77, 0.18411, 10.1015, -46.75),
+    (40.0, 0.84703, 12.6752, -133.31, 0.17029, 11.4866, -80.62),
+    (55.0, 0.85921, 11.1009, -83.19, 0.1713, 11.368, -76.94),
+    (70.0, 0.83531, 14.6731, -216.246, 0.16841, 11.8493, -96.947),
+)
+D2270_HIGH_INDEX = 0.00715  # ASTM D2270-10 Procedure B: VI = 100 + (antilog N - 1)/0.00715
+# The viscosity index assumed for a grade given without nu_100, the typical VI printed on the data sheets of gear
+# oils of the base oil (docs/verdict.md, "Oil inputs"): mineral ISO 12925-1 CKD oils 95-98 (ExxonMobil Mobilgear
+# 600 XP series: 97), PAO 150-155, PAG 200-220 (Shell Omala S4 WE 220: 203). Esters range too widely (about
+# 120-200) for one value: nu100 is required for them.
+ASSUMED_VISCOSITY_INDEX = {"mineral": 97.0, "pao": 150.0, "pag": 200.0}
+# The density at 15 degC assumed for a grade given without density_15 (kg/m^3), the middle of the data sheets'
+# values: mineral gear oils 880-900 (Mobilgear 600 XP 100: 880, 220: 890), PAO 850-870 (Mobil SHC 630: 866),
+# PAG 1000-1080 (Shell Omala S4 WE 220: 1074).
+ASSUMED_DENSITY_15 = {"mineral": 890.0, "pao": 860.0, "pag": 1060.0}
 
 
 def grade_viscosity(grade: int) -> float:
@@ -54,6 +91,35 @@ def grade_viscosity(grade: int) -> float:
     if grade not in ISO_VG_GRADES:
         raise ValueError(f"ISO VG {grade} is not one of the grades {ISO_VG_GRADES}")
     return float(grade)
+
+
+def reference_oils(nu_100: float) -> tuple[float, float]:
+    """(L, H): nu_40 of the VI 0 and VI 100 reference oils of this nu_100, mm^2/s (ASTM D2270-10, Table X2.1)."""
+    row = next(r for r in reversed(D2270_REFERENCE_OILS) if nu_100 >= r[0])
+    _, a, b, c, d, e, f = row
+    return a * nu_100**2 + b * nu_100 + c, d * nu_100**2 + e * nu_100 + f
+
+
+def viscosity_index(nu_40: float, nu_100: float) -> float:
+    """ASTM D2270-10 viscosity index of an oil of nu_40, nu_100 (mm^2/s, nu_100 >= 2): Procedure A,
+    100 (L - U)/(L - H), where U = nu_40 >= H; Procedure B, 100 + (10^N - 1)/0.00715 with N = log(H/U)/log(nu_100)."""
+    low, high = reference_oils(nu_100)
+    if nu_40 >= high:
+        return 100.0 * (low - nu_40) / (low - high)
+    return 100.0 + (10.0 ** (math.log10(high / nu_40) / math.log10(nu_100)) - 1.0) / D2270_HIGH_INDEX
+
+
+def nu100_for_index(nu_40: float, index: float) -> float:
+    """The nu_100 (mm^2/s) at which an oil of nu_40 has the viscosity index `index` (ASTM D2270-10 inverted by
+    bisection on log nu_100; the index rises with nu_100 at fixed nu_40). ValueError if it lies below 2 mm^2/s."""
+    low, high = math.log(WALTHER_LOWEST), math.log(nu_40)
+    if viscosity_index(nu_40, WALTHER_LOWEST) > index:
+        raise ValueError(f"an oil of nu_40 = {nu_40:g} mm^2/s and VI {index:g} has nu_100 below "
+                         f"{WALTHER_LOWEST:g} mm^2/s, where ASTM D2270 defines no index")
+    for _ in range(60):  # 60 halvings of the interval: below 1e-15 relative
+        middle = 0.5 * (low + high)
+        low, high = (middle, high) if viscosity_index(nu_40, math.exp(middle)) < index else (low, middle)
+    return math.exp(0.5 * (low + high))
 
 
 @dataclass(frozen=True)

@@ -8,7 +8,16 @@ import pytest
 from facegear_tehl.case import parse_case
 from facegear_tehl.cli import info_text, tehl
 from facegear_tehl.lubricant import KELVIN
-from facegear_tehl.oils import Walther, density_at, derive, pressure_viscosity
+from facegear_tehl.oils import (
+    ASSUMED_VISCOSITY_INDEX,
+    Walther,
+    density_at,
+    derive,
+    nu100_for_index,
+    pressure_viscosity,
+    reference_oils,
+    viscosity_index,
+)
 from facegear_tehl.results import read_result, write_result
 from facegear_tehl.schema import CaseError
 
@@ -63,9 +72,9 @@ ASME_1953 = {
 ASME_TEMPERATURES = (30.0 + KELVIN, 60.0 + KELVIN, 100.0 + KELVIN)
 
 
-def _walther_through_30_and_100(eta_mpas):
+def _walther_through_30_and_100(eta_mpas, density_15=880.0):
     """The Walther line through the kinematic viscosities at 30 and 100 degC (rho_15 = 880 kg/m^3 assumed)."""
-    nu = [eta * 1e-3 / density_at(880.0, t) * 1e6 for eta, t in zip(eta_mpas, ASME_TEMPERATURES)]
+    nu = [eta * 1e-3 / density_at(density_15, t) * 1e6 for eta, t in zip(eta_mpas, ASME_TEMPERATURES)]
     w = [math.log10(math.log10(n + 0.7)) for n in nu]
     b = (w[0] - w[2]) / math.log10(ASME_TEMPERATURES[2] / ASME_TEMPERATURES[0])
     return Walther(w[0] + b * math.log10(ASME_TEMPERATURES[0]), b), nu
@@ -77,15 +86,56 @@ def test_walther_line_predicts_the_measured_viscosity_between_its_points(oil):
     assert line.viscosity(ASME_TEMPERATURES[1]) == pytest.approx(nu[1], rel=0.03)  # measured at 60 degC
 
 
-@pytest.mark.parametrize("oil", ASME_1953)
+# The same table's other petroleum oils (named there light machine, heavy machine, spindle and cylinder oils; here by
+# their viscosity at 30 degC). Its first light machine oil (38, 12.1, 5.3 mPa s) is left out: its three viscosities do
+# not lie on one Walther line (12 % off at 60 degC) and it has no coefficient at 30 degC.
+ASME_1953_MORE = {
+    "heavy machine oil 250": ((250.0, 50.5, 12.6), (25.0, 21.3, 17.6)),
+    "light machine oil 45": ((45.0, 12.0, 3.9), (28.0, 20.0, 16.0)),
+    "heavy machine oil 122": ((122.0, 26.3, 7.3), (27.0, 21.6, 17.5)),
+    "heavy machine oil 171": ((171.0, 31.0, 7.5), (28.0, 23.0, 18.0)),
+    "spindle oil 30.7": ((30.7, 8.6, 3.1), (25.7, 20.3, 15.4)),
+    "heavy machine oil 165": ((165.0, 30.0, 6.8), (33.0, 23.8, 16.0)),
+    "heavy machine oil 310": ((310.0, 44.2, 9.4), (34.6, 26.3, 19.5)),
+    "cylinder oil 2000": ((2000.0, 180.0, 24.0), (41.5, 29.4, 25.0)),
+}
+MINERAL_OILS_MEASURED = {**ASME_1953, **ASME_1953_MORE}
+
+
+def _correlation_over_measured(eta_mpas, alpha_per_gpa, oil_type="mineral", density_15=880.0):
+    """alpha of ISO/TR 15144-1 (eta_38 from the Walther line through 30 and 100 degC) over the measured alpha at 30,
+    60, 100 degC."""
+    line, _ = _walther_through_30_and_100(eta_mpas, density_15)
+    eta_38 = line.viscosity(38.0 + KELVIN) * 1e-6 * density_at(density_15, 38.0 + KELVIN)
+    return [pressure_viscosity(eta_38, t, oil_type) / (measured * 1e-9)
+            for t, measured in zip(ASME_TEMPERATURES, alpha_per_gpa)]
+
+
+@pytest.mark.parametrize("oil", MINERAL_OILS_MEASURED)
 def test_mineral_pressure_viscosity_against_measured_values(oil):
-    # ISO/TR 15144-1's correlation fits secant coefficients; the ASME (1953) values are initial slopes, higher:
-    # over these oils the correlation lies 11-39 % below them (docs/verdict.md), never above.
-    eta, alpha = ASME_1953[oil]
-    line, _ = _walther_through_30_and_100(eta)
-    eta_38 = line.viscosity(38.0 + KELVIN) * 1e-6 * density_at(880.0, 38.0 + KELVIN)
-    for t, measured in zip(ASME_TEMPERATURES, alpha):
-        assert 0.6 < pressure_viscosity(eta_38, t) / (measured * 1e-9) < 0.95
+    # The ASME (1953) coefficients are initial slopes d ln(eta)/dp at p -> 0; over these twelve oils the correlation
+    # lies 11-39 % below them (docs/verdict.md), never above.
+    for ratio in _correlation_over_measured(*MINERAL_OILS_MEASURED[oil]):
+        assert 0.6 < ratio < 0.9
+
+
+def test_the_mineral_correlations_offset_and_scatter_over_the_asme_oils():
+    """Over 36 measured coefficients (12 oils at 30, 60, 100 degC) the correlation over the measured value has mean
+    0.76 and standard deviation 0.075: a systematic offset (initial slopes against the correlation's alpha) with a
+    scatter of +-10 % (one standard deviation) about it."""
+    ratios = [r for eta, alpha in MINERAL_OILS_MEASURED.values() for r in _correlation_over_measured(eta, alpha)]
+    mean = sum(ratios) / len(ratios)
+    deviation = math.sqrt(sum((r - mean) ** 2 for r in ratios) / (len(ratios) - 1))
+    assert len(ratios) == 36
+    assert 0.73 < mean < 0.79 and deviation < 0.09
+
+
+def test_pag_pressure_viscosity_against_the_asme_copolymer():
+    # The same table: ethylene oxide-propylene oxide copolymer (a polyalkylene glycol), 204, 62.5, 22.5 mPa s at 30,
+    # 60, 100 degC and alpha = 17.6 1/GPa at 30 degC (rho_15 = 1000 kg/m^3 assumed). ISO/TR 15144-1 Formula (11)
+    # gives 0.61 of it: 39 % below, the low end of the mineral oils' range.
+    ratio = _correlation_over_measured((204.0, 62.5, 22.5), (17.6, 17.6, 17.6), "pag", 1000.0)[0]
+    assert 0.55 < ratio < 0.7
 
 
 def test_beta_and_expansion_are_the_derivatives_of_the_laws():
@@ -133,9 +183,11 @@ def test_a_case_in_pa_s_derives_nothing():
     ("  grade: VG100\n  viscosity: 0.04\n  nu100: 11\n  density_15: 880\n  pressure_viscosity: 2e-8\n",
      "lubricant.viscosity"),
     ("  grade: VG100\n  nu40: 100\n  nu100: 11\n  density_15: 880\n", "lubricant.nu40"),
-    ("  grade: VG100\n  density_15: 880\n", "lubricant.nu100"),
+    ("  grade: VG100\n  density_15: 850\n  oil_type: ester\n  pressure_viscosity: 2e-8\n", "lubricant.nu100"),
+    ("  grade: VG100\n  nu100: 11\n  viscosity_index: 95\n", "lubricant.viscosity_index"),
+    ("  nu40: 3\n  oil_type: mineral\n", "lubricant.viscosity_index"),
     ("  nu40: 100\n  nu100: 120\n  density_15: 880\n", "lubricant.nu100"),
-    ("  grade: VG100\n  nu100: 11\n", "lubricant.density_15"),
+    ("  grade: VG100\n  nu100: 11\n  oil_type: ester\n  pressure_viscosity: 2e-8\n", "lubricant.density_15"),
     ("  grade: VG100\n  nu100: 11\n  density_15: 850\n  oil_type: ester\n", "lubricant.pressure_viscosity"),
     ("  viscosity: 0.04\n  pressure_viscosity: 2.2e-8\n  inlet_temperature: 90\n  scuffing_temperature: 80\n",
      "lubricant.scuffing_temperature"),
@@ -173,3 +225,83 @@ def test_pressure_viscosity_of_each_base_oil_by_hand():
     pao = derive(220.0, 25.2, 866.0, 80.0 + KELVIN, "pao", "given")  # a VG 220 PAO of VI ~170
     assert pao.pressure_viscosity is not None and pao.thermal_conductivity is None
     assert derive(220.0, 25.2, 866.0, 80.0 + KELVIN, "ester", "given").pressure_viscosity is None
+
+
+# ASTM D2270-10, Table 1 (a sample across its range): nu_100, and the nu_40 of the reference oils of VI 0 (L) and VI 100
+# (H) of that nu_100, mm^2/s. The code uses the quadratics of the standard's Appendix X2 (Table X2.1) instead.
+D2270_TABLE_1 = ((2.00, 7.994, 6.394), (3.00, 15.49, 12.15), (4.40, 30.48, 22.92), (6.40, 65.18, 42.14),
+                 (7.70, 93.20, 56.20), (8.80, 118.5, 68.79), (11.1, 176.6, 96.45), (14.8, 289.7, 146.8),
+                 (19.0, 449.9, 212.7), (24.4, 704.2, 309.4), (30.0, 1023.0, 421.7), (40.0, 1730.0, 651.8),
+                 (55.0, 3126.0, 1066.0), (70.0, 4905.0, 1558.0))
+
+
+@pytest.mark.parametrize("nu_100, low, high", D2270_TABLE_1)
+def test_reference_oils_reproduce_d2270_table_1(nu_100, low, high):
+    fitted_low, fitted_high = reference_oils(nu_100)
+    assert fitted_low == pytest.approx(low, rel=1e-3)  # the appendix's quadratics miss the table by < 0.1 %
+    assert fitted_high == pytest.approx(high, rel=1e-3)
+
+
+def test_viscosity_index_of_the_d2270_worked_examples():
+    # ASTM D2270-10, 5.1.4 (Procedure A): 73.30 and 8.86 mm^2/s -> VI 92.43; 6.1.4 (Procedure B): 22.83 and
+    # 5.05 mm^2/s -> VI 156.37 (from the table's H = 28.97; the appendix's quadratics give H = 28.975).
+    assert viscosity_index(73.30, 8.86) == pytest.approx(92.43, abs=0.05)
+    assert viscosity_index(22.83, 5.05) == pytest.approx(156.37, abs=0.15)
+    # Above 70 mm^2/s the standard's own formulas: L = 0.8353 Y^2 + 14.67 Y - 216, H = 0.1684 Y^2 + 11.85 Y - 97.
+    assert reference_oils(80.0) == pytest.approx((0.8353 * 6400 + 14.67 * 80 - 216, 0.1684 * 6400 + 11.85 * 80 - 97),
+                                                 rel=2e-4)
+
+
+@pytest.mark.parametrize("nu_40, index", [(22.0, 97.0), (100.0, 97.0), (220.0, 150.0), (1000.0, 200.0),
+                                          (68.0, 40.0)])
+def test_nu100_for_index_inverts_the_index(nu_40, index):
+    assert viscosity_index(nu_40, nu100_for_index(nu_40, index)) == pytest.approx(index, abs=1e-6)
+
+
+# Gear oils' data sheets (typical values; ISO 3104/ASTM D445 viscosities, ISO 2909/ASTM D2270 index):
+# (product, maker and document, base oil, ISO VG, nu_40, nu_100 in mm^2/s, VI as printed).
+DATASHEETS = (
+    ("Mobilgear 600 XP 100", "ExxonMobil, Mobilgear 600 XP Series product data sheet (2020)", "mineral", 100,
+     100.0, 11.2, 97),
+    ("Mobilgear 600 XP 220", "ExxonMobil, Mobilgear 600 XP Series product data sheet (2020)", "mineral", 220,
+     220.0, 19.0, 97),
+    ("Mobilgear 600 XP 320", "ExxonMobil, Mobilgear 600 XP Series product data sheet (2020)", "mineral", 320,
+     320.0, 24.1, 97),
+    ("Mobilgear 600 XP 680", "ExxonMobil, Mobilgear 600 XP Series product data sheet (2020)", "mineral", 680,
+     680.0, 39.2, 97),
+    ("Shell Omala S2 G 220", "Shell, Omala S2 G technical data sheet", "mineral", 220, 220.0, 19.4, 98),
+    ("Shell Omala S4 WE 220", "Shell, Omala S4 WE technical data sheet", "pag", 220, 222.0, 34.4, 203),
+)
+
+
+@pytest.mark.parametrize("product, document, oil_type, grade, nu_40, nu_100, index", DATASHEETS)
+def test_catalogue_nu100_against_gear_oil_datasheets(product, document, oil_type, grade, nu_40, nu_100, index):
+    """A grade given without nu100 gets nu_40 = the ISO 3448 midpoint (the sheets' nu_40 within 1 % of it) and the
+    nu_100 of the oil type's assumed index: within 2.3 % of each sheet's nu_100 (largest misses: Omala S2 G 220,
+    -2.0 %, printed VI 98 against the assumed 97; Omala S4 WE 220, -2.2 %, nu_40 222 and VI 203 against 220 and 200).
+    The sheet's own nu_40 and VI give its nu_100 back within 2 % by ASTM D2270 (Omala S2 G 220: 1.7 VI apart)."""
+    assert nu_40 == pytest.approx(grade, rel=0.01)
+    oil = case(f"  grade: VG{grade}\n  oil_type: {oil_type}\n  inlet_temperature: 100\n")
+    catalogue = oil.lubricant.viscosity / oil.lubricant.density * 1e6  # mm^2/s at 100 degC
+    assert catalogue == pytest.approx(nu_100, rel=0.023)
+    assert nu100_for_index(nu_40, index) == pytest.approx(nu_100, rel=0.02)
+    assert any(line.startswith("lubricant.nu100 = ") and f"viscosity index {ASSUMED_VISCOSITY_INDEX[oil_type]:g}"
+               in line for line in oil.derived)
+
+
+def test_a_grade_alone_runs_through_the_cli_with_its_assumptions_shown(tmp_path):
+    path = tmp_path / "grade.yaml"
+    path.write_text(CONTACT + "  grade: VG100\n  oil_type: mineral\n  inlet_temperature: 80\n")
+    checked = CliRunner().invoke(tehl, ["validate", str(path)])
+    assert checked.exit_code == 0, checked.output
+    assert "derived: lubricant.nu100 = 11.19 mm^2/s: ASTM D2270-10" in checked.output
+    assert "viscosity index 97 (assumed for mineral gear oils)" in checked.output
+    assert "derived: lubricant.density_15 = 890 kg/m^3: assumed for mineral gear oils" in checked.output
+
+
+def test_nu100_or_viscosity_index_given_override_the_assumed_index():
+    given = case("  grade: VG220\n  oil_type: pao\n  nu100: 25.2\n  density_15: 866\n")
+    assert not any(line.startswith(("lubricant.nu100", "lubricant.density_15")) for line in given.derived)
+    indexed = case("  grade: VG220\n  oil_type: pao\n  viscosity_index: 145\n  density_15: 866\n")
+    assert indexed.lubricant.viscosity == pytest.approx(given.lubricant.viscosity, rel=2e-3)  # VI(220, 25.2) = 144.8
+    assert any("viscosity index 145 (given)" in line for line in indexed.derived)
