@@ -44,6 +44,7 @@ from facegear_tehl.tables import (
     COST,
     ROUND_OFF,
     SCALAR_GROUPS,
+    UNRESOLVED,
     Column,
     cell,
     format_pairs,
@@ -561,6 +562,7 @@ def info_text(result: Result, si: bool = False) -> str:
         elif not keys:
             continue
         rows = [["converged", "", *(yes_no(p.converged) for p in points)] if key == "converged" else
+                _flag_row(key, [p.scalars.get(key) for p in points]) if key.startswith(UNRESOLVED) else
                 _scalar_row(key, units[key], [p.scalars.get(key) for p in points], _scale(keys, units, points), si)
                 for key in keys]
         lines += ["", format_table([group, "unit", *(p.name for p in points)], rows)]
@@ -578,6 +580,11 @@ def info_text(result: Result, si: bool = False) -> str:
                         for key, value in result.contact_scalars.items()]
         lines += ["", format_table(["contact", "unit", "value"], contact_rows)]
     return "\n".join(lines)
+
+
+def _flag_row(key: str, values: list[float | None]) -> list[str]:
+    """An unresolved_<quantity> flag per point as a word: "unresolved" (1), "bounded" (0), "-" (missing)."""
+    return [key, "", *("-" if v is None else "unresolved" if v == 1.0 else "bounded" for v in values)]
 
 
 def _scale(keys: list[str], units: Mapping[str, str], points: list[PointResult]) -> dict[str, float]:
@@ -632,6 +639,7 @@ _SUMMARY = (
     *COST,
 )
 _ERROR_ESTIMATES = (("err h_c %", "error_estimate_h_c", "h_c"), ("err h_min %", "error_estimate_h_min", "h_min"),
+                    ("err p_max %", "error_estimate_p_max", "p_max"),
                     ("err dT_max %", "error_estimate_dT_max", "dT_max"), ("err mu %", "error_estimate_mu", "mu"))
 
 # Heat-budget columns, keys of the /heat table.
@@ -719,7 +727,12 @@ def summary_table(points: Iterable[PointResult]) -> str:
 
 
 def _error_percent(point: PointResult, key: str, of: str) -> str:
-    """An error estimate in % of its quantity: given in metres (absolute) or as a fraction (relative)."""
+    """The error bound of a quantity in % (ehl/error_bounds.py), "unresolved" where the solve cannot bound it; in
+    a file without bounds its error estimate, given in metres (absolute) or as a fraction (relative)."""
+    if point.scalars.get(f"unresolved_{of}") == 1.0:
+        return "unresolved"
+    if f"error_bound_{of}" in point.scalars:
+        return cell(PERCENT(point.scalars[f"error_bound_{of}"]), ".2f", "-")
     if key not in point.scalars:
         return "-"
     value = point.scalars[key]

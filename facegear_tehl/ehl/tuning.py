@@ -105,6 +105,11 @@ class Tuning:
     coarse_estimate: float = 0.1  # a converged solve estimating its h_c or h_min error above this is refined
     side_lobe: float = 0.5  # |y| / a beyond which the lowest film lies in a side lobe: rows alone are doubled
     damped_attempt: int = 3  # the first attempt (1-based) with the damped relaxation
+    # --- error bounds of the reported figures (error_bounds.py)
+    bound_safety: float = 3.0  # Roache's GCI factor F_s for a two-grid estimate at an assumed order
+    asymptotic_estimate: float = 0.1  # an x or y estimate above this is outside the asymptotic range: unresolved
+    feature_nodes: int = 3  # a minimum, hot or cold spot spanning fewer nodes along x or y is unresolved ...
+    feature_depth: float = 0.1  # ... counted where the figure is within this share of its extreme
 
 
 TUNING = Tuning()
