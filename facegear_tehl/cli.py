@@ -47,6 +47,7 @@ from facegear_tehl.tables import (
     UNRESOLVED,
     Column,
     cell,
+    error_bound,
     format_pairs,
     format_table,
     group_of,
@@ -619,8 +620,8 @@ def _listed(value: Any) -> str:
 
 
 # The titles of the tables `tehl run` prints (and `tehl info` for the last two).
-SUMMARY_TITLE = ("film, pressure and temperature rise over the inlet per point; err: the solver's grid-error "
-                 "estimate in % (Richardson, docs/accuracy.md):")
+SUMMARY_TITLE = ("film, pressure and temperature rise over the inlet per point; err: the bound of the grid and "
+                 "iteration error in %, or unresolved where the solve cannot bound it (docs/accuracy.md):")
 HEAT_TITLE = ("heat budget: per point; Blok flash dT is the rise by Blok's (1937) formula, surface dT the solved "
               "largest surface rise:")
 CYCLE_TITLE = ("meshing cycle: along the path; load share of the pair; theta_B,i solved = bulk + the solved surface "
@@ -640,7 +641,8 @@ _SUMMARY = (
 )
 _ERROR_ESTIMATES = (("err h_c %", "error_estimate_h_c", "h_c"), ("err h_min %", "error_estimate_h_min", "h_min"),
                     ("err p_max %", "error_estimate_p_max", "p_max"),
-                    ("err dT_max %", "error_estimate_dT_max", "dT_max"), ("err mu %", "error_estimate_mu", "mu"))
+                    ("err dT_max %", "error_estimate_dT_max", "dT_max"),
+                    ("err dT_min %", "error_estimate_dT_min", "dT_min"), ("err mu %", "error_estimate_mu", "mu"))
 
 # Heat-budget columns, keys of the /heat table.
 _HEAT = (
@@ -729,10 +731,11 @@ def summary_table(points: Iterable[PointResult]) -> str:
 def _error_percent(point: PointResult, key: str, of: str) -> str:
     """The error bound of a quantity in % (ehl/error_bounds.py), "unresolved" where the solve cannot bound it; in
     a file without bounds its error estimate, given in metres (absolute) or as a fraction (relative)."""
-    if point.scalars.get(f"unresolved_{of}") == 1.0:
-        return "unresolved"
-    if f"error_bound_{of}" in point.scalars:
-        return cell(PERCENT(point.scalars[f"error_bound_{of}"]), ".2f", "-")
+    bound = error_bound(point.scalars, of)
+    if isinstance(bound, str):
+        return bound
+    if bound is not None:
+        return cell(PERCENT(bound), ".2f", "-")
     if key not in point.scalars:
         return "-"
     value = point.scalars[key]

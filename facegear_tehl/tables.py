@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 import math
 
@@ -106,6 +106,16 @@ PERCENT_KEYS = frozenset({"load_error", "energy_balance_error", "error_estimate_
                           "oil_to_friction_ratio", "oil_to_ellipse_friction_ratio", "oil_to_seed_friction_ratio",
                           "distribution_difference", "load_share"})
 UNRESOLVED = "unresolved_"  # prefix of the flags of quantities a solve cannot bound (ehl/error_bounds.py)
+UNRESOLVED_WORD = "unresolved"  # what a table shows for such a quantity, never a number
+BOUNDED_FIGURES = ("h_c", "h_min", "p_max", "dT_max", "dT_min", "mu")  # the figures with error_bound_/unresolved_
+
+
+def error_bound(scalars: Mapping[str, float], name: str) -> float | str | None:
+    """A figure's relative error bound from a point's scalars (ehl/error_bounds.py): UNRESOLVED_WORD where the solve
+    cannot bound it, else the bound; None in a file without either (written before the bounds)."""
+    if scalars.get(f"{UNRESOLVED}{name}") == 1.0:
+        return UNRESOLVED_WORD
+    return scalars.get(f"error_bound_{name}")
 ROUND_OFF = 1e-12  # |x| below this fraction of the largest value of its unit in its group: shown as 0 (round-off)
 
 

@@ -4,8 +4,9 @@ Richardson-extrapolated at each figure's order (f* = f_2 + (f_2 - f_1)/(2^p - 1)
 figures, 1 for temperatures and mu, the orders report.py assumes). scripts/calibrate_errors.py runs it; its table
 is in docs/accuracy.md (error bounds).
 
-The points: the envelope suite (suites/envelope.py), the shipped face gear case's S1-S5 and the S3 of random face
-gear designs (suites/gear_designs.py, fixed seed), each on a coarse and on the default grid (GRIDS).
+The points: the envelope suite (suites/envelope.py) on ENVELOPE_GRIDS, S1-S5 of the shipped face gear case (shaft
+angle 110 deg) and of the orthogonal cases/facegear_90.yaml on GEAR_GRIDS, and the S3 of random face gear designs
+(suites/gear_designs.py, fixed seed: shaft angles 60-135 deg, unit loads 5-80 N/mm^2) on the coarse gear grid.
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from dataclasses import dataclass, replace
 import fnmatch
 import math
 from pathlib import Path
+import statistics
 
 from facegear_tehl.case import Case, load_case, parse_case
 from facegear_tehl.contact import ContactPoint
@@ -27,8 +29,9 @@ from facegear_tehl.solution import Outcome, PointSolution
 from facegear_tehl.suites.envelope import envelope_cases
 from facegear_tehl.suites.gear_designs import random_designs
 
-GRIDS = ((129, 33), (257, 65))  # (nx, ny) asked: coarse, and the shipped case's default
-QUICK_GEAR_GRIDS = ((65, 17), (129, 33))  # the quick subset's gear grids: the shipped case's --grid 65 and 129
+ENVELOPE_GRIDS = ((129, 33), (257, 65))  # (nx, ny) asked: coarse, and the shipped case's default
+GEAR_GRIDS = ((65, 17), (129, 33))  # the gear cases' --grid 65 and --grid 129 (65 x 17 has no y-check: unresolved)
+GEAR_CASES = ("facegear_110.yaml", "facegear_90.yaml")  # in cases/: shaft angles 110 and 90 deg
 QUICK_ENVELOPE = "ab*_ph*_u2_iso"  # the quick subset's envelope cases: the isothermal core at 2 m/s (16 contacts)
 # and four of its thermal Ree-Eyring core (u_e 10 m/s, SRR 0.5) on the coarse grid alone
 QUICK_THERMAL = ("ab5_ph0.8_u10_srr0.5_th", "ab30_ph0.8_u10_srr0.5_th", "ab5_ph1.5_u10_srr0.5_th",
@@ -59,6 +62,8 @@ class Comparison:
     bound: float
     unresolved: bool
     estimate: float = math.nan
+    shift: float = math.nan  # h_min: how far its place moved to the reference's, in the point's grid spacings
+    check_cost: float = math.nan  # the error check's time over the point's own solve time
 
     @property
     def bounded(self) -> bool:
@@ -69,29 +74,30 @@ class Comparison:
         return not self.unresolved and abs(self.true_error) > UNDERSTATED * self.bound
 
 
-def calibration_points(quick: bool, case_file: Path, designs: int = 10) -> list[CalibrationPoint]:
-    """The points (module docstring); `quick`: the isothermal envelope core at 2 m/s on GRIDS, four thermal core
-    contacts on the coarse grid and the shipped case's S3 on QUICK_GEAR_GRIDS."""
-    points = []
+def calibration_points(quick: bool, cases_folder: Path, designs: int = 10,
+                       envelope_grids: int = 1) -> list[CalibrationPoint]:
+    """The points (module docstring): the envelope on its first `envelope_grids` grids; `quick`: the isothermal
+    envelope core at 2 m/s, four thermal core contacts and the gear cases' S3 alone."""
+    points, envelope = [], []  # the gear points first
     for case in envelope_cases():
         if quick and not (fnmatch.fnmatch(case.name, QUICK_ENVELOPE) or case.name in QUICK_THERMAL):
             continue
-        for nx, ny in GRIDS[:1] if quick and case.thermal else GRIDS:
-            points.append(CalibrationPoint(f"{case.name} {nx}x{ny}", "envelope", case.point(), case.lubricant(),
-                                           case.settings(nx, ny)))
-    text = case_file.read_text()
-    cases = [("shipped", load_case(case_file))]
+        for nx, ny in ENVELOPE_GRIDS[:1] if quick and case.thermal else ENVELOPE_GRIDS[:envelope_grids]:
+            envelope.append(CalibrationPoint(f"{case.name} {nx}x{ny}", "envelope", case.point(), case.lubricant(),
+                                             case.settings(nx, ny)))
+    text = (cases_folder / GEAR_CASES[0]).read_text()
+    gears = [(Path(name).stem, load_case(cases_folder / name), GEAR_GRIDS) for name in GEAR_CASES]
     if not quick:
-        cases += [(f"design {d.index}", case) for d in random_designs(designs, DESIGN_SEED)
-                  if (case := _design_case(d.case_text(text, *GRIDS[0]), d.index)) is not None]
-    for label, case in cases:
+        gears += [(f"design{d.index}", case, GEAR_GRIDS[1:]) for d in random_designs(designs, DESIGN_SEED)
+                  if (case := _design_case(d.case_text(text, *GEAR_GRIDS[1]), d.index)) is not None]
+    for label, case, grids in gears:
         for point in contact_analysis(case).points:
-            if (quick or label != "shipped") and point.name != "S3":
+            if (quick or label.startswith("design")) and point.name != "S3":
                 continue
-            for nx, ny in QUICK_GEAR_GRIDS if quick else GRIDS:
+            for nx, ny in grids:
                 points.append(CalibrationPoint(f"{label} {point.name} {nx}x{ny}", "gear", point, case.lubricant,
                                                replace(case.solver, grid=nx, grid_y=ny)))
-    return points
+    return points + envelope
 
 
 Solve = Callable[[ContactPoint, Lubricant, SolverSettings], PointSolution]
@@ -119,7 +125,7 @@ def compare(calibration: CalibrationPoint, bounded: Solve, reference: Solve) -> 
     fine = reference(calibration.point, calibration.lubricant, finer)
     if fine.outcome is not Outcome.CONVERGED or "h_min" not in fine.scalars:
         return []
-    out = []
+    out, cost = [], _check_cost(solution)
     for name in FILM_FIGURES + STATE_FIGURES:
         if name not in solution.scalars or name not in fine.scalars or f"unresolved_{name}" not in solution.scalars:
             continue
@@ -130,8 +136,23 @@ def compare(calibration: CalibrationPoint, bounded: Solve, reference: Solve) -> 
         unresolved = solution.scalar(f"unresolved_{name}") == 1.0
         bound = math.nan if unresolved else solution.scalar(f"error_bound_{name}")
         estimate = solution.scalars.get(f"error_estimate_{name}", (math.nan, "1"))[0]
-        out.append(Comparison(calibration.name, name, coarse / truth - 1.0, bound, unresolved, estimate))
+        shift = _place_shift(solution, fine) if name == "h_min" else math.nan
+        out.append(Comparison(calibration.name, name, coarse / truth - 1.0, bound, unresolved, estimate, shift, cost))
     return out
+
+
+def _place_shift(solution: PointSolution, fine: PointSolution) -> float:
+    """How far the lowest film's place moved from `solution` to `fine`: the larger of |dx| and |dy| in the
+    solution's grid spacings along x and y."""
+    x, y = solution.axes["x"].values, solution.axes["y"].values
+    return max(abs(fine.scalar("x_h_min") - solution.scalar("x_h_min")) / (x[1] - x[0]),
+               abs(fine.scalar("y_h_min") - solution.scalar("y_h_min")) / (y[1] - y[0]))
+
+
+def _check_cost(solution: PointSolution) -> float:
+    """The error check's time over the point's own solve time (error_bounds.with_error_bounds)."""
+    check = solution.scalars.get("error_check_time", (math.nan, "s"))[0]
+    return check / (solution.scalar("wall_time") - check)
 
 
 def point_lines(comparisons: Iterable[Comparison]) -> list[str]:
@@ -140,7 +161,9 @@ def point_lines(comparisons: Iterable[Comparison]) -> list[str]:
     for c in comparisons:
         bound = "unresolved" if c.unresolved else f"{100 * c.bound:9.3f}"
         verdict = "unresolved" if c.unresolved else "bounded" if c.bounded else "NOT BOUNDED"
-        lines.append(f"{c.name:40s} {c.quantity:7s} true {100 * c.true_error:+9.3f} %  bound {bound:>10s}  {verdict}")
+        place = f"  place moved {c.shift:.1f} spacings" if math.isfinite(c.shift) else ""
+        lines.append(f"{c.name:40s} {c.quantity:7s} true {100 * c.true_error:+9.3f} %  bound {bound:>10s}  {verdict}"
+                     + place)
     return lines
 
 
@@ -161,4 +184,17 @@ def summary(comparisons: Sequence[Comparison]) -> str:
         alone = sum(abs(c.true_error) <= abs(c.estimate) for c in chosen)  # False for a NaN estimate
         lines.append(f"| {name} | {len(chosen)} | {len(chosen) - len(resolved)} | {bounded} | {share} | "
                      f"{sum(c.understated for c in resolved)} | {worst:.2f} | {100 * alone / len(chosen):.0f} % |")
+    unresolved = [abs(c.true_error) for c in comparisons if c.unresolved]
+    shifts = [c.shift for c in comparisons if c.quantity == "h_min" and not c.unresolved and math.isfinite(c.shift)]
+    costs = {c.name: c.check_cost for c in comparisons if math.isfinite(c.check_cost)}
+    lines.append("")
+    if unresolved:
+        lines.append(f"unresolved figures: median |true error| {100 * statistics.median(unresolved):.2f} %, largest "
+                     f"{100 * max(unresolved):.1f} %")
+    if shifts:
+        lines.append(f"place of a resolved h_min: moved {statistics.median(shifts):.1f} grid spacings (median), "
+                     f"{max(shifts):.1f} at most")
+    if costs:
+        lines.append(f"error check time over the point's own solve: median {statistics.median(costs.values()):.2f} "
+                     f"({len(costs)} points)")
     return "\n".join(lines)
