@@ -45,6 +45,7 @@ from facegear_tehl.tables import (
     ROUND_OFF,
     SCALAR_GROUPS,
     UNRESOLVED,
+    UNRESOLVED_WORD,
     Column,
     cell,
     error_bound,
@@ -564,7 +565,8 @@ def info_text(result: Result, si: bool = False) -> str:
             continue
         rows = [["converged", "", *(yes_no(p.converged) for p in points)] if key == "converged" else
                 _flag_row(key, [p.scalars.get(key) for p in points]) if key.startswith(UNRESOLVED) else
-                _scalar_row(key, units[key], [p.scalars.get(key) for p in points], _scale(keys, units, points), si)
+                _unresolved_cells(key, points, _scalar_row(key, units[key], [p.scalars.get(key) for p in points],
+                                                           _scale(keys, units, points), si))
                 for key in keys]
         lines += ["", format_table([group, "unit", *(p.name for p in points)], rows)]
     if result.heat and "point" in result.heat:
@@ -581,6 +583,16 @@ def info_text(result: Result, si: bool = False) -> str:
                         for key, value in result.contact_scalars.items()]
         lines += ["", format_table(["contact", "unit", "value"], contact_rows)]
     return "\n".join(lines)
+
+
+def _unresolved_cells(key: str, points: list[PointResult], row: list[str]) -> list[str]:
+    """An error-estimate row (`error_estimate_<figure>`, `error_estimate_y_<figure>`) with the word "unresolved" for
+    each point that cannot bound the figure: its estimate is no promise there."""
+    if not key.startswith("error_estimate_"):
+        return row
+    figure = key.removeprefix("error_estimate_").removeprefix("y_")
+    return [*row[:2], *(UNRESOLVED_WORD if isinstance(error_bound(p.scalars, figure), str) else cell
+                        for p, cell in zip(points, row[2:]))]
 
 
 def _flag_row(key: str, values: list[float | None]) -> list[str]:

@@ -3,7 +3,10 @@
 y-check). Under the additive error model f = f* + C_x h_x^p + C_y h_y^p both give the same e_y; the table shows how
 far they differ and the time of each check over the point's own solve (docs/accuracy.md, error bounds).
 
-    python scripts/y_check_cost.py [--case cases/facegear_110.yaml] [--points S1,S3] [--grid 257] [--repeat 1]
+    python scripts/y_check_cost.py [--case cases/facegear_110.yaml] [--points S1,S3] [--grid 257] [--no-outlet]
+
+The full check solves without outlet patches; where the point's own solve adds them (S2 and S4 of the default
+case), --no-outlet makes both routes compare uniform grids.
 """
 
 from __future__ import annotations
@@ -19,6 +22,7 @@ from facegear_tehl.case import load_case
 from facegear_tehl.ehl.error_bounds import y_estimates
 from facegear_tehl.ehl.staged import STAGED, UNBOUNDED
 from facegear_tehl.points import contact_analysis
+from facegear_tehl.settings import OutletRefinement
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -28,11 +32,15 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--case", type=Path, default=ROOT / "cases" / "facegear_110.yaml")
     parser.add_argument("--points", default="S1,S2,S3,S4,S5")
     parser.add_argument("--grid", type=int, default=None, help="nodes along x asked (default: the case's)")
+    parser.add_argument("--no-outlet", action="store_true",
+                        help="solve without outlet patches: the full check then compares uniform grids alike")
     args = parser.parse_args(argv)
     case = load_case(args.case)
     settings = case.solver if args.grid is None else replace(case.solver, grid=args.grid,
                                                              grid_y=(case.solver.nodes_y - 1) * args.grid
                                                              // case.solver.grid + 1)
+    if args.no_outlet:
+        settings = replace(settings, outlet_refinement=OutletRefinement.NEVER)
     wanted = args.points.split(",")
     print("| point | grid | figure | e_y coarse-stage route % | e_y full check % | solve s | check s (route) | "
           "check s (full) |")

@@ -125,3 +125,28 @@ def test_the_run_table_says_unresolved_instead_of_a_number():
     point = PointResult("S1", True, "converged", "", scalars, dict.fromkeys(scalars, "1"), {}, {}, {}, {})
     row = summary_table([point]).splitlines()[-1].split()
     assert "unresolved" in row and "0.40" in row and "0.10" not in row
+
+
+def test_tehl_info_words_an_unresolved_figure_and_its_estimates(tmp_path):
+    """A written result whose h_min is unresolved and h_c bounded: tehl info's flag rows say so, and h_min's estimates
+    read "unresolved" (no small number), h_c's stay numbers."""
+    from dataclasses import replace
+
+    from facegear_tehl.cli import info_text
+    from facegear_tehl.points import contact_analysis
+    from facegear_tehl.results import read_result, write_result
+    from facegear_tehl.run import RunResult
+    from tests import synthetic
+
+    case = synthetic.ball_on_disc()
+    point = contact_analysis(case).points[0]
+    solved = synthetic.solution(point)
+    flags = {"error_estimate_h_c": 0.0012, "error_estimate_h_min": 0.0021, "error_estimate_y_h_min": 0.15,
+             "error_bound_h_c": 0.0036, "unresolved_h_c": 0.0, "unresolved_h_min": 1.0}
+    solved = replace(solved, scalars={**solved.scalars, **{k: (v, "1") for k, v in flags.items()}})
+    text = info_text(read_result(write_result(RunResult(case=case, points=(solved,)), tmp_path / "r.h5"),
+                                 fields=False))
+    rows = {line.split()[0]: line.split()[1:] for line in text.splitlines() if line.strip()}
+    assert rows["unresolved_h_min"] == ["unresolved"] and rows["unresolved_h_c"] == ["bounded"]
+    assert rows["error_estimate_h_min"][-1] == "unresolved" and rows["error_estimate_y_h_min"][-1] == "unresolved"
+    assert rows["error_estimate_h_c"][-1] == "0.12" and rows["error_bound_h_c"][-1] == "0.36"
