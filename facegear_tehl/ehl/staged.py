@@ -14,7 +14,7 @@ from facegear_tehl.ehl.solve import PointSolve
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.record import Action, RetryRecord
-from facegear_tehl.settings import SolverSettings
+from facegear_tehl.settings import SolverSettings, ThermalMode
 from facegear_tehl.solution import PointSolution
 
 # numpy's floating-point warnings inside a solve: an iterate that runs away overflows before the solver's own
@@ -67,11 +67,12 @@ class StagedSolver:
         return self._bounded(begun, point, lubricant, settings)
 
     def finish(self, stage: PointSolve) -> PointSolution:
-        """The second stage (PointSolve.finish), with its error bounds from its coarse stage."""
+        """The second stage (PointSolve.finish), with its error bounds (e_y from its coarse stage in a `full` solve:
+        the check of a `reduced` one is reduced too, its finest figures then alike)."""
         with np.errstate(**RUN_AWAY_ARITHMETIC):
             solution = stage.finish()
-        coarse = None
-        if len(stage.summaries) >= 2 and len(stage.solver.levels) >= 2:
+        coarse = None  # a reduced solve's finest figures are one film-state evaluation, its coarse stage's coupled
+        if stage.mode is ThermalMode.FULL and len(stage.summaries) >= 2 and len(stage.solver.levels) >= 2:
             coarse = coarse_stage(stage.summaries[-2], stage.solver.levels[-2].ny, stage.scaling)
         return self._bounded(solution, stage.point, stage.lubricant, stage.asked, coarse)
 
