@@ -48,8 +48,11 @@ from facegear_tehl.tables import (
     COST,
     ROUND_OFF,
     SCALAR_GROUPS,
+    UNRESOLVED,
+    UNRESOLVED_WORD,
     Column,
     cell,
+    error_bound,
     format_pairs,
     format_table,
     group_of,
@@ -602,7 +605,9 @@ def info_text(result: Result, si: bool = False) -> str:
         elif not keys:
             continue
         rows = [["converged", "", *(yes_no(p.converged) for p in points)] if key == "converged" else
-                _scalar_row(key, units[key], [p.scalars.get(key) for p in points], _scale(keys, units, points), si)
+                _flag_row(key, [p.scalars.get(key) for p in points]) if key.startswith(UNRESOLVED) else
+                _unresolved_cells(key, points, _scalar_row(key, units[key], [p.scalars.get(key) for p in points],
+                                                           _scale(keys, units, points), si))
                 for key in keys]
         lines += ["", format_table([group, "unit", *(p.name for p in points)], rows)]
     if result.heat and "point" in result.heat:
@@ -621,6 +626,21 @@ def info_text(result: Result, si: bool = False) -> str:
                         for key, value in result.contact_scalars.items()]
         lines += ["", format_table(["contact", "unit", "value"], contact_rows)]
     return "\n".join(lines)
+
+
+def _unresolved_cells(key: str, points: list[PointResult], row: list[str]) -> list[str]:
+    """An error-estimate row (`error_estimate_<figure>`, `error_estimate_y_<figure>`) with the word "unresolved" for
+    each point that cannot bound the figure: its estimate is no promise there."""
+    if not key.startswith("error_estimate_"):
+        return row
+    figure = key.removeprefix("error_estimate_").removeprefix("y_")
+    return [*row[:2], *(UNRESOLVED_WORD if isinstance(error_bound(p.scalars, figure), str) else cell
+                        for p, cell in zip(points, row[2:]))]
+
+
+def _flag_row(key: str, values: list[float | None]) -> list[str]:
+    """An unresolved_<quantity> flag per point as a word: "unresolved" (1), "bounded" (0), "-" (missing)."""
+    return [key, "", *("-" if v is None else "unresolved" if v == 1.0 else "bounded" for v in values)]
 
 
 def _scale(keys: list[str], units: Mapping[str, str], points: list[PointResult]) -> dict[str, float]:
@@ -655,8 +675,8 @@ def _listed(value: Any) -> str:
 
 
 # The titles of the tables `tehl run` prints (and `tehl info` for the last two).
-SUMMARY_TITLE = ("film, pressure and temperature rise over the inlet per point; err: the solver's grid-error "
-                 "estimate in % (Richardson, docs/accuracy.md):")
+SUMMARY_TITLE = ("film, pressure and temperature rise over the inlet per point; err: the bound of the grid and "
+                 "iteration error in %, or unresolved where the solve cannot bound it (docs/accuracy.md):")
 HEAT_TITLE = ("heat budget: per point; Blok flash dT is the rise by Blok's (1937) formula, surface dT the solved "
               "largest surface rise:")
 CYCLE_TITLE = ("meshing cycle: along the path; load share of the pair; theta_B,i solved = bulk + the solved surface "
@@ -675,7 +695,9 @@ _SUMMARY = (
     *COST,
 )
 _ERROR_ESTIMATES = (("err h_c %", "error_estimate_h_c", "h_c"), ("err h_min %", "error_estimate_h_min", "h_min"),
-                    ("err dT_max %", "error_estimate_dT_max", "dT_max"), ("err mu %", "error_estimate_mu", "mu"))
+                    ("err p_max %", "error_estimate_p_max", "p_max"),
+                    ("err dT_max %", "error_estimate_dT_max", "dT_max"),
+                    ("err dT_min %", "error_estimate_dT_min", "dT_min"), ("err mu %", "error_estimate_mu", "mu"))
 
 # Heat-budget columns, keys of the /heat table.
 _HEAT = (
@@ -762,7 +784,13 @@ def summary_table(points: Iterable[PointResult]) -> str:
 
 
 def _error_percent(point: PointResult, key: str, of: str) -> str:
-    """An error estimate in % of its quantity: given in metres (absolute) or as a fraction (relative)."""
+    """The error bound of a quantity in % (ehl/error_bounds.py), "unresolved" where the solve cannot bound it; in
+    a file without bounds its error estimate, given in metres (absolute) or as a fraction (relative)."""
+    bound = error_bound(point.scalars, of)
+    if isinstance(bound, str):
+        return bound
+    if bound is not None:
+        return cell(PERCENT(bound), ".2f", "-")
     if key not in point.scalars:
         return "-"
     value = point.scalars[key]

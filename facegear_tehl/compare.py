@@ -23,13 +23,13 @@ import numpy as np
 from facegear_tehl.plots.common import Output, PlotReport, figure
 from facegear_tehl.plots.over_points import continuous_runs
 from facegear_tehl.results import PointResult, Result
-from facegear_tehl.tables import format_table, scalar_unit
+from facegear_tehl.tables import error_bound, format_table, scalar_unit
 from facegear_tehl.units import MILLIMETRE
 
 # Quantity, the scalar holding its relative error estimate (λ = h_min/σ carries h_min's; None: no estimate).
 QUANTITIES = (("h_c", "error_estimate_h_c"), ("h_min", "error_estimate_h_min"),
-              ("film_parameter", "error_estimate_h_min"), ("p_max", None), ("dT_max", "error_estimate_dT_max"),
-              ("mu", "error_estimate_mu"))
+              ("film_parameter", "error_estimate_h_min"), ("p_max", "error_estimate_p_max"),
+              ("dT_max", "error_estimate_dT_max"), ("mu", "error_estimate_mu"))
 PLOTTED = ("h_min", "p_max", "dT_max", "mu")  # the quantities drawn along the path
 
 
@@ -65,9 +65,15 @@ def common_points(results: Sequence[Result]) -> list[str]:
 
 
 def absolute_estimate(point: PointResult, quantity: str, estimate: str | None) -> float:
-    """The grid-error estimate of a scalar in its units: a relative estimate (units "1", as ehl/report.py writes them)
-    times |value|, an estimate in the scalar's own units as it is; NaN without one."""
-    if estimate is None or estimate not in point.scalars or quantity not in point.scalars:
+    """The grid-error estimate of a scalar in its units: its figure's error bound times |value| (NaN where unresolved);
+    in a file without bounds a relative estimate (units "1", as ehl/report.py writes them) times |value|, an
+    estimate in the scalar's own units as it is; NaN without one."""
+    if estimate is None or quantity not in point.scalars:
+        return math.nan
+    bound = error_bound(point.scalars, estimate.removeprefix("error_estimate_"))
+    if bound is not None:  # the error bound (ehl/error_bounds.py): none where the solve cannot give one
+        return math.nan if isinstance(bound, str) else bound * abs(point.scalars[quantity])
+    if estimate not in point.scalars:
         return math.nan
     absolute = point.units.get(estimate, "1") != "1" and point.units.get(estimate) == point.units[quantity]
     return abs(point.scalars[estimate]) * (1.0 if absolute else abs(point.scalars[quantity]))

@@ -13,6 +13,7 @@ import base64
 from collections.abc import Iterable, Mapping, Sequence
 from datetime import datetime, timezone
 import html
+import math
 from pathlib import Path
 import tempfile
 from typing import Any
@@ -26,14 +27,14 @@ from facegear_tehl.key_units import key_unit
 from facegear_tehl.plots import plot_result
 from facegear_tehl.record import SolveRecord
 from facegear_tehl.results import PointResult, Result
-from facegear_tehl.tables import scalar_unit
+from facegear_tehl.tables import UNRESOLVED_WORD, error_bound, scalar_unit
 from facegear_tehl.units import MILLIMETRE
 from facegear_tehl.verdict import verdict_text
 
 # The per-point scalars of the results table, each with the key of its relative error estimate (None: no estimate).
-SCALARS = (("h_c", "error_estimate_h_c"), ("h_min", "error_estimate_h_min"), ("film_parameter", None),
-           ("p_max", None), ("p_hertz", None), ("dT_max", "error_estimate_dT_max"), ("dT_min", None),
-           ("mu", "error_estimate_mu"), ("load_error", None))
+SCALARS = (("h_c", "error_estimate_h_c"), ("h_min", "error_estimate_h_min"), ("film_parameter", "error_estimate_h_min"),
+           ("p_max", "error_estimate_p_max"), ("p_hertz", None), ("dT_max", "error_estimate_dT_max"),
+           ("dT_min", "error_estimate_dT_min"), ("mu", "error_estimate_mu"), ("load_error", None))
 FIGURE_DPI = 90  # enough to read on screen and in print, a page of a few MB at most
 OVERVIEW_ROWS = 6  # points on the overview sheet at most (evenly spread along the path): a 41-point cycle's sheet
 # would be a 4 MB image 70 inches tall
@@ -139,8 +140,9 @@ def _results(points: Iterable[PointResult]) -> str:
         headers.append(key if label in ("-", "") else f"{key} ({label})")
     rows = [[p.name, "yes" if p.converged else "no", _grid(p),
              *(_value_with_error(p, key, estimate) for key, estimate in keys)] for p in points]
-    note = ("<p class=\"note\">± is the solver's estimate of the grid error (Richardson's, from the solution one "
-            "grid coarser; docs/accuracy.md); a value without ± has no estimate.</p>")
+    note = ("<p class=\"note\">± is the solver's bound of the grid and iteration error (docs/accuracy.md, error "
+            "bounds); \"unresolved\": the solve cannot bound it (a feature narrower than the grid, an estimate outside "
+            "the asymptotic range, the pressure spike); a value without either has no estimate.</p>")
     return _table(headers, rows, numeric_from=3) + note
 
 
@@ -154,9 +156,11 @@ def _value_with_error(point: PointResult, key: str, estimate: str | None) -> str
         return "-"
     unit = scalar_unit(key, point.units[key])
     value = unit(point.scalars[key])
-    if estimate is None or estimate not in point.scalars:
-        return f"{value:.4g}"
+    if estimate is not None and error_bound(point.scalars, estimate.removeprefix("error_estimate_")) == UNRESOLVED_WORD:
+        return f"{value:.4g} ({UNRESOLVED_WORD})"
     error = absolute_estimate(point, key, estimate)
+    if math.isnan(error):
+        return f"{value:.4g}"
     return f"{value:.4g} ± {abs(unit(error) - unit(0.0)):.2g}"
 
 

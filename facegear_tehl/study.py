@@ -18,7 +18,7 @@ every run, interrupted or not, from the files themselves; `failures.txt` lists t
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from contextlib import ExitStack, contextmanager, nullcontext
 import csv
 from dataclasses import dataclass
@@ -49,6 +49,7 @@ from facegear_tehl.study_index import (
     POINT_COLUMNS,
     REFINEMENTS,
 )
+from facegear_tehl.tables import error_bound
 
 FAILURES = "failures.txt"
 # Dask starts worker processes with MALLOC_TRIM_THRESHOLD_=65536 (its distributed.nanny.pre-spawn-environ), which
@@ -273,7 +274,7 @@ def write_index(study: Study, folder: Path, outcomes: Sequence[VariantOutcome]) 
             scalars = [_number(point.scalars.get(name)) for name, _ in POINT_COLUMNS]
             rows.append([*lead, point.name, result.status, "yes" if point.converged else "no", *scalars,
                          *(_number(cycle.get(name)) for name, _ in CYCLE_COLUMNS),
-                         *(_number(point.scalars.get(name)) for name, _ in ESTIMATE_COLUMNS),
+                         *(_bound_cell(point.scalars, name) for name, _ in ESTIMATE_COLUMNS),
                          "x".join(str(len(point.axes[k].values)) for k in ("x", "y") if k in point.axes),
                          "" if point.record is None else
                          str(sum(r.action is Action.FINER_GRID for r in point.record.retries)),
@@ -291,6 +292,12 @@ def write_index(study: Study, folder: Path, outcomes: Sequence[VariantOutcome]) 
     else:
         (folder / FAILURES).unlink(missing_ok=True)
     return index
+
+
+def _bound_cell(scalars: Mapping[str, float], column: str) -> str:
+    """An error-bound cell of the index: the bound, "unresolved", or empty (tables.error_bound)."""
+    bound = error_bound(scalars, column.removeprefix("error_bound_"))
+    return bound if isinstance(bound, str) else _number(bound)
 
 
 def _cycle_attrs(path: Path) -> dict[str, float]:

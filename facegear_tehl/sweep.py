@@ -55,7 +55,7 @@ from facegear_tehl.run import ehl_solver
 from facegear_tehl.schema import CaseError, check
 from facegear_tehl.settings import SolverSettings
 from facegear_tehl.solution import Field, PointSolution
-from facegear_tehl.tables import COST, cell, format_table, yes_no
+from facegear_tehl.tables import COST, UNRESOLVED_WORD, cell, format_table, yes_no
 from facegear_tehl.units import PERCENT, display
 
 SAFETY_FACTOR = 1.25  # Roache (1994), grid convergence index of a three-grid study
@@ -329,6 +329,11 @@ def sweep_table(
                                     f"{HIGH_ORDER_SAFETY_FACTOR:g} |f_h - f_2h|/(2^{ORDER} - 1)")
         table[f"{q.name}_error"] = Field(q.error, "1", "relative error against the extrapolated value of the "
                                                        "three finest grids")
+        table[f"{q.name}_bound"] = Field(scalar(f"error_bound_{q.name}"), "1",
+                                         "the solve's own error bound on this grid (ehl/error_bounds.py); NaN where "
+                                         "unresolved or not given")
+        table[f"{q.name}_unresolved"] = Field(scalar(f"unresolved_{q.name}"), "1",
+                                              "1: the solve cannot bound the figure on this grid (NaN: not given)")
     return table
 
 
@@ -403,11 +408,22 @@ def report(table: Mapping[str, Field], scalars: Mapping[str, float]) -> str:
         columns = [(name, unit, value), (f"{name}_change", PERCENT, "+.2f"), (f"{name}_order", display("1"), ".2f"),
                    (f"{name}_extrapolated", unit, extra), (f"{name}_uncertainty", unit, extra),
                    (f"{name}_error", PERCENT, "+.2f")]
-        rows = [[grid, *(cell(shown(table[key].values[i]), spec) for key, shown, spec in columns)]
-                for i, grid in enumerate(grids)]
-        headers = [f"{name} [{unit.label}]", "value", "change %", "order", "extrapolated", "± GCI", "error %"]
+        rows = [[grid, *(cell(shown(table[key].values[i]), spec) for key, shown, spec in columns),
+                 _bound_text(table, name, i)] for i, grid in enumerate(grids)]
+        headers = [f"{name} [{unit.label}]", "value", "change %", "order", "extrapolated", "± GCI", "error %",
+                   "bound %"]
         tables.append(format_table(headers, rows))
     return "\n\n".join(tables) + "\n\n" + "\n".join(_summary_lines(table, scalars) + _accuracy_lines(table, scalars))
+
+
+def _bound_text(table: Mapping[str, Field], name: str, row: int) -> str:
+    """The solve's own error bound of a quantity on one grid in %, "unresolved" where it cannot bound it, "-" where
+    the table has none (a table written before the bounds)."""
+    if f"{name}_unresolved" not in table:
+        return "-"
+    if table[f"{name}_unresolved"].values[row] == 1.0:
+        return UNRESOLVED_WORD
+    return cell(PERCENT(table[f"{name}_bound"].values[row]), ".2f", "-")
 
 
 def _summary_lines(table: Mapping[str, Field], scalars: Mapping[str, float]) -> list[str]:

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 import math
 
@@ -74,13 +74,17 @@ ABSOLUTE_TEMPERATURE_KEYS = ("contact_temperature_1", "contact_temperature_2", "
 # `tehl info`: the per-point scalars by theme, in this order; a scalar of none of them is listed under "other".
 SCALAR_GROUPS = (
     ("film", ("h_c", "h_min", "film_parameter", "film_parameter_central", "x_h_min", "y_h_min", "inlet_gap_ratio",
-              "error_estimate_h_c", "error_estimate_h_min")),
+              "error_estimate_h_c", "error_estimate_h_min", "error_estimate_y_h_c", "error_estimate_y_h_min",
+              "error_bound_h_c", "error_bound_h_min", "unresolved_h_c", "unresolved_h_min")),
     ("pressure", ("p_max", "p_hertz", "load", "a", "b", "ellipticity", "radius_x", "radius_y", "moes_m",
-                  "moes_l", "path_coordinate")),
+                  "moes_l", "path_coordinate", "error_estimate_p_max", "error_estimate_y_p_max", "error_bound_p_max",
+                  "unresolved_p_max")),
     ("temperature", ("dT_max", "dT_min", "x_dT_min", "y_dT_min", "dT_mid_max", "dT_surface_1_max",
                      "dT_surface_2_max", "surface_rise_max", "flash_temperature", "thermal_loading",
-                     "error_estimate_dT_max", *ABSOLUTE_TEMPERATURE_KEYS)),
-    ("friction", ("mu", "mu_1", "mu_2", "mu_xu", "error_estimate_mu", "entrainment_speed", "sliding_speed",
+                     "error_estimate_dT_max", "error_estimate_dT_min", "error_bound_dT_max", "error_bound_dT_min",
+                     "unresolved_dT_max", "unresolved_dT_min", *ABSOLUTE_TEMPERATURE_KEYS)),
+    ("friction", ("mu", "mu_1", "mu_2", "mu_xu", "error_estimate_mu", "error_bound_mu", "unresolved_mu",
+                  "entrainment_speed", "sliding_speed",
                   "slide_roll_ratio", "entrainment_angle", "friction_power", "dissipated_power",
                   "dissipated_power_ellipse", "partition_1", "partition_2", "friction_power_1", "friction_power_2")),
     ("heat", ("heat_generated", "heat_conducted", "heat_convected", "heat_mass_defect", "dwell_time",
@@ -95,9 +99,23 @@ SCALAR_GROUPS = (
 FILM_KEYS = frozenset({"h_c", "h_min", "error_estimate_h_c", "error_estimate_h_min"})  # lengths shown in µm
 # Dimensionless fractions shown in %: relative errors, shares and ratios.
 PERCENT_KEYS = frozenset({"load_error", "energy_balance_error", "error_estimate_h_c", "error_estimate_h_min",
-                          "error_estimate_dT_max", "error_estimate_mu", "partition_1", "partition_2",
+                          "error_estimate_dT_max", "error_estimate_mu", "error_estimate_p_max", "error_estimate_dT_min",
+                          *(f"error_{kind}_{name}" for kind in ("bound", "estimate_y")
+                            for name in ("h_c", "h_min", "p_max", "dT_max", "dT_min", "mu")),
+                          "partition_1", "partition_2",
                           "oil_to_friction_ratio", "oil_to_ellipse_friction_ratio", "oil_to_seed_friction_ratio",
                           "distribution_difference", "load_share"})
+UNRESOLVED = "unresolved_"  # prefix of the flags of quantities a solve cannot bound (ehl/error_bounds.py)
+UNRESOLVED_WORD = "unresolved"  # what a table shows for such a quantity, never a number
+BOUNDED_FIGURES = ("h_c", "h_min", "p_max", "dT_max", "dT_min", "mu")  # the figures with error_bound_/unresolved_
+
+
+def error_bound(scalars: Mapping[str, float], name: str) -> float | str | None:
+    """A figure's relative error bound from a point's scalars (ehl/error_bounds.py): UNRESOLVED_WORD where the solve
+    cannot bound it, else the bound; None in a file without either (written before the bounds)."""
+    if scalars.get(f"{UNRESOLVED}{name}") == 1.0:
+        return UNRESOLVED_WORD
+    return scalars.get(f"error_bound_{name}")
 ROUND_OFF = 1e-12  # |x| below this fraction of the largest value of its unit in its group: shown as 0 (round-off)
 
 

@@ -250,7 +250,8 @@ def test_run_writes_the_result_and_a_summary(tmp_path, monkeypatch, fake_solver)
     assert "err h_min %" in header
     cells = row.split()
     assert cells[:4] == ["contact", "yes", "0.15", "0.09"]
-    assert cells[-5:] == ["0.25", "0.40", "-", "-", "-"]  # wall time, error estimates (h_min, dT_max, mu: none)
+    # wall time, the error estimates of a file without bounds: h_c 0.40 %, none of p_max, dT_max, dT_min, mu
+    assert cells[-7:] == ["0.25", "0.40", "-", "-", "-", "-", "-"]
     assert "result: ball_on_disc.h5 (status ok)" in result.stdout
     written = read_result(tmp_path / "ball_on_disc.h5")
     assert written.status == "ok" and written.case_yaml == CASE_TEXT and written.overrides == {}

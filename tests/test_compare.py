@@ -20,7 +20,8 @@ FACE_GEAR = "cases/facegear_110.yaml"
 
 @pytest.fixture(scope="module")
 def design(tmp_path_factory):
-    """`tehl run` of the shipped face gear at S1 and S3 on a 33-node grid, with a 1 % estimate of μ written in."""
+    """`tehl run` of the shipped face gear at S1 and S3 on a 33-node grid (every figure unresolved there), with
+    error bounds written in: h_c 1 %, h_min 2 %, μ 1 % (p_max stays unresolved)."""
     path = tmp_path_factory.mktemp("compare") / "a.h5"
     run = CliRunner().invoke(tehl, ["run", FACE_GEAR, "--grid", "33", "--points", "S1,S3", "--jobs", "1", "-o",
                                     str(path)])
@@ -28,8 +29,11 @@ def design(tmp_path_factory):
     with h5py.File(path, "r+") as h5:
         for name in h5["points"]:
             attrs = h5[f"points/{name}"].attrs
-            attrs["error_estimate_mu"] = 0.01
-            attrs["units"] = json.dumps({**json.loads(attrs["units"]), "error_estimate_mu": "1"})
+            bounds = {"error_bound_h_c": 0.01, "error_bound_h_min": 0.02, "error_bound_mu": 0.01,
+                      "unresolved_h_c": 0.0, "unresolved_h_min": 0.0, "unresolved_mu": 0.0}
+            for key, value in bounds.items():
+                attrs[key] = value
+            attrs["units"] = json.dumps({**json.loads(attrs["units"]), **dict.fromkeys(bounds, "1")})
     return path
 
 
@@ -44,11 +48,11 @@ def _variant(source, target, factors):
 
 
 def test_a_difference_is_significant_only_beyond_the_combined_estimates(design, tmp_path):
-    """h_min moved by 3 of its estimates: beyond sqrt(e_a^2 + e_b^2) = 1.4 of them; h_c by 0.5: within; μ by 2 %
-    against 1 % estimates (combined 1.43 %): beyond; p_max has no estimate."""
+    """h_min moved by 3 of its bounds: beyond sqrt(e_a^2 + e_b^2) = 1.4 of them; h_c by 0.5: within; μ by 2 %
+    against 1 % bounds (combined 1.43 %): beyond; p_max is unresolved: no estimate."""
     a = read_result(design)
     s1 = a.points["S1"].scalars
-    e_h, e_c = s1["error_estimate_h_min"], s1["error_estimate_h_c"]
+    e_h, e_c = s1["error_bound_h_min"], s1["error_bound_h_c"]
     b_path = _variant(design, tmp_path / "b.h5", {"h_min": 1 + 3 * e_h, "h_c": 1 + 0.5 * e_c, "mu": 1.02})
     found = {(d.point, d.quantity): d for d in differences(a, read_result(b_path))}
     h_min = found["S1", "h_min"]
@@ -61,6 +65,11 @@ def test_a_difference_is_significant_only_beyond_the_combined_estimates(design, 
     assert found["S1", "p_max"].significance is Significance.UNKNOWN
     assert found["S3", "h_min"].difference == 0.0
     assert found["S3", "h_min"].significance is Significance.NOT_SIGNIFICANT
+    flagged = _variant(design, tmp_path / "c.h5", {"h_min": 1 + 3 * e_h})
+    with h5py.File(flagged, "r+") as h5:
+        h5["points/S1"].attrs["unresolved_h_min"] = 1.0  # B's h_min unresolved: no combined estimate
+    unresolved = {(d.point, d.quantity): d for d in differences(a, read_result(flagged))}["S1", "h_min"]
+    assert unresolved.significance is Significance.UNKNOWN
 
 
 def test_the_command_prints_the_table_and_draws_the_path(design, tmp_path):

@@ -35,7 +35,7 @@ LOADS = (4.0, 9.0)
 ROLLING = (0.0, 0.5)  # slide-roll ratios
 # The attributes that may differ between two runs of the same case: when and by which version the file was
 # written, and the solve's wall time.
-VOLATILE = ("created", "tehl_version", "wall_time", "stage_seconds")
+VOLATILE = ("created", "tehl_version", "wall_time", "error_check_time", "stage_seconds")
 REPOSITORY = Path(__file__).resolve().parents[1]
 
 
@@ -116,15 +116,15 @@ def test_each_variant_file_equals_tehl_run_of_that_variant_and_a_rerun_recompute
         # Beyond the volatile stamps only the case text differs: the study writes the resolved case (comments
         # dropped), which reads back to the same case.
         assert "/.case_yaml" in different
-        timings = {"/.created", "/points/contact.wall_time", "/points/contact/solve.stage_seconds"}
+        timings = {"/.created", "/points/contact.wall_time", "/points/contact.error_check_time",
+                   "/points/contact/solve.stage_seconds"}
         assert set(different) <= {"/.case_yaml"} | timings, different
         # `tehl run` of the resolved case the file holds writes the same file but for the volatile stamps
         resolved = tmp_path / f"resolved_{row['variant']}.yaml"
         resolved.write_text(read_result(out / row["file"]).case_yaml, encoding="utf-8")
         assert _invoke("run", resolved, "-o", tmp_path / "resolved.h5", "--jobs", "1").exit_code == 0
         again = _contents(tmp_path / "resolved.h5")
-        assert set(key for key in mine if not np.array_equal(mine[key], again[key])) <= \
-            {"/.created", "/points/contact.wall_time", "/points/contact/solve.stage_seconds"}
+        assert set(key for key in mine if not np.array_equal(mine[key], again[key])) <= timings
         # index.csv carries the values of `tehl run`'s file, in SI
         point = read_result(reference).points["contact"]
         for key in ("h_c", "h_min", "p_max"):
@@ -134,6 +134,13 @@ def test_each_variant_file_equals_tehl_run_of_that_variant_and_a_rerun_recompute
         assert row["file"] == f"load={row['contact.load']}_slide_roll_ratio={row['contact.slide_roll_ratio']}.h5"
         assert row["grid"] == "x".join(str(len(point.axes[k].values)) for k in ("x", "y"))
         assert row["refinements"] == "0"
+        # the error bound of each figure, or the word where the solve cannot bound it, as `tehl run`'s file says
+        for key in ("h_c", "h_min", "p_max"):
+            flagged = point.scalars[f"unresolved_{key}"] == 1.0
+            cell = row[f"error_bound_{key} [1]"]
+            bound = None if flagged else point.scalars[f"error_bound_{key}"]
+            assert cell == "unresolved" if flagged else float(cell) == pytest.approx(bound)
+        assert row["error_bound_p_max [1]"] == "unresolved"  # never bounded (ehl/error_bounds.py)
     before = _stamps(out)
     again = _invoke("study", study, "-o", out, "--scheduler", cluster.scheduler_address)
     assert again.exit_code == 0, again.output

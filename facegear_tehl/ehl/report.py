@@ -43,6 +43,7 @@ class LevelSummary:
     p_max: float
     dT_max: float = math.nan  # K, with a film state (thermal full multigrid: the coarse stage)
     mu: float = math.nan
+    dT_min: float = math.nan  # K, with a film state
 
 
 def summarise(level: Level) -> LevelSummary:
@@ -58,7 +59,8 @@ def with_film_state(summary: LevelSummary, level: Level, state: FilmState, scali
                     t_inlet: float) -> LevelSummary:
     """The summary of a level with its converged film state: largest temperature rise and friction coefficient."""
     mu = friction_coefficients(state, level.pressure, cell_area(level, scaling), load)[0]
-    return replace(summary, dT_max=float(state.temperature.max() - t_inlet), mu=mu)
+    return replace(summary, dT_max=float(state.temperature.max() - t_inlet), mu=mu,
+                   dT_min=float(state.temperature.min() - t_inlet))
 
 
 def cell_area(level: Level, scaling: Scaling) -> float:
@@ -86,7 +88,7 @@ def inlet_gap_ratio(level: Level, scaling: Scaling, radius_x: float, radius_y: f
 # at 124 m/s, Moes M = 3.7), or a film of 1e14 um: no film of the contact.
 UNBALANCED_LOAD = 0.05
 FILM_SCALARS = ("h_c", "h_min", "x_h_min", "y_h_min", "p_max", "error_estimate_h_c", "error_estimate_h_min",
-                "algebraic_floor", "inlet_gap_ratio")
+                "error_estimate_p_max", "algebraic_floor", "inlet_gap_ratio")
 
 
 class Reported(Protocol):
@@ -193,6 +195,7 @@ def _film_scalars(solve: Reported, level: Level, wall: float) -> dict[str, tuple
         "attempts": (float(solve.attempt), "1"),
         "error_estimate_h_c": (estimate(summaries, level, h_c_start, "h_c", ORDER), "1"),
         "error_estimate_h_min": (estimate(summaries, level, h_min_start, "h_min", ORDER), "1"),
+        "error_estimate_p_max": (estimate(summaries, level, summaries[-1].p_max, "p_max", ORDER), "1"),
         "grid": (float(level.nx), "1"),
         "grid_y": (float(level.ny), "1"),
         "coarsest_grid": (float(solve.coarsest), "1"),
@@ -234,6 +237,8 @@ def _film_state_outputs(solve: Reported, level: Level, state: FilmState
         "thermal_iterations": (float(solve.history.outer), "1"),
         "error_estimate_dT_max": (estimate(summaries, level, dT_max, "dT_max", ORDER_DT_MAX), "1"),
         "error_estimate_mu": (estimate(summaries, level, mu, "mu", ORDER_MU), "1"),
+        "error_estimate_dT_min": (estimate(summaries, level, float(temperature.min() - t_in), "dT_min",
+                                           ORDER_DT_MAX), "1"),
         "thermal_floor": (solve.history.thermal_floor, "K"),
         "viscosity_floor": (solve.history.viscosity_floor, "1"),
         "thermal_layers": (float(temperature.shape[0]), "1"),

@@ -8,12 +8,13 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from facegear_tehl.contact import ContactPoint
+from facegear_tehl.ehl.error_bounds import CoarseStage, coarse_stage, with_error_bounds
 from facegear_tehl.ehl.retry import POLICY
 from facegear_tehl.ehl.solve import PointSolve
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.record import Action, RetryRecord
-from facegear_tehl.settings import SolverSettings
+from facegear_tehl.settings import SolverSettings, ThermalMode
 from facegear_tehl.solution import PointSolution
 
 # numpy's floating-point warnings inside a solve: an iterate that runs away overflows before the solver's own
@@ -21,9 +22,9 @@ from facegear_tehl.solution import PointSolution
 RUN_AWAY_ARITHMETIC = {"over": "ignore", "invalid": "ignore", "divide": "ignore"}
 
 
-def _completed(begun: PointSolution | PointSolve) -> PointSolution:
+def _completed(solver: StagedSolver, begun: PointSolution | PointSolve) -> PointSolution:
     """A begun solve finished in this process."""
-    return begun.finish() if isinstance(begun, PointSolve) else begun
+    return solver.finish(begun) if isinstance(begun, PointSolve) else begun
 
 
 @dataclass(frozen=True)
@@ -31,12 +32,15 @@ class StagedSolver:
     """The EHL solver: whole (`__call__`), or in stages that may run in different processes with the same result
     (`begin`, `finish`, `needs_retry`, `with_retry`). An attempt that fails as retry.POLICY.next_attempt says is
     solved again with the next attempt; the first attempt is reported if no retry did better, with the retries
-    recorded either way."""
+    recorded either way. `bounded`: every finished solution carries its error bounds (error_bounds.py; the checks
+    those need are solved by this solver unbounded)."""
+
+    bounded: bool = True
 
     def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
-        first = solution = _completed(self.begin(point, lubricant, settings))
+        first = solution = _completed(self, self.begin(point, lubricant, settings))
         while self.needs_retry(solution):
-            solution = _completed(self.begin(point, lubricant, settings, solution))
+            solution = _completed(self, self.begin(point, lubricant, settings, solution))
         return first if solution is first else self.with_retry(first, solution)
 
     def begin(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
@@ -57,12 +61,28 @@ class StagedSolver:
             solve.retries.append(RetryRecord(POLICY.reason(retry_after), Action.NEXT_RELAXATION, attempt,
                                              f"attempt {attempt - 1}: {retry_after.message}"))
         with np.errstate(**RUN_AWAY_ARITHMETIC):
-            return solve.begin()
+            begun = solve.begin()
+        if isinstance(begun, PointSolve):
+            return begun
+        return self._bounded(begun, point, lubricant, settings)
 
     def finish(self, stage: PointSolve) -> PointSolution:
-        """The second stage (PointSolve.finish)."""
+        """The second stage (PointSolve.finish), with its error bounds (e_y from its coarse stage in a `full` solve:
+        the check of a `reduced` one is reduced too, its finest figures then alike)."""
         with np.errstate(**RUN_AWAY_ARITHMETIC):
-            return stage.finish()
+            solution = stage.finish()
+        coarse = None  # a reduced solve's finest figures are one film-state evaluation, its coarse stage's coupled
+        if stage.mode is ThermalMode.FULL and len(stage.summaries) >= 2 and len(stage.solver.levels) >= 2:
+            coarse = coarse_stage(stage.summaries[-2], stage.solver.levels[-2].ny, stage.scaling)
+        return self._bounded(solution, stage.point, stage.lubricant, stage.asked, coarse)
+
+    def _bounded(self, solution: PointSolution, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
+                 coarse: CoarseStage | None = None) -> PointSolution:
+        """The solution with its error bounds (error_bounds.with_error_bounds), as it is when not `bounded`."""
+        if not self.bounded:
+            return solution
+        with np.errstate(**RUN_AWAY_ARITHMETIC):
+            return with_error_bounds(solution, point, lubricant, settings, UNBOUNDED, coarse)
 
     def needs_retry(self, solution: PointSolution) -> bool:
         """The policy has a next attempt for this one (retry.RetryPolicy.next_attempt)."""
@@ -84,6 +104,7 @@ class StagedSolver:
 
 
 STAGED = StagedSolver()
+UNBOUNDED = StagedSolver(bounded=False)  # the solver of the error bounds' checks
 
 
 def solve_point(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:

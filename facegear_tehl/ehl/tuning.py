@@ -111,6 +111,11 @@ class Tuning:
     accuracy_max_grid_y: int = 513  # y nodes it refines to at most
     accuracy_model_share: float = 0.5  # share of the target a cheaper model's measured effect may take (grid: the rest)
     accuracy_fewer_layers: int = 7  # the cheaper layer count across the film it tries for thermal full (default 9)
+    # --- error bounds of the reported figures (error_bounds.py)
+    bound_safety: float = 3.0  # Roache's GCI factor F_s for a two-grid estimate at an assumed order
+    asymptotic_estimate: float = 0.1  # an x or y estimate above this is outside the asymptotic range: unresolved
+    feature_nodes: int = 3  # a minimum, hot or cold spot spanning fewer nodes along x or y is unresolved ...
+    feature_depth: float = 0.1  # ... counted where the figure is within this share of its extreme
 
 
 TUNING = Tuning()

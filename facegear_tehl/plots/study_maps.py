@@ -30,7 +30,7 @@ from facegear_tehl.plots import FORMATS
 from facegear_tehl.plots.common import Output, PlotReport, figure, plain
 from facegear_tehl.results import ResultFileError
 from facegear_tehl.schema import CaseError
-from facegear_tehl.study_index import COLUMNS, GRID, INDEX
+from facegear_tehl.study_index import COLUMNS, GRID, INDEX, UNRESOLVED_CELL
 from facegear_tehl.units import display
 
 WORST = "worst"
@@ -38,7 +38,7 @@ SMALLER_IS_WORSE = ("h_c", "h_min", "film_parameter", "mesh_efficiency")  # the 
 MAX_ANNOTATED_CELLS = 400  # above this many cells the numbers would overlap: colours only
 LABELS = {"film_parameter": "λ", "dT_max": "ΔT_max", "mu": "μ", "mesh_efficiency": "efficiency"}
 MIN_CONTOUR_VALUES = 4  # per key: contour lines through fewer values per axis are the interpolation, not the film
-UNRESOLVED_ESTIMATE = 0.05  # relative error estimate above which a value is marked under-resolved: 20-100 times the
+UNRESOLVED_ESTIMATE = 0.05  # relative error bound above which a value is marked under-resolved: 20-100 times the
 # estimates of the shipped case (0.05-0.3 %), and as large as the trends a map is read for
 GRID_MARKERS = ("o", "s", "^", "D", "v", "P")  # one marker shape per grid solved on
 
@@ -195,13 +195,21 @@ def _cell(rows: Sequence[dict[str, str]], z: str, point: str) -> tuple[float, bo
     """The value of one cell (NaN: none), whether it comes from a point that did not converge, the grid it was
     solved on and whether its error estimate (if the index has one) is above UNRESOLVED_ESTIMATE: the point's, or
     for WORST the worst over the variant's points that have the scalar."""
-    found = [(float(row[z]), row["converged"] != "yes", row.get(GRID, ""),
-              abs(float(row.get(f"error_estimate_{z}") or 0.0)) > UNRESOLVED_ESTIMATE) for row in rows
+    found = [(float(row[z]), row["converged"] != "yes", row.get(GRID, ""), _under_resolved(row, z)) for row in rows
              if row.get(z) and (point == WORST and row["point"] or row["point"] == point)]
     if not found:
         return math.nan, False, "", False
     pick = min if z in SMALLER_IS_WORSE else max
     return pick(found, key=lambda item: item[0])
+
+
+def _under_resolved(row: dict[str, str], z: str) -> bool:
+    """The row's error bound of `z` is "unresolved" or above UNRESOLVED_ESTIMATE (in an index written before the
+    bounds: its error estimate)."""
+    bound = row.get(f"error_bound_{z}")
+    if bound:
+        return bound == UNRESOLVED_CELL or float(bound) > UNRESOLVED_ESTIMATE
+    return abs(float(row.get(f"error_estimate_{z}") or 0.0)) > UNRESOLVED_ESTIMATE
 
 
 def plot_study(folder: Path, out_folder: Path, *, what: str = "maps", z: str = "h_min", x: str | None = None,

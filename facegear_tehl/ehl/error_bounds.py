@@ -1,0 +1,183 @@
+"""Error bounds of a solve's reported figures, and the figures a solve cannot bound ("unresolved").
+
+A reported error estimate is a promise: the bound of a figure f solved on nx x ny nodes is
+
+    B = F_s (|e_x| + |e_y|) + e_it,
+
+e_x the Richardson estimate of the solve from the grid one coarser along x alone (report.estimate), e_y the Richardson
+estimate along y (`y_estimates`), e_it the change the last outer iteration left (`iteration_error`) and F_s =
+TUNING.bound_safety, the factor of Roache's grid convergence index (Roache 1994, J. Fluids Eng. 116: 405-413;
+Roache 1998, "Verification and Validation in Computational Science and Engineering", ch. 5: F_s = 3 for an estimate
+from two grids at an assumed order). The x-only hierarchy never refines y, so e_y comes from one more solve of the
+same point and model on the solved domain with (ny + 1)/2 nodes along y. Under the additive error model
+f = f* + C_x h_x^p + C_y h_y^p (Roache 1998, ch. 5) the y-error does not depend on h_x, so where the solve has a
+converged coarse stage at (nx + 1)/2 x ny (a thermal full multigrid), the check solves (nx + 1)/2 x (ny + 1)/2 and
+e_y = (f_stage - f_check)/((2^p - 1) f): a quarter of the finest grid's nodes instead of half. Without a coarse stage
+the check solves nx x (ny + 1)/2 against the solution itself. On a square finest grid e_x covers both axes (e_y = 0).
+
+A figure is "unresolved" (`unresolved_<name>` = 1 in the file, the word in the tables) where no bound can be given:
+a solve that did not converge; no e_x or no e_y (ny is the coarsest grid, or the check did not converge); an e_x
+or e_y above TUNING.asymptotic_estimate (outside the asymptotic range); its feature (the lowest film's basin, the hot
+or the cold spot) spanning fewer than TUNING.feature_nodes nodes along x or y (`feature_nodes`); and p_max always
+(UNBOUNDED). docs/accuracy.md (error bounds) holds the calibration that chose these rules.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+import math
+import time
+
+import numpy as np
+
+from facegear_tehl.contact import ContactPoint
+from facegear_tehl.ehl.report import ORDER_DT_MAX, ORDER_MU, LevelSummary
+from facegear_tehl.ehl.richardson import ORDER
+from facegear_tehl.ehl.scaling import Scaling
+from facegear_tehl.ehl.tuning import TUNING
+from facegear_tehl.lubricant import Lubricant
+from facegear_tehl.settings import OutletRefinement, SolverSettings
+from facegear_tehl.solution import Outcome, PointSolution
+
+# p_max is never bounded: the pressure maximum is the outlet spike, or a dome that grows into one under refinement,
+# whose height grows with every refinement on practical grids (Venner & Lubrecht 2000, ch. 8; the calibration in
+# docs/accuracy.md: a bound F_s (|e_x| + |e_y|) held for 87 % of the p_max and understated four more than twofold).
+UNBOUNDED = ("p_max",)
+FILM_FIGURES = ("h_c", "h_min", "p_max")  # figures of every film
+STATE_FIGURES = ("dT_max", "dT_min", "mu")  # figures of the film state (thermal or Ree-Eyring solves)
+FIGURES = FILM_FIGURES + STATE_FIGURES
+# the order each figure's estimates assume (report.py): second for the film and p_max, first for the film state's
+ORDERS = {"h_c": ORDER, "h_min": ORDER, "p_max": ORDER, "dT_max": ORDER_DT_MAX, "dT_min": ORDER_DT_MAX, "mu": ORDER_MU}
+Solve = Callable[[ContactPoint, Lubricant, SolverSettings], PointSolution]  # a point solve (staged.StagedSolver)
+
+
+@dataclass(frozen=True)
+class CoarseStage:
+    """The figures (SI: m, Pa, K, 1) of a solve's converged coarse stage on nx x ny nodes, the finest grid's ny."""
+
+    nx: int
+    ny: int
+    figures: dict[str, float]
+
+
+def coarse_stage(summary: LevelSummary, ny: int, scaling: Scaling) -> CoarseStage | None:
+    """The coarse stage of a level summary with its film state (report.with_film_state); None without one."""
+    if not math.isfinite(summary.dT_max):
+        return None
+    figures = {"h_c": summary.h_c * scaling.film_scale, "h_min": summary.h_min * scaling.film_scale,
+               "p_max": summary.p_max * scaling.p_h, "dT_max": summary.dT_max, "dT_min": summary.dT_min,
+               "mu": summary.mu}
+    return CoarseStage(summary.n, ny, figures)
+
+
+def y_estimates(solution: PointSolution, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
+                solve: Solve, coarse: CoarseStage | None = None) -> dict[str, float]:
+    """e_y of each reported figure (module docstring; p: ORDERS): from the coarse stage and a check on its x nodes
+    with (ny + 1)/2 rows where `coarse` is given, else from the solution and a check on its x nodes with (ny + 1)/2
+    rows; the check is `solve` (with its retries) of the same point and model on the solution's domain, without
+    outlet patches. 0 on a square grid, NaN where (ny + 1)/2 is below the coarsest grid or the check failed."""
+    x, y = solution.axes["x"].values, solution.axes["y"].values
+    nx, ny = x.size, y.size
+    names = [name for name in FIGURES if name in solution.scalars]
+    if nx == ny:
+        return dict.fromkeys(names, 0.0)
+    if (ny + 1) // 2 < settings.coarsest_grid:
+        return dict.fromkeys(names, math.nan)
+    usable = coarse is not None and coarse.ny == ny and coarse.nx < nx
+    reference = coarse.figures if usable else {name: solution.scalar(name) for name in names}
+    a, b = solution.scalar("a"), solution.scalar("b")
+    check = replace(settings, grid=coarse.nx if usable else nx, grid_y=(ny + 1) // 2,
+                    domain_x=(x[0] / b, x[-1] / b), domain_y=(y[0] / a, y[-1] / a),
+                    outlet_refinement=OutletRefinement.NEVER)
+    checked = solve(point, lubricant, check)
+    if checked.outcome is not Outcome.CONVERGED or "h_min" not in checked.scalars:
+        return dict.fromkeys(names, math.nan)
+    return {name: (reference[name] - checked.scalar(name)) / (2.0 ** ORDERS[name] - 1.0) / solution.scalar(name)
+            if name in checked.scalars and math.isfinite(reference.get(name, math.nan))
+            and solution.scalar(name) != 0.0 else math.nan for name in names}
+
+
+def iteration_error(solution: PointSolution, name: str) -> float:
+    """Relative change the last outer iteration left in a figure: of the largest layer temperature for the
+    temperatures (K over |value|), of ln(eta*/eta) for mu of an isothermal Ree-Eyring film, else of the central
+    film; 0 without an outer loop. The loop stops on these changes, so what it left is of their size."""
+    history, value = solution.history, solution.scalar(name)
+    if name in ("dT_max", "dT_min") and "thermal_change_history" in history:
+        return float(history["thermal_change_history"].values[-1]) / abs(value) if value != 0.0 else 0.0
+    if name == "mu" and "viscosity_change_history" in history:
+        return float(history["viscosity_change_history"].values[-1])
+    h_c = history["thermal_h_c_history"].values if "thermal_h_c_history" in history else ()
+    return abs(h_c[-1] - h_c[-2]) / abs(h_c[-1]) if len(h_c) >= 2 and h_c[-1] != 0.0 else 0.0
+
+
+def span(field: np.ndarray, inside: np.ndarray) -> int:
+    """Nodes of the shorter of the two runs through the extreme of `field` (its first arg-extreme, `inside` there)
+    along x (axis 1) and y (axis 0) where `inside` holds without a gap."""
+    j, i = np.unravel_index(np.argmax(np.where(inside, field, -np.inf)), field.shape)
+    runs = []
+    for line, at in ((inside[j, :], i), (inside[:, i], j)):
+        low, high = at, at
+        while low > 0 and line[low - 1]:
+            low -= 1
+        while high < line.size - 1 and line[high + 1]:
+            high += 1
+        runs.append(high - low + 1)
+    return min(runs)
+
+
+def feature_nodes(solution: PointSolution, t_inlet: float) -> dict[str, int]:
+    """Nodes across the feature of each local figure (`span`): the lowest film's basin (film within feature_depth
+    of h_min above it), the hot spot (rise within feature_depth of dT_max) and the cold spot (within feature_depth of
+    dT_min) in the layer field holding the extreme (surface 1, mid-film, surface 2); t_inlet in K."""
+    depth, out = TUNING.feature_depth, {}
+    if "film_thickness" in solution.fields:
+        film = solution.fields["film_thickness"].values
+        out["h_min"] = span(-film, film <= film.min() + depth * abs(film.min()))
+    layers = [solution.fields[k].values for k in ("temperature_surface_1", "temperature_mid", "temperature_surface_2")
+              if k in solution.fields]
+    if layers:
+        hot = max(layers, key=np.max) - t_inlet
+        out["dT_max"] = span(hot, hot >= hot.max() - depth * abs(hot.max()))
+        cold = min(layers, key=np.min) - t_inlet
+        out["dT_min"] = span(-cold, cold <= cold.min() + depth * abs(cold.min()))
+    return out
+
+
+def bounds(solution: PointSolution, e_y: dict[str, float],
+           nodes: dict[str, int] | None = None) -> dict[str, tuple[float, str]]:
+    """`error_bound_<name>` (relative, >= 0) of every reported figure it can bound and `unresolved_<name>` (1 or 0)
+    of every reported figure (module docstring); `nodes`: feature_nodes of the solution."""
+    nodes = nodes or {}
+    out: dict[str, tuple[float, str]] = {}
+    for name in FIGURES:
+        if name not in solution.scalars:
+            continue
+        e_x = solution.scalars.get(f"error_estimate_{name}", (math.nan, "1"))[0]
+        along_y = e_y.get(name, math.nan)
+        unresolved = (solution.outcome is not Outcome.CONVERGED or name in UNBOUNDED
+                      or not (math.isfinite(e_x) and math.isfinite(along_y))
+                      or max(abs(e_x), abs(along_y)) > TUNING.asymptotic_estimate
+                      or nodes.get(name, TUNING.feature_nodes) < TUNING.feature_nodes)
+        if not unresolved:
+            bound = TUNING.bound_safety * (abs(e_x) + abs(along_y)) + iteration_error(solution, name)
+            out[f"error_bound_{name}"] = (bound, "1")
+        out[f"unresolved_{name}"] = (float(unresolved), "1")
+    return out
+
+
+def with_error_bounds(solution: PointSolution, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
+                      solve: Solve, coarse: CoarseStage | None = None) -> PointSolution:
+    """The solution with its error bounds, unresolved flags, y-estimates and the check's time (`error_check_time`,
+    s; apart from `wall_time`, which the grid refinement's time budget reads as the solve's own); a solution without a
+    film is returned as it is, one that did not converge with every figure unresolved and no check."""
+    if "h_min" not in solution.scalars or "film_thickness" not in solution.fields:
+        return solution
+    clock = time.perf_counter()
+    e_y = {}
+    if solution.outcome is Outcome.CONVERGED:
+        e_y = y_estimates(solution, point, lubricant, settings, solve, coarse)
+    extra = bounds(solution, e_y, feature_nodes(solution, lubricant.inlet_temperature))
+    extra |= {f"error_estimate_y_{k}": (v, "1") for k, v in e_y.items() if math.isfinite(v)}
+    extra["error_check_time"] = (time.perf_counter() - clock, "s")
+    return replace(solution, scalars={**solution.scalars, **extra})

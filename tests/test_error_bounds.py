@@ -1,0 +1,152 @@
+"""Error bounds (ehl/error_bounds.py): on a figure with a known (analytic) error the estimates recover it and the bound
+holds; a feature narrower than the grid, an estimate outside the asymptotic range and p_max are unresolved; each
+reported bound holds against a finer grid's solution of the same contact; the run table shows them."""
+
+import math
+
+import numpy as np
+import pytest
+
+from facegear_tehl.case import SolverSettings
+from facegear_tehl.cli import summary_table
+from facegear_tehl.ehl.error_bounds import CoarseStage, bounds, feature_nodes, span, y_estimates
+from facegear_tehl.ehl.richardson import richardson_error
+from facegear_tehl.ehl.scaling import contact_from_moes
+from facegear_tehl.ehl.staged import solve_point
+from facegear_tehl.ehl.tuning import TUNING
+from facegear_tehl.results import PointResult
+from facegear_tehl.solution import Field, Outcome, PointSolution
+
+EXACT, C_X, C_Y = 2.0e-7, 40.0, -300.0  # f = f* (1 + C_x h_x^2 + C_y h_y^2), h the node spacing on [0, 1]
+
+
+def _analytic(nx: int, ny: int) -> float:
+    """A figure with a second-order error along each axis, additive (the model the bounds assume)."""
+    return EXACT * (1.0 + C_X / (nx - 1) ** 2 + C_Y / (ny - 1) ** 2)
+
+
+def _solution(nx=257, ny=65, outcome=Outcome.CONVERGED, fields=None, **scalars):
+    axes = {"x": Field(np.linspace(-4.5, 1.5, nx), "m", ""), "y": Field(np.linspace(-3.0, 3.0, ny), "m", "")}
+    values = {"a": 1.0, "b": 1.0, "h_c": _analytic(nx, ny), "h_min": _analytic(nx, ny), "wall_time": 1.0} | scalars
+    return PointSolution(name="P", outcome=outcome, message="", fields=fields or {}, axes=axes,
+                         scalars={k: (v, "1") for k, v in values.items()})
+
+
+def _check(point, lubricant, settings):
+    """The check solve of y_estimates: the analytic figure on the grid it asks for."""
+    return _solution(settings.grid, settings.grid_y)
+
+
+@pytest.mark.parametrize("coarse", [True, False])
+def test_the_y_estimate_recovers_an_analytic_error_and_the_bound_holds(coarse):
+    """Both routes of e_y (the coarse stage's x nodes with half its rows; the finest x nodes with half the rows) give
+    the exact y-error -C_y h_y^2 f*/f of the additive model, and F_s (|e_x| + |e_y|) bounds the true error."""
+    nx, ny = 257, 65
+    e_x = richardson_error(_analytic(nx, ny), _analytic(129, ny), 2)
+    solution = _solution(nx, ny, error_estimate_h_c=e_x, error_estimate_h_min=e_x)
+    stage = CoarseStage(129, ny, {"h_c": _analytic(129, ny), "h_min": _analytic(129, ny)}) if coarse else None
+    e_y = y_estimates(solution, None, None, SolverSettings(grid=nx, grid_y=ny), _check, stage)
+    exact_y = -EXACT * C_Y / (ny - 1) ** 2 / _analytic(nx, ny)  # Richardson's sign: (f* - f)/f
+    assert e_y["h_c"] == pytest.approx(exact_y, rel=1e-9)
+    assert e_x == pytest.approx(-EXACT * C_X / (nx - 1) ** 2 / _analytic(nx, ny), rel=1e-9)
+    out = bounds(solution, e_y)
+    true_error = _analytic(nx, ny) / EXACT - 1.0
+    assert out["unresolved_h_c"][0] == 0.0
+    bound = out["error_bound_h_c"][0]
+    assert abs(true_error) <= bound == pytest.approx(TUNING.bound_safety * (abs(e_x) + abs(exact_y)))
+
+
+def test_a_square_grid_has_no_separate_y_estimate_and_a_too_coarse_one_none():
+    square = _solution(65, 65)
+    assert y_estimates(square, None, None, SolverSettings(grid=65), _check) == {"h_c": 0.0, "h_min": 0.0}
+    flat = _solution(65, 17)  # (17 + 1)/2 rows are below the coarsest grid
+    assert all(math.isnan(v) for v in y_estimates(flat, None, None, SolverSettings(grid=65, grid_y=17),
+                                                  _check).values())
+
+
+def test_a_figure_without_an_estimate_or_with_a_large_one_is_unresolved_never_small():
+    solution = _solution(h_c=1.0, h_min=0.8, p_max=1.01, error_estimate_h_c=0.001, error_estimate_h_min=0.002,
+                         error_estimate_p_max=0.001)
+    out = bounds(solution, {"h_c": 0.001, "h_min": 2.0 * TUNING.asymptotic_estimate, "p_max": 0.0})
+    assert out["unresolved_h_c"][0] == 0.0 and out["error_bound_h_c"][0] == pytest.approx(TUNING.bound_safety * 0.002)
+    assert out["unresolved_h_min"][0] == 1.0 and "error_bound_h_min" not in out
+    assert out["unresolved_p_max"][0] == 1.0 and "error_bound_p_max" not in out  # the spike forms under refinement
+    assert bounds(solution, {"h_c": math.nan})["unresolved_h_c"][0] == 1.0
+    stalled = _solution(outcome=Outcome.NOT_CONVERGED, error_estimate_h_c=0.001)
+    assert bounds(stalled, {"h_c": 0.0})["unresolved_h_c"][0] == 1.0
+    narrow = bounds(solution, {"h_c": 0.001, "h_min": 0.001}, {"h_min": TUNING.feature_nodes - 1})
+    assert narrow["unresolved_h_min"][0] == 1.0 and narrow["unresolved_h_c"][0] == 0.0
+
+
+def test_a_side_lobe_minimum_narrower_than_the_rows_is_counted_in_nodes():
+    """A film h = 1 - 0.5 exp(-((y - y0)/w)^2) (a dip of width w along y, the whole x length): the dip spans as
+    many rows as w covers within feature_depth of its minimum; coarse rows do not resolve it, fine rows do."""
+    def dip(ny: int) -> int:
+        y = np.linspace(-1.5, 1.5, ny)[:, None]
+        film = 1.0 - 0.5 * np.exp(-(((y - 0.94) / 0.08) ** 2)) + 0.0 * np.linspace(0, 1, 65)[None, :]
+        return span(-film, film <= film.min() * (1.0 + TUNING.feature_depth))
+    # within 10 % of the minimum: |y - y0| < 0.08 sqrt(-ln(0.9)) = 0.026, 0.052 wide: one row of 33 (spacing 0.094),
+    # 3 of 129 (0.023), 9 of 513 (0.0059) (+-1 where the rows fall)
+    assert dip(33) < TUNING.feature_nodes <= dip(129)
+    assert 8 <= dip(513) <= 10
+    film = 1.0 - 0.5 * np.exp(-((np.linspace(-1.5, 1.5, 33)[:, None] - 0.94) / 0.08) ** 2) * np.ones((1, 65))
+    solution = _solution(65, 33, fields={"film_thickness": Field(film, "m", "")})
+    assert feature_nodes(solution, 300.0)["h_min"] < TUNING.feature_nodes
+
+
+FIGURES = ("h_c", "h_min", "p_max")
+
+
+def _settings(grid, grid_y=None):
+    # Venner & Lubrecht's domain, fixed: the reference is the same discrete problem on a finer grid
+    return SolverSettings(grid=grid, grid_y=grid_y, domain_x=(-4.5, 1.5), domain_y=(-3.0, 3.0), thermal="off")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("moes_m, shape", [(20.0, (65, None)), (20.0, (129, 33)), (200.0, (129, 33))])
+def test_the_bounds_hold_against_a_grid_four_times_finer_or_the_figure_is_unresolved(moes_m, shape):
+    """Circular Roelands/Dowson-Higginson contacts at L = 10 (Venner & Lubrecht's benchmark) on a square grid and
+    on a grid coarser along y than along x, against 257 x 257 (2-8x finer). The true error of a figure is its change
+    to the reference; the bound must be at least that, or the figure flagged."""
+    point, lubricant = contact_from_moes(moes_m, 10.0, viscosity_model="roelands", density_model="dowson_higginson")
+    reference = solve_point(point, lubricant, _settings(257))
+    solution = solve_point(point, lubricant, _settings(*shape))
+    assert solution.outcome is Outcome.CONVERGED
+    for name in FIGURES:
+        if solution.scalar(f"unresolved_{name}") == 0.0:
+            assert abs(solution.scalar(name) / reference.scalar(name) - 1.0) <= solution.scalar(f"error_bound_{name}")
+    if shape[1] is not None and moes_m == 20.0:  # y coarser than x: the y-check gave an estimate of each figure
+        assert all(math.isfinite(solution.scalar(f"error_estimate_y_{name}")) for name in FIGURES)
+
+
+def test_the_run_table_says_unresolved_instead_of_a_number():
+    scalars = {"h_c": 1e-6, "h_min": 8e-7, "error_estimate_h_c": 0.001, "error_bound_h_c": 0.004,
+               "error_estimate_h_min": 0.001, "unresolved_h_min": 1.0, "unresolved_h_c": 0.0}
+    point = PointResult("S1", True, "converged", "", scalars, dict.fromkeys(scalars, "1"), {}, {}, {}, {})
+    row = summary_table([point]).splitlines()[-1].split()
+    assert "unresolved" in row and "0.40" in row and "0.10" not in row
+
+
+def test_tehl_info_words_an_unresolved_figure_and_its_estimates(tmp_path):
+    """A written result whose h_min is unresolved and h_c bounded: tehl info's flag rows say so, and h_min's estimates
+    read "unresolved" (no small number), h_c's stay numbers."""
+    from dataclasses import replace
+
+    from facegear_tehl.cli import info_text
+    from facegear_tehl.points import contact_analysis
+    from facegear_tehl.results import read_result, write_result
+    from facegear_tehl.run import RunResult
+    from tests import synthetic
+
+    case = synthetic.ball_on_disc()
+    point = contact_analysis(case).points[0]
+    solved = synthetic.solution(point)
+    flags = {"error_estimate_h_c": 0.0012, "error_estimate_h_min": 0.0021, "error_estimate_y_h_min": 0.15,
+             "error_bound_h_c": 0.0036, "unresolved_h_c": 0.0, "unresolved_h_min": 1.0}
+    solved = replace(solved, scalars={**solved.scalars, **{k: (v, "1") for k, v in flags.items()}})
+    text = info_text(read_result(write_result(RunResult(case=case, points=(solved,)), tmp_path / "r.h5"),
+                                 fields=False))
+    rows = {line.split()[0]: line.split()[1:] for line in text.splitlines() if line.strip()}
+    assert rows["unresolved_h_min"] == ["unresolved"] and rows["unresolved_h_c"] == ["bounded"]
+    assert rows["error_estimate_h_min"][-1] == "unresolved" and rows["error_estimate_y_h_min"][-1] == "unresolved"
+    assert rows["error_estimate_h_c"][-1] == "0.12" and rows["error_bound_h_c"][-1] == "0.36"
