@@ -12,7 +12,6 @@ import pytest
 from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.suites import wide_envelope
 
-
 LOG_UNIFORM = ("ellipticity", "entrainment_speed", "viscosity")
 
 
