@@ -119,3 +119,36 @@ def test_an_unconverged_iterate_that_does_not_carry_the_load_reports_no_film():
     assert unbalanced.scalar("load_error") == pytest.approx(load - 1.0) and load == pytest.approx(2.0, rel=0.05)
     assert "h_c" not in unbalanced.scalars and "h_min" not in unbalanced.scalars and not unbalanced.fields
     assert unbalanced.message.startswith("budget spent; ") and "does not carry the load" in unbalanced.message
+
+
+def _at_hertz_pressure(p_h: float, speed: float) -> ContactPoint:
+    """The a/b = 5 contact at maximum Hertz pressure `p_h` (Pa): p_h ~ W^(1/3) at fixed radii (Hertz)."""
+    return _point((p_h / scaling_for(_point(1.0), OIL).p_h) ** 3, speed=speed)
+
+
+def test_the_continued_start_reaches_the_discrete_solution_of_the_plain_one():
+    """a/b = 5, 1.5 GPa, 2 m/s (M = 3.0e3) on 129^2: the plain damped start and the start at 1000/M of the load
+    raised under step control are two paths to one discrete solution (its algebraic floor: ~1e-3 of h_min)."""
+    point = _at_hertz_pressure(1.5e9, 2.0)
+    settings = SolverSettings(grid=129, thermal="off")
+    plain = PointSolve(point, OIL, settings, DAMPED, attempt=3).begin()
+    continued = PointSolve(point, OIL, settings, DAMPED, attempt=4, load_continuation=True).begin()
+    assert plain.converged and continued.converged, (plain.message, continued.message)
+    assert any("of the load" in note for note in continued.record.notes)
+    for key in ("h_c", "h_min", "p_max"):
+        assert continued.scalar(key) == pytest.approx(plain.scalar(key), rel=2e-3)
+    assert abs(continued.scalar("load_error")) < settings.load_tolerance
+
+
+def test_a_start_that_falls_short_of_the_load_reports_no_film():
+    """a/b = 5, 2.5 GPa, 0.5 m/s (M = 4.0e4) on 65^2: the grid does not carry the full load (the step falls below
+    min_load_step); the film its iterate has is that of a lighter contact, so none is reported, only the share of the
+    load reached and where the lowest film lies (the way a finer grid must resolve it)."""
+    solution = PointSolve(_at_hertz_pressure(2.5e9, 0.5), OIL, SolverSettings(grid=65, thermal="off"), DAMPED,
+                          attempt=4, load_continuation=True).begin()
+    assert solution.outcome is Outcome.DIVERGED
+    assert "of the load: no film is reported" in solution.message
+    reached = float(solution.message.split("carries ")[1].split(" of the load")[0])
+    assert TUNING.continuation_moes_m / solution.scalar("moes_m") < reached < 1.0
+    assert not solution.fields and "h_min" not in solution.scalars and "h_c" not in solution.scalars
+    assert "y_film_closed" in solution.scalars and POLICY.unresolved(solution)
