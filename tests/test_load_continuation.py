@@ -140,15 +140,71 @@ def test_the_continued_start_reaches_the_discrete_solution_of_the_plain_one():
     assert abs(continued.scalar("load_error")) < settings.load_tolerance
 
 
-def test_a_start_that_falls_short_of_the_load_reports_no_film():
-    """a/b = 5, 2.5 GPa, 0.5 m/s (M = 4.0e4) on 65^2: the grid does not carry the full load (the step falls below
-    min_load_step); the film its iterate has is that of a lighter contact, so none is reported, only the share of the
-    load reached and where the lowest film lies (the way a finer grid must resolve it)."""
-    solution = PointSolve(_at_hertz_pressure(2.5e9, 0.5), OIL, SolverSettings(grid=65, thermal="off"), DAMPED,
-                          attempt=4, load_continuation=True).begin()
-    assert solution.outcome is Outcome.DIVERGED
-    assert "of the load: no film is reported" in solution.message
-    reached = float(solution.message.split("carries ")[1].split(" of the load")[0])
-    assert TUNING.continuation_moes_m / solution.scalar("moes_m") < reached < 1.0
+class _CarriesUpTo:
+    """A stand-in for the multigrid solver whose iteration runs away (non-finite pressure) once the load exceeds
+    `limit` of the full load: what a grid that cannot carry a heavier film does."""
+
+    def __init__(self, problem, fraction: float, limit: float):
+        from facegear_tehl.ehl.multigrid import Iterate
+
+        self.full, self.limit, self.Iterate = problem, limit, Iterate
+        self.problem = at_load_fraction(problem, fraction)
+        shape = (5, 5)
+        self.level = type("L", (), {"pressure": np.ones(shape), "film": np.ones(shape), "eps": np.ones(shape),
+                                    "nx": 5, "ny": 5})()
+        self.levels, self.h0 = [self.level], 0.0
+
+    def fraction(self) -> float:  # p_h ~ f^(1/3) (multigrid.at_load_fraction)
+        return (self.problem.p_hertz / self.full.p_hertz) ** 3
+
+    def snapshot(self, index):
+        return self.Iterate(self.level.pressure.copy(), self.h0)
+
+    def restore(self, index, iterate):
+        self.level.pressure, self.h0 = iterate.pressure.copy(), iterate.h0
+
+    def central_film(self, level):
+        return 0.1
+
+    def update_film(self, level):
+        pass
+
+    def cycle(self, index):
+        self.level.pressure = np.full((5, 5), math.nan if self.fraction() > self.limit * (1 + 1e-12) else 1.0)
+
+    def force_error(self, level):
+        return 0.0
+
+
+@pytest.mark.parametrize("limit", [0.3, 0.77, 1.0])
+def test_the_step_control_raises_the_load_as_far_as_the_grid_carries_it(limit):
+    """start._raise_load from 1 % of the load: where the iteration runs away above `limit` of the load, the steps
+    shrink until they fall below min_load_step and stop within such a step of it, the last sound iterate restored and the
+    problem at the load reached; where it carries the full load, it gets there."""
+    from facegear_tehl.ehl.start import _raise_load
+
+    problem = problem_for(_point(4e4), OIL, SolverSettings(grid=65, thermal="off"), scaling_for(_point(4e4), OIL))
+    solver = _CarriesUpTo(problem, 0.01, limit)
+    reached, status = _raise_load(solver, 0, problem, 0.01)
+    if limit == 1.0:
+        assert status.converged and reached == 1.0
+        return
+    assert status.diverged and f"past {reached:.3g}" in status.message
+    # the last step that ran away had a factor below min_load_step^2 (its square root fell below min_load_step)
+    assert limit / TUNING.min_load_step**2 < reached <= limit
+    assert solver.fraction() == pytest.approx(reached, rel=1e-9) and np.isfinite(solver.level.pressure).all()
+
+
+def test_a_start_short_of_the_load_reports_no_film():
+    """A solve whose start ended at a fraction of the load (start.py: its continuation could not go on) reports no
+    film: the film of its iterate is a lighter contact's. Only the share of the load and where its lowest film lies
+    (the way a finer grid must resolve it) are reported, and the refinement takes it as unresolved."""
+    from facegear_tehl.solution import Status
+
+    solve = PointSolve(_point(1e3, speed=2.0), OIL, SolverSettings(grid=65, thermal="off"))
+    index, _ = solve.start(below_top=0)
+    solve.load_reached = 0.4
+    solution = solve.report(index, Status(Outcome.DIVERGED, "diverged raising the load"), None)
+    assert "carries 0.4 of the load: no film is reported" in solution.message
     assert not solution.fields and "h_min" not in solution.scalars and "h_c" not in solution.scalars
     assert "y_film_closed" in solution.scalars and POLICY.unresolved(solution)

@@ -38,7 +38,11 @@ from facegear_tehl.record import Action, Reason, RetryRecord, SolveRecord, Stage
 from facegear_tehl.settings import SolverSettings, ThermalMode
 from facegear_tehl.solution import CONVERGED, Outcome, PointSolution, Status
 
-FILM_CLOSED_MESSAGE = "the film closes (h_min <= 0: solid contact, outside the EHL model)"
+# A smooth-surface EHL film is open at any load (H_min = 3.63 U^0.68 G^0.49 W^-0.073 (1 - exp(-0.68 k)) > 0,
+# Hamrock & Dowson 1977, J. Lubr. Technol. 99:264-276): an iterate whose film closes is not a solution of the
+# smooth-film equations but of a grid that does not resolve the film, or of an iteration that failed.
+FILM_CLOSED_MESSAGE = ("the film closes on the {} x {} grid (h_min <= 0): not a solution of the smooth-film equations, "
+                       "whose film is open at any load; the grid does not resolve it or the iteration failed")
 
 
 def problem_for(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, scaling: Scaling) -> Problem:
@@ -348,7 +352,7 @@ class PointSolve:
         level = self.solver.levels[index]
         iteration = status.outcome
         if level.film.min() <= 0.0:
-            message = FILM_CLOSED_MESSAGE
+            message = FILM_CLOSED_MESSAGE.format(level.nx, level.ny)
             message += "; " + status.message if status.message else ""
             status = Status(Outcome.DIVERGED if status.diverged else Outcome.FILM_CLOSED, message)
         solution = point_solution(self, level, status, state, time.perf_counter() - self._clock, self.record(iteration))

@@ -140,12 +140,11 @@ def _ran_away(solver: MultigridSolver, level: Level) -> bool:
 
 def _raise_load(solver: MultigridSolver, index: int, problem: Problem, fraction: float) -> tuple[float, Status]:
     """Raise the load of level `index` from `fraction` to the full load of `problem` under step control: each step
-    multiplies the load by the current factor (load_step at first), moves H_0 by the predicted change of the central
-    film (FILM_LOAD_EXPONENT) and takes cycles_per_load_step V-cycles (`_load_step`). A step that runs away or
-    closes the film is taken back and its factor's logarithm halved; one whose pressure has settled (change per
-    cycle and load error below load_step_band) raises it by half (to max_load_step at most). Returns the fraction
-    reached and the status: diverged when the factor falls below min_load_step (the grid does not carry a heavier
-    load)."""
+    multiplies the load by the current factor (load_step at most), moves H_0 by the predicted change of the central
+    film (FILM_LOAD_EXPONENT) and takes cycles_per_load_step V-cycles. A step that runs away (`_ran_away`) is taken
+    back and the logarithm of its factor halved; one that holds doubles it again, up to load_step. Returns the
+    fraction reached and the status: diverged when the factor falls below min_load_step (the grid does not carry a
+    heavier load)."""
     level, step = solver.levels[index], TUNING.load_step
     while fraction < 1.0:
         saved, previous = solver.snapshot(index), fraction
@@ -154,9 +153,10 @@ def _raise_load(solver: MultigridSolver, index: int, problem: Problem, fraction:
         solver.problem = at_load_fraction(problem, fraction)
         solver.h0 += h_c * ((fraction / previous) ** FILM_LOAD_EXPONENT - 1.0)
         solver.update_film(level)
-        held, settled = _load_step(solver, index)
-        if held:
-            step = min(step ** 1.5, TUNING.max_load_step) if settled else step
+        for _ in range(TUNING.cycles_per_load_step):
+            solver.cycle(index)
+        if not _ran_away(solver, level):
+            step = min(step * step, TUNING.load_step)
             continue
         solver.problem = at_load_fraction(problem, previous)
         solver.restore(index, saved)
@@ -165,22 +165,6 @@ def _raise_load(solver: MultigridSolver, index: int, problem: Problem, fraction:
             return fraction, Status(Outcome.DIVERGED, f"diverged raising the load of the full-multigrid start past "
                                                       f"{fraction:.3g} on the {level.nx} x {level.ny} grid")
     return fraction, CONVERGED
-
-
-def _load_step(solver: MultigridSolver, index: int) -> tuple[bool, bool]:
-    """cycles_per_load_step V-cycles on level `index` after a load step: whether the step held (it did not run away,
-    `_ran_away`, and the film stayed open) and whether it settled (its last pressure change per cycle and its load
-    error below load_step_band)."""
-    level = solver.levels[index]
-    previous = level.pressure
-    for _ in range(TUNING.cycles_per_load_step):
-        previous = level.pressure.copy()
-        solver.cycle(index)
-    if _ran_away(solver, level) or not level.film.min() > 0.0:
-        return False, False
-    load_error = solver.force_error(level) / solver.problem.load_integral
-    band = TUNING.load_step_band
-    return True, solver.pressure_change(level, previous) < band and abs(load_error) < band
 
 
 def _at_load(summary: LevelSummary, fraction: float) -> LevelSummary:

@@ -26,10 +26,8 @@ class Tuning:
     diverged_load_error: float = 0.5  # |load error| after a full cycle beyond which the iteration is running away
     eyring_start_cycles: int = 1  # V-cycles of an isothermal Ree-Eyring film's finest start grid: its loop follows
     continuation_moes_m: float = 1000.0  # Moes M from which the last attempt starts at a fraction of the load
-    load_step: float = 1.25  # first load factor of a continuation step (2 ran away at once)
+    load_step: float = 1.25  # the largest load factor of a continuation step (2 ran away at once)
     cycles_per_load_step: int = 3  # V-cycles per continuation step
-    load_step_band: float = 1e-2  # a step has settled (its factor grows): pressure change per cycle, load error below
-    max_load_step: float = 2.0  # the largest load factor of a step
     min_load_step: float = 1.01  # a grid whose step factor falls below this does not carry a heavier load
     # --- the pressure iteration on a frozen film state
     floor_stall: float = 0.8  # stalled: the change per cycle fell by less than 20 % over two cycles ...
