@@ -179,8 +179,8 @@ class _CarriesUpTo:
 @pytest.mark.parametrize("limit", [0.3, 0.77, 1.0])
 def test_the_step_control_raises_the_load_as_far_as_the_grid_carries_it(limit):
     """start._raise_load from 1 % of the load: where the iteration runs away above `limit` of the load, the steps
-    shrink until they fall below min_load_step and stop within such a step of it, the last sound iterate restored and the
-    problem at the load reached; where it carries the full load, it gets there."""
+    shrink until they fall below min_load_step and stop within such a step of it, the last sound iterate restored
+    and the problem at the load reached; where it carries the full load, it gets there."""
     from facegear_tehl.ehl.start import _raise_load
 
     problem = problem_for(_point(4e4), OIL, SolverSettings(grid=65, thermal="off"), scaling_for(_point(4e4), OIL))
