@@ -21,10 +21,10 @@ from pathlib import Path
 import statistics
 import sys
 
-from envelope import Row, _cell, _grid, solve_cases
+from envelope import Row, _cell, _grid, selection_arguments, solve_cases
 
 from facegear_tehl.solution import PointSolution
-from facegear_tehl.suites.envelope import ENERGY_BALANCE_LIMIT, GRID, GRID_Y, check_solution, scalar_or_nan, select
+from facegear_tehl.suites.envelope import ENERGY_BALANCE_LIMIT, check_solution, scalar_or_nan, select
 from facegear_tehl.suites.wide_envelope import moes_m, wide_cases
 
 LOAD_LIMIT = 1e-3  # relative load-balance error a converged contact must reach (issue 47's acceptance)
@@ -82,13 +82,7 @@ def summary(rows: Sequence[Row], total: float) -> str:
 
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--grid", type=int, default=GRID, help=f"nodes along x, the minor axis (default {GRID})")
-    parser.add_argument("--grid-y", type=int, default=GRID_Y, help=f"nodes along y (default {GRID_Y})")
-    parser.add_argument("--jobs", type=int, default=1, help="worker processes (default 1)")
-    parser.add_argument("--only", help="comma-separated name patterns (globs, or substrings without a wildcard)")
-    model = parser.add_mutually_exclusive_group()
-    model.add_argument("--thermal-only", action="store_true", help="only the thermal Ree-Eyring contacts")
-    model.add_argument("--iso-only", action="store_true", help="only the isothermal Newtonian contacts")
+    selection_arguments(parser)
     parser.add_argument("--save", type=Path, help="write the table as wide_envelope.csv into this folder")
     parser.add_argument("--list", action="store_true", help="list the selected contacts, no solve")
     args = parser.parse_args(argv)
