@@ -12,7 +12,7 @@ class Outcome(enum.Enum):
     CONVERGED = "converged"  # every tolerance met
     NOT_CONVERGED = "not converged"  # the iteration budget was spent before the tolerances were met
     DIVERGED = "diverged"  # the iteration ran away; the last sound iterate is reported
-    FILM_CLOSED = "film closed"  # h_min <= 0: solid contact, outside the EHL model
+    FILM_CLOSED = "film closed"  # the iterate's h_min <= 0: the grid does not resolve the film (ehl/solve.py)
     FAILED = "failed"  # the solve raised an error; no data
 
 

@@ -291,8 +291,8 @@ def solve_cases(cases: Sequence[EnvelopeCase], grid: int, grid_y: int | None,
     return [Row(c, s, check_solution(s)) for c, s in zip(cases, solutions, strict=True)], elapsed, refined
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def selection_arguments(parser: argparse.ArgumentParser) -> None:
+    """The grid, jobs and case-selection options of an envelope script."""
     parser.add_argument("--grid", type=int, default=GRID, help=f"nodes along x, the minor axis (default {GRID})")
     parser.add_argument("--grid-y", type=int, default=GRID_Y, help=f"nodes along y, the major axis (default {GRID_Y})")
     parser.add_argument("--jobs", type=int, default=1, help="worker processes (default 1)")
@@ -300,6 +300,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     model = parser.add_mutually_exclusive_group()
     model.add_argument("--thermal-only", action="store_true", help="only the thermal Ree-Eyring cases")
     model.add_argument("--iso-only", action="store_true", help="only the isothermal Newtonian cases")
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    selection_arguments(parser)
     parser.add_argument("--map", type=Path, help="draw the envelope map into this PNG")
     parser.add_argument("--save", type=Path, help="write the table as envelope.csv into this folder")
     parser.add_argument("--list", action="store_true", help="list the selected cases and their contacts, no solve")

@@ -119,3 +119,92 @@ def test_an_unconverged_iterate_that_does_not_carry_the_load_reports_no_film():
     assert unbalanced.scalar("load_error") == pytest.approx(load - 1.0) and load == pytest.approx(2.0, rel=0.05)
     assert "h_c" not in unbalanced.scalars and "h_min" not in unbalanced.scalars and not unbalanced.fields
     assert unbalanced.message.startswith("budget spent; ") and "does not carry the load" in unbalanced.message
+
+
+def _at_hertz_pressure(p_h: float, speed: float) -> ContactPoint:
+    """The a/b = 5 contact at maximum Hertz pressure `p_h` (Pa): p_h ~ W^(1/3) at fixed radii (Hertz)."""
+    return _point((p_h / scaling_for(_point(1.0), OIL).p_h) ** 3, speed=speed)
+
+
+def test_the_continued_start_reaches_the_discrete_solution_of_the_plain_one():
+    """a/b = 5, 1.5 GPa, 2 m/s (M = 3.0e3) on 129^2: the plain damped start and the start at 1000/M of the load
+    raised under step control are two paths to one discrete solution (its algebraic floor: ~1e-3 of h_min)."""
+    point = _at_hertz_pressure(1.5e9, 2.0)
+    settings = SolverSettings(grid=129, thermal="off")
+    plain = PointSolve(point, OIL, settings, DAMPED, attempt=3).begin()
+    continued = PointSolve(point, OIL, settings, DAMPED, attempt=4, load_continuation=True).begin()
+    assert plain.converged and continued.converged, (plain.message, continued.message)
+    assert any("of the load" in note for note in continued.record.notes)
+    for key in ("h_c", "h_min", "p_max"):
+        assert continued.scalar(key) == pytest.approx(plain.scalar(key), rel=2e-3)
+    assert abs(continued.scalar("load_error")) < settings.load_tolerance
+
+
+class _CarriesUpTo:
+    """A stand-in for the multigrid solver whose iteration runs away (non-finite pressure) once the load exceeds
+    `limit` of the full load: what a grid that cannot carry a heavier film does."""
+
+    def __init__(self, problem, fraction: float, limit: float):
+        from facegear_tehl.ehl.multigrid import Iterate
+
+        self.full, self.limit, self.Iterate = problem, limit, Iterate
+        self.problem = at_load_fraction(problem, fraction)
+        shape = (5, 5)
+        self.level = type("L", (), {"pressure": np.ones(shape), "film": np.ones(shape), "eps": np.ones(shape),
+                                    "nx": 5, "ny": 5})()
+        self.levels, self.h0 = [self.level], 0.0
+
+    def fraction(self) -> float:  # p_h ~ f^(1/3) (multigrid.at_load_fraction)
+        return (self.problem.p_hertz / self.full.p_hertz) ** 3
+
+    def snapshot(self, index):
+        return self.Iterate(self.level.pressure.copy(), self.h0)
+
+    def restore(self, index, iterate):
+        self.level.pressure, self.h0 = iterate.pressure.copy(), iterate.h0
+
+    def central_film(self, level):
+        return 0.1
+
+    def update_film(self, level):
+        pass
+
+    def cycle(self, index):
+        self.level.pressure = np.full((5, 5), math.nan if self.fraction() > self.limit * (1 + 1e-12) else 1.0)
+
+    def force_error(self, level):
+        return 0.0
+
+
+@pytest.mark.parametrize("limit", [0.3, 0.77, 1.0])
+def test_the_step_control_raises_the_load_as_far_as_the_grid_carries_it(limit):
+    """start._raise_load from 1 % of the load: where the iteration runs away above `limit` of the load, the steps
+    shrink until they fall below min_load_step and stop within such a step of it, the last sound iterate restored
+    and the problem at the load reached; where it carries the full load, it gets there."""
+    from facegear_tehl.ehl.start import _raise_load
+
+    problem = problem_for(_point(4e4), OIL, SolverSettings(grid=65, thermal="off"), scaling_for(_point(4e4), OIL))
+    solver = _CarriesUpTo(problem, 0.01, limit)
+    reached, status = _raise_load(solver, 0, problem, 0.01)
+    if limit == 1.0:
+        assert status.converged and reached == 1.0
+        return
+    assert status.diverged and f"past {reached:.3g}" in status.message
+    # the last step that ran away had a factor below min_load_step^2 (its square root fell below min_load_step)
+    assert limit / TUNING.min_load_step**2 < reached <= limit
+    assert solver.fraction() == pytest.approx(reached, rel=1e-9) and np.isfinite(solver.level.pressure).all()
+
+
+def test_a_start_short_of_the_load_reports_no_film():
+    """A solve whose start ended at a fraction of the load (start.py: its continuation could not go on) reports no
+    film: the film of its iterate is a lighter contact's. Only the share of the load and where its lowest film lies
+    (the way a finer grid must resolve it) are reported, and the refinement takes it as unresolved."""
+    from facegear_tehl.solution import Status
+
+    solve = PointSolve(_point(1e3, speed=2.0), OIL, SolverSettings(grid=65, thermal="off"))
+    index, _ = solve.start(below_top=0)
+    solve.load_reached = 0.4
+    solution = solve.report(index, Status(Outcome.DIVERGED, "diverged raising the load"), None)
+    assert "carries 0.4 of the load: no film is reported" in solution.message
+    assert not solution.fields and "h_min" not in solution.scalars and "h_c" not in solution.scalars
+    assert "y_film_closed" in solution.scalars and POLICY.unresolved(solution)

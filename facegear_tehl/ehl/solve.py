@@ -28,7 +28,7 @@ from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem
 from facegear_tehl.ehl.outlet import Composite, needs_outlet_patch, outlet_stages
 from facegear_tehl.ehl.plan import SolvePlan, plan_for
 from facegear_tehl.ehl.pressure import Best, PressureIteration
-from facegear_tehl.ehl.report import LevelSummary, point_solution, summarise, with_film_state
+from facegear_tehl.ehl.report import FILM_SCALARS, LevelSummary, point_solution, summarise, with_film_state
 from facegear_tehl.ehl.retry import POLICY
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
 from facegear_tehl.ehl.start import start
@@ -39,7 +39,11 @@ from facegear_tehl.record import Action, Reason, RetryRecord, SolveRecord, Stage
 from facegear_tehl.settings import SolverSettings, ThermalMode
 from facegear_tehl.solution import CONVERGED, Outcome, PointSolution, Status
 
-FILM_CLOSED_MESSAGE = "the film closes (h_min <= 0: solid contact, outside the EHL model)"
+# A smooth-surface EHL film is open at any load (H_min = 3.63 U^0.68 G^0.49 W^-0.073 (1 - exp(-0.68 k)) > 0,
+# Hamrock & Dowson 1977, J. Lubr. Technol. 99:264-276): an iterate whose film closes is not a solution of the
+# smooth-film equations but of a grid that does not resolve the film, or of an iteration that failed.
+FILM_CLOSED_MESSAGE = ("the film closes on the {} x {} grid (h_min <= 0): not a solution of the smooth-film equations, "
+                       "whose film is open at any load; the grid does not resolve it or the iteration failed")
 
 
 def problem_for(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, scaling: Scaling) -> Problem:
@@ -100,6 +104,7 @@ class PointSolve:
         self.escalate_start, self.attempt = escalate_start, attempt
         fraction = TUNING.continuation_moes_m / self.scaling.moes_m
         self.start_load_fraction = min(1.0, fraction) if load_continuation else 1.0
+        self.load_reached = 1.0  # of the load, by the start's last level (start.py: below 1 if its continuation failed)
         self.stages: list[StageRecord] = []
         self.retries: list[RetryRecord] = []
         self.outlet: Composite | None = None  # the outlet stage's composite solution (outlet.py), when it ran
@@ -358,7 +363,7 @@ class PointSolve:
             notes.append(f"outlet refined: {self.outlet.note} (FAS composite grid, the film state solved on each)")
         if self.start_load_fraction < 1.0:
             notes.append(f"full-multigrid start at {self.start_load_fraction:.3g} of the load (Moes M "
-                         f"{self.scaling.moes_m:.3g}), raised to the full load one grid below the finest")
+                         f"{self.scaling.moes_m:.3g}), raised to the full load in steps the iteration holds")
         return SolveRecord(self.plan.describe(), tuple(self.stages), tuple(self.retries), self.attempt,
                            POLICY.attempts[self.attempt - 1].name, iteration, tuple(note for note in notes if note))
 
@@ -367,10 +372,23 @@ class PointSolve:
         level = self.solver.levels[index]
         iteration = status.outcome
         if level.film.min() <= 0.0:
-            message = FILM_CLOSED_MESSAGE
+            message = FILM_CLOSED_MESSAGE.format(level.nx, level.ny)
             message += "; " + status.message if status.message else ""
             status = Status(Outcome.DIVERGED if status.diverged else Outcome.FILM_CLOSED, message)
-        return point_solution(self, level, status, state, time.perf_counter() - self._clock, self.record(iteration))
+        solution = point_solution(self, level, status, state, time.perf_counter() - self._clock, self.record(iteration))
+        if self.load_reached < 1.0:  # its film is that of a lighter contact: not this one's
+            return self._lighter_contact(solution)
+        return solution
+
+    def _lighter_contact(self, solution: PointSolution) -> PointSolution:
+        """A solution whose start did not reach the full load: no film nor fields (they are a lighter contact's),
+        only where its lowest film lies (as where a film closed: the way a finer grid must resolve it)."""
+        scalars = {k: v for k, v in solution.scalars.items() if k not in FILM_SCALARS}
+        for axis in ("x", "y"):
+            if f"{axis}_h_min" in solution.scalars:
+                scalars[f"{axis}_film_closed"] = solution.scalars[f"{axis}_h_min"]
+        return replace(solution, scalars=scalars, fields={}, message=(
+            f"{solution.message}; its iterate carries {self.load_reached:.3g} of the load: no film is reported"))
 
     def __getstate__(self) -> dict:
         """Between stages the solve travels to another process: its clock does not (see `elapsed`)."""

@@ -10,6 +10,7 @@ and raises it step by step one grid below the finest (load continuation).
 from __future__ import annotations
 
 from dataclasses import replace
+import math
 from typing import Protocol
 
 from facegear_tehl.ehl import grid
@@ -38,6 +39,7 @@ class Starting(Protocol):
     coarsest: int
     escalate_start: bool
     start_load_fraction: float
+    load_reached: float  # the fraction of the load the start's last level carries (1 unless a continuation failed)
     mode: ThermalMode
     coupled: bool
     attempt: int
@@ -68,11 +70,11 @@ def start(solve: Starting, below_top: int) -> tuple[int, Status]:
 def _full_multigrid(solve: Starting, last: int) -> tuple[int, Status]:
     """Full multigrid from the Hertz start on the coarsest grid up to level `last`; appends a summary per level.
     With a start_load_fraction below 1 the levels up to the one below `last` are solved at that fraction of the
-    load, raised to the full load there (_raise_load), and `last` is interpolated from it."""
+    load, raised to the full load there or, where a grid does not carry it, on the finer ones (_continued)."""
     solver, problem, fraction = solve.solver, solve.solver.problem, solve.start_load_fraction
     ramp = max(last - 1, 0) if fraction < 1.0 else last  # the level whose load is raised
     solver.problem = at_load_fraction(problem, fraction)
-    index = 0
+    solve.load_reached, index = fraction, 0
     try:
         central = predicted_central_film(solve.scaling) / solve.scaling.film_scale
         solver.start_from_hertz(central * fraction ** FILM_LOAD_EXPONENT)
@@ -81,14 +83,32 @@ def _full_multigrid(solve: Starting, last: int) -> tuple[int, Status]:
         solve.summaries.append(_at_load(summarise(solver.levels[0]), fraction))
         index, status = _climb(solve, 1, ramp, fraction)
         if status.converged and fraction < 1.0:
-            status = _raise_load(solver, index, problem, fraction)
-            if status.converged:
-                solve.summaries[-1] = summarise(solver.levels[index])
-                index, status = _climb(solve, index + 1, last, 1.0)
+            index, status = _continued(solve, index, last, problem, fraction)
     finally:
         solver.problem = problem
         solver.update_film(solver.levels[index])
     return index, status
+
+
+def _continued(solve: Starting, index: int, last: int, problem: Problem, fraction: float) -> tuple[int, Status]:
+    """Raise the load of level `index` from `fraction` (_raise_load); where that grid does not carry a heavier load,
+    go on from the fraction it reached on the next finer level, up to `last` (the summaries of the levels below are
+    then at other loads than the finer ones': dropped, so that no error estimate compares them), then climb to
+    `last` at the full load."""
+    solver = solve.solver
+    while True:
+        fraction, status = _raise_load(solver, index, problem, fraction)
+        solve.load_reached = fraction
+        if status.converged:
+            solve.summaries[-1] = summarise(solver.levels[index])
+            return _climb(solve, index + 1, last, 1.0)
+        if index >= last:
+            return index, status
+        solve.summaries.clear()
+        solver.problem = at_load_fraction(problem, fraction)
+        index, status = _climb(solve, index + 1, index + 1, fraction)
+        if not status.converged:
+            return index, status
 
 
 def _climb(solve: Starting, first: int, last: int, fraction: float) -> tuple[int, Status]:
@@ -118,26 +138,33 @@ def _ran_away(solver: MultigridSolver, level: Level) -> bool:
     return not finite(level) or abs(solver.force_error(level)) > bound
 
 
-def _raise_load(solver: MultigridSolver, index: int, problem: Problem, fraction: float) -> Status:
-    """Raise the load of level `index` from `fraction` to the full load of `problem` by load_step per step, H_0
-    moved by the predicted change of the central film (FILM_LOAD_EXPONENT), cycles_per_load_step V-cycles per step.
-    A step that runs away restores the last sound load's iterate and reports it."""
-    level = solver.levels[index]
+def _raise_load(solver: MultigridSolver, index: int, problem: Problem, fraction: float) -> tuple[float, Status]:
+    """Raise the load of level `index` from `fraction` to the full load of `problem` under step control: each step
+    multiplies the load by the current factor (load_step at most), moves H_0 by the predicted change of the central
+    film (FILM_LOAD_EXPONENT) and takes cycles_per_load_step V-cycles. A step that runs away (`_ran_away`) is taken
+    back and the logarithm of its factor halved; one that holds doubles it again, up to load_step. Returns the
+    fraction reached and the status: diverged when the factor falls below min_load_step (the grid does not carry a
+    heavier load)."""
+    level, step = solver.levels[index], TUNING.load_step
     while fraction < 1.0:
         saved, previous = solver.snapshot(index), fraction
-        fraction = min(TUNING.load_step * fraction, 1.0)
+        fraction = min(step * fraction, 1.0)
         h_c = solver.central_film(level)
         solver.problem = at_load_fraction(problem, fraction)
         solver.h0 += h_c * ((fraction / previous) ** FILM_LOAD_EXPONENT - 1.0)
         solver.update_film(level)
         for _ in range(TUNING.cycles_per_load_step):
             solver.cycle(index)
-        if _ran_away(solver, level):
-            solver.problem = at_load_fraction(problem, previous)
-            solver.restore(index, saved)
-            return Status(Outcome.DIVERGED, f"diverged raising the load of the full-multigrid start from "
-                                            f"{previous:.3g} to {fraction:.3g} on the {level.nx} x {level.ny} grid")
-    return CONVERGED
+        if not _ran_away(solver, level):
+            step = min(step * step, TUNING.load_step)
+            continue
+        solver.problem = at_load_fraction(problem, previous)
+        solver.restore(index, saved)
+        fraction, step = previous, math.sqrt(step)
+        if step < TUNING.min_load_step:
+            return fraction, Status(Outcome.DIVERGED, f"diverged raising the load of the full-multigrid start past "
+                                                      f"{fraction:.3g} on the {level.nx} x {level.ny} grid")
+    return fraction, CONVERGED
 
 
 def _at_load(summary: LevelSummary, fraction: float) -> LevelSummary:

@@ -26,8 +26,9 @@ class Tuning:
     diverged_load_error: float = 0.5  # |load error| after a full cycle beyond which the iteration is running away
     eyring_start_cycles: int = 1  # V-cycles of an isothermal Ree-Eyring film's finest start grid: its loop follows
     continuation_moes_m: float = 1000.0  # Moes M from which the last attempt starts at a fraction of the load
-    load_step: float = 1.25  # load factor per continuation step (2 ran away at once)
+    load_step: float = 1.25  # the largest load factor of a continuation step (2 ran away at once)
     cycles_per_load_step: int = 3  # V-cycles per continuation step
+    min_load_step: float = 1.01  # a grid whose step factor falls below this does not carry a heavier load
     # --- the pressure iteration on a frozen film state
     floor_stall: float = 0.8  # stalled: the change per cycle fell by less than 20 % over two cycles ...
     floor_band: float = 10.0  # ... below this multiple of the tolerance: the algebraic floor (h_c steady to ~1e-5)
