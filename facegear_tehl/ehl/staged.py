@@ -34,7 +34,12 @@ class StagedSolver:
     recorded either way."""
 
     def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
-        first = solution = _completed(self.begin(point, lubricant, settings))
+        return self.retried(_completed(self.begin(point, lubricant, settings)), point, lubricant, settings)
+
+    def retried(self, first: PointSolution, point: ContactPoint, lubricant: Lubricant,
+                settings: SolverSettings) -> PointSolution:
+        """The first attempt's solution `first`, solved again with the policy's next attempts while it says so."""
+        solution = first
         while self.needs_retry(solution):
             solution = _completed(self.begin(point, lubricant, settings, solution))
         return first if solution is first else self.with_retry(first, solution)
