@@ -29,7 +29,7 @@ from facegear_tehl.ehl.thermal import FilmState
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.record import Action, Reason, RetryRecord, Stage
-from facegear_tehl.settings import SolverSettings
+from facegear_tehl.settings import SolverSettings, ThermalMode
 from facegear_tehl.solution import PointSolution, Status
 
 
@@ -43,6 +43,9 @@ class Seed:
     pressure: np.ndarray  # P = p/p_h, (ny, nx)
     film_ratio: float  # solved central film over Hamrock & Dowson's prediction
     state: FilmState  # temperatures (K) and eta*/eta per layer, (nz, ny, nx)
+    # the finest grid's converged pressure, temperatures and ln(eta*/eta) minus the interpolation of the coarse
+    # stage's (None: not a thermal full multigrid solve, or reported below its finest grid)
+    correction: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 
 
 def resample(values: np.ndarray, x: np.ndarray, y: np.ndarray, to_x: np.ndarray, to_y: np.ndarray) -> np.ndarray:
@@ -77,6 +80,8 @@ class SeededSolve(PointSolve):
         if self.seed is not None:
             self.plan = seeded_plan(self.plan, self.seed.source)
         self.reported: tuple[int, FilmState | None] | None = None
+        self.coarse_pressure: np.ndarray | None = None  # the coarse stage's converged pressure (_start_fine_grid) ...
+        self.fine_index = -1  # ... and the level of the finest uniform grid (an outlet stage adds patches above it)
 
     def begin(self) -> PointSolution | PointSolve:
         """The seeded start and the coarse stage (self, to be finished), or the cold start's `begin`."""
@@ -116,6 +121,27 @@ class SeededSolve(PointSolve):
         solver.set_film_state(index, temperature, factor)
         return replace(seed.state, temperature=temperature, viscosity_factor=factor)
 
+    def _start_fine_grid(self, index: int) -> tuple[FilmState, Status]:
+        """The finest grid from the coarse stage (PointSolve._start_fine_grid); a seeded `full` solve adds the
+        neighbour's correction of its own coarse stage's interpolation (`Seed.correction`) to the interpolated
+        pressure, temperatures and ln(eta*/eta). Keeps the converged coarse pressure for the next point's seed."""
+        self.coarse_pressure, self.fine_index = self.solver.levels[index - 1].pressure.copy(), index
+        seed = self.seed
+        if seed is None or seed.correction is None or self.mode is not ThermalMode.FULL:
+            return super()._start_fine_grid(index)
+        solver = self.solver
+        solver.interpolate_up(index)
+        level = solver.levels[index]
+        pressure, temperature, log_factor = (resample(c, seed.x, seed.y, level.x, level.y) for c in seed.correction)
+        level.pressure = np.maximum(level.pressure + pressure, 0.0)
+        level.pressure[0, :] = level.pressure[-1, :] = 0.0
+        level.pressure[:, 0] = level.pressure[:, -1] = 0.0
+        temperature += solver.prolong_layers(index, self.coarse_state.temperature)
+        factor = np.exp(log_factor + solver.prolong_layers(index, np.log(self.coarse_state.viscosity_factor)))
+        solver.set_film_state(index, temperature, factor)
+        frozen = replace(self.coarse_state, temperature=temperature, viscosity_factor=factor)
+        return frozen, self.cycle(index, TUNING.cycles_per_thermal_update)
+
     def report(self, index: int, status: Status, state: FilmState | None) -> PointSolution:
         self.reported = (index, state)
         return super().report(index, status, state)
@@ -125,10 +151,18 @@ class SeededSolve(PointSolve):
         if self.reported is None or self.reported[1] is None or not self.plan.has(Stage.COARSE):
             return None
         index, state = self.reported
-        level = self.solver.levels[index]
+        solver = self.solver
+        level = solver.levels[index]
         predicted = predicted_central_film(self.scaling) / self.scaling.film_scale
+        correction = None
+        if index == self.fine_index and self.mode is ThermalMode.FULL:
+            coarse = self.coarse_state
+            correction = (level.pressure - solver.transfers[index].prolong_cubic(self.coarse_pressure),
+                          state.temperature - solver.prolong_layers(index, coarse.temperature),
+                          np.log(state.viscosity_factor) - solver.prolong_layers(index,
+                                                                                 np.log(coarse.viscosity_factor)))
         return Seed(self.point.name, level.x, level.y, level.pressure.copy(), summarise(level).h_c / predicted,
-                    state)
+                    state, correction)
 
 
 def solve_seeded(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
