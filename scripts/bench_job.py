@@ -55,10 +55,11 @@ case = load_case(sys.argv[1])
 point = contact_analysis(case).points[0]
 with threadpool_limits(limits=1):
     solve_point(point, case.lubricant, dataclasses.replace(case.solver, grid=33))  # load the kernels
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     solution = solve_point(point, case.lubricant, case.solver)
-    wall = time.perf_counter() - start
-print(json.dumps({"wall": wall, "H_c": solution.scalar("h_c") * point.radius_x / solution.scalar("a") ** 2}))
+    wall, cpu = time.perf_counter() - start, time.process_time() - cpu
+h_c = solution.scalar("h_c") * point.radius_x / solution.scalar("a") ** 2
+print(json.dumps({"wall": wall, "cpu": cpu, "H_c": h_c}))
 '''
 
 
@@ -108,6 +109,7 @@ def measure(trees: dict[str, Path], args: argparse.Namespace, folder: Path) -> d
             samples[label, "circle 257^2: H_c of the file"].append(circle_h_c(output))
             solve = json.loads(_run(tree, ["-c", CIRCLE_SOLVE, str(CIRCLE)]).stdout.splitlines()[-1])
             samples[label, "circle 257^2: solve in a warm process, wall"].append(solve["wall"])
+            samples[label, "circle 257^2: solve in a warm process, CPU"].append(solve["cpu"])
             solves = json.loads(_run(tree, ["-c", SOLVE, str(FACE_GEAR), "S1"]).stdout.splitlines()[-1])
             samples[label, "S1 thermal full / isothermal Newtonian (CPU)"].append(
                 solves["thermal full"][0] / solves["isothermal Newtonian"][0])
@@ -142,13 +144,14 @@ def report(trees: dict[str, Path], samples: dict, args: argparse.Namespace, fold
         print(f"| {quantity} | " + " | ".join(f"{v:.4g}" for v in row) + " |" + ratio)
     this = labels[-1]
     seconds, how = reference_seconds(args.reference)
-    process = medians[this, "circle 257^2: tehl run process, wall"]
-    solve = medians[this, "circle 257^2: solve in a warm process, wall"]
     h_c = medians[this, "circle 257^2: H_c of the file"]
     print(f"\nC reference (Venner & Lubrecht 2000), 257^2 Roelands + DH: {seconds:.2f} s, {how}; H_c {h_c:.4f} is "
           f"{100 * (h_c / REFERENCE_H_C - 1):+.2f} % of its 513^2 value {REFERENCE_H_C}")
-    print(f"  whole process {seconds / process:.2f}x faster than the reference (aimed at 2x), "
-          f"solve {seconds / solve:.2f}x (aimed at 3x)")
+    for clock in ("wall", "CPU"):  # on a loaded machine the CPU time stands for a quiet machine's wall time
+        process = medians[this, f"circle 257^2: tehl run process, {clock}"]
+        solve = medians[this, f"circle 257^2: solve in a warm process, {clock}"]
+        print(f"  by {clock} time: whole process {seconds / process:.2f}x faster than the reference (aimed at 2x), "
+              f"solve {seconds / solve:.2f}x (aimed at 3x)")
     if args.cycle and len(labels) == 2:
         found = shares(folder / f"{this}_cycle.h5", folder / f"{labels[0]}_cycle.h5")
         print("41-point cycle, |after - before| / before's error estimate, per figure (largest, points within 1):")
