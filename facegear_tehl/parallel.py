@@ -5,7 +5,9 @@ show progress as solves finish; `solve_all` (used by run.py and sweep.py) collec
 solver is passed in: a `StagedSolver` (the EHL solver) is run in stages (a thermal full-multigrid point's
 coarse and fine stage are separate tasks), so that five points on two workers do not leave one worker idle
 while the other solves the fifth point whole: S1-S5 of the face gear case, thermal full 129^2, 1.73x faster
-on two workers than on one (1.68x with whole points). A solve that raises is returned as a failed
+on two workers than on one (1.68x with whole points). A `PathSolver` (the points of a path solved by
+continuation, each from the one before it: ehl/seeded.py) goes in chunks of consecutive points instead, each chunk
+whole on one worker. A solve that raises is returned as a failed
 `PointSolution` (outcome FAILED, the error as its message, no data); the other tasks still run. With one
 job, or one task, everything runs in this process (no pool).
 
