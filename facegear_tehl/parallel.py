@@ -5,7 +5,9 @@ show progress as solves finish; `solve_all` (used by run.py and sweep.py) collec
 solver is passed in: a `StagedSolver` (the EHL solver) is run in stages (a thermal full-multigrid point's
 coarse and fine stage are separate tasks), so that five points on two workers do not leave one worker idle
 while the other solves the fifth point whole: S1-S5 of the face gear case, thermal full 129^2, 1.73x faster
-on two workers than on one (1.68x with whole points). A solve that raises is returned as a failed
+on two workers than on one (1.68x with whole points). A `PathSolver` (the points of a path solved by
+continuation, each from the one before it: ehl/seeded.py) goes in chunks of consecutive points instead, each chunk
+whole on one worker. A solve that raises is returned as a failed
 `PointSolution` (outcome FAILED, the error as its message, no data); the other tasks still run. With one
 job, or one task, everything runs in this process (no pool).
 
@@ -75,6 +77,20 @@ class StagedSolver(Protocol):
 
 
 @dataclass(frozen=True)
+class PathSolver:
+    """Neighbouring points of a path solved by continuation: `solve_path` solves consecutive tasks in order, each
+    from the one before it (ehl.seeded.solve_path); the tasks go to the workers in chunks of `chunk`, each chunk in
+    one process, its first point solved cold. The chunks do not depend on the worker count: `--jobs 2` writes the
+    same file as `--jobs 1`."""
+
+    solve_path: Callable[[Sequence[tuple[ContactPoint, Lubricant, SolverSettings]]], list[PointSolution]]
+    chunk: int
+
+    def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
+        return self.solve_path([(point, lubricant, settings)])[0]
+
+
+@dataclass(frozen=True)
 class SolveTask:
     """One independent solve."""
 
@@ -122,7 +138,7 @@ def failed_solution(name: str, error: BaseException) -> PointSolution:
     )
 
 
-def solve_all(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *, jobs: int | None = None,
+def solve_all(tasks: Sequence[SolveTask], solver: Solver | StagedSolver | PathSolver, *, jobs: int | None = None,
               progress: Progress | None = None) -> tuple[list[PointSolution], tuple[int, ...]]:
     """Every task solved (`solve_each`), in task order, and the indices of those whose solve raised.
     `progress` sees the solutions in the order they finish. An exception in `progress` (Ctrl-C while it
@@ -139,17 +155,19 @@ def solve_all(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *, jobs
     return solutions, tuple(sorted(failed))
 
 
-def solve_each(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
+def solve_each(tasks: Sequence[SolveTask], solver: Solver | StagedSolver | PathSolver, *,
                jobs: int | None = None) -> Iterator[tuple[int, Solved]]:
     """Run every task with `solver` on up to `jobs` worker processes (None: all cores); yield (task index,
     outcome) as each solve finishes. A StagedSolver runs in stages on the workers, so that a worker that would
-    wait for the last point takes the next stage of another (five thermal points on two workers).
+    wait for the last point takes the next stage of another (five thermal points on two workers); a PathSolver
+    runs its chunks whole, each task's outcome yielded when its chunk finishes.
     Interrupting the caller (Ctrl-C, SIGTERM, an error in the loop body) stops the workers at once."""
-    workers = min(worker_count(jobs), len(tasks))
+    units = _units(tasks, solver)  # (first task, end) of each submitted unit: one task, or a path's chunk
+    workers = min(worker_count(jobs), len(units))
     if workers <= 1:
         with threadpool_limits(limits=1):
-            for index, task in enumerate(tasks):
-                yield index, _solve_task(solver, task)
+            for first, end in units:
+                yield from enumerate(_solve_unit(solver, tasks[first:end]), start=first)
         return
     staged = isinstance(solver, StagedSolver)
     context = _context()
@@ -164,12 +182,10 @@ def solve_each(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
             with _DeferredSignals():
                 pending[pool.submit(index, _stage_task, function, tasks[index].point.name, *args)] = (index, first)
 
-        for i, task in enumerate(tasks):
-            if staged:
-                submit(i, None, solver.begin, task.point, task.lubricant, task.settings, None)
-            else:
-                with _DeferredSignals():
-                    pending[pool.submit(i, _solve_task, solver, task)] = (i, None)
+        for i, end in units:
+            task = tasks[i]
+            submit(i, None, *((solver.begin, task.point, task.lubricant, task.settings, None) if staged
+                              else (_solve_unit, solver, tasks[i:end])))
         while pending:
             with _DeferredSignals() as signals:
                 finished: set[Future] = set()
@@ -178,7 +194,9 @@ def solve_each(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
             for future in sorted(pool.retry_lost(finished, pending), key=lambda f: pending[f][0]):
                 index, first = pending.pop(future)
                 outcome = _outcome(future, tasks[index])
-                if not staged or isinstance(outcome, Solved):
+                if not staged:
+                    yield from _unit_outcomes(outcome, index, dict(units)[index], tasks)
+                elif isinstance(outcome, Solved):
                     yield index, outcome
                 elif not isinstance(outcome, PointSolution):  # an intermediate: its next stage
                     submit(index, first, solver.finish, outcome)
@@ -222,6 +240,33 @@ class _DeferredSignals:
             signal.signal(signum, handler)
         if self.received:
             signal.raise_signal(self.received[0])
+
+
+def _units(tasks: Sequence[SolveTask], solver: Solver | StagedSolver | PathSolver) -> list[tuple[int, int]]:
+    """(first task, end) of each unit of work: a path's chunks (PathSolver), else one task each."""
+    size = solver.chunk if isinstance(solver, PathSolver) else 1
+    return [(first, min(first + size, len(tasks))) for first in range(0, len(tasks), size)]
+
+
+def _solve_unit(solver: Solver | PathSolver, tasks: Sequence[SolveTask]) -> list[Solved]:
+    """A unit of work in this process or a worker: a path's chunk in order (a chunk that raises: each of its tasks
+    failed with the error; the other chunks still run), or one task."""
+    if not isinstance(solver, PathSolver):
+        return [_solve_task(solver, task) for task in tasks]
+    try:
+        return [Solved(s, failed=False) for s in solver.solve_path([(t.point, t.lubricant, t.settings)
+                                                                     for t in tasks])]
+    except Exception as exc:  # one failing chunk must not lose the others; the error is recorded
+        return [Solved(failed_solution(task.point.name, exc), failed=True) for task in tasks]
+
+
+def _unit_outcomes(outcome: object, first: int, end: int, tasks: Sequence[SolveTask]) -> Iterator[tuple[int, Solved]]:
+    """Each task's outcome of a finished unit: its solves, or (a unit whose worker was lost) its failure for each."""
+    if isinstance(outcome, Solved):  # the worker could not deliver the unit (_outcome)
+        yield from ((index, Solved(replace(outcome.solution, name=tasks[index].point.name), failed=True))
+                    for index in range(first, end))
+        return
+    yield from enumerate(outcome, start=first)
 
 
 def _solve_task(solve: Solver, task: SolveTask) -> Solved:

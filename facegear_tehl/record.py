@@ -20,6 +20,7 @@ class Stage(Enum):
     COARSE = "coarse stage"  # the coupled problem one grid below the finest
     FINEST = "finest grid"  # the pressure (and the coupled loop) on the finest grid
     OUTLET = "outlet patch"  # a patch at half the x spacing over the outlet spike (outlet.py)
+    SEEDED = "seeded start"  # from the solved neighbour on the path, in place of START and SEED (seeded.py)
 
 
 class Reason(Enum):
@@ -35,6 +36,7 @@ class Reason(Enum):
     UNRESOLVED = "the grid did not resolve the film"
     COARSE_ESTIMATE = "the error estimate exceeds its bound"
     FINER_GRID_FAILED = "a finer grid did not converge"
+    SEEDED_START_FAILED = "the solve seeded from its neighbour failed"
 
 
 class Action(Enum):
@@ -50,6 +52,7 @@ class Action(Enum):
     FINER_GRID = "solved again on a finer grid"
     KEPT_COARSER = "the converged coarser solution kept"
     FIRST_KEPT = "no retry did better: the first attempt reported"
+    COLD_START = "solved again from the cold start"
     BUDGET_SPENT = "not refined: the next grid would pass the point's time budget, the best solution so far kept"
 
 

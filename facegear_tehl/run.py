@@ -16,11 +16,11 @@ from facegear_tehl.ehl.retry import POLICY, estimates
 from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.ehl.tuning import TUNING, convergence_bands
 from facegear_tehl.heat_budget import heat_budget
-from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
+from facegear_tehl.parallel import PathSolver, Progress, Solver, SolveTask, StagedSolver, solve_all
 from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.record import Action, Reason, RetryRecord, SolveRecord
 from facegear_tehl.results import RunResult
-from facegear_tehl.settings import SolverSettings
+from facegear_tehl.settings import SolverSettings, ThermalMode
 from facegear_tehl.solution import Outcome, PointSolution
 
 
@@ -29,6 +29,17 @@ def ehl_solver() -> StagedSolver:
     from facegear_tehl.ehl.staged import STAGED
 
     return STAGED
+
+
+def path_solver(case: Case) -> StagedSolver | PathSolver:
+    """The EHL solver for the points of `case`: by continuation along the path (PathSolver over ehl.seeded.solve_path,
+    chunks of continuation_chunk points) for a thermal face gear case of evenly spaced points (`gear.points: n`,
+    neighbours close enough to seed each other); else point by point (ehl_solver)."""
+    if case.gear is None or not isinstance(case.gear.points, int) or case.solver.thermal == ThermalMode.OFF:
+        return ehl_solver()
+    from facegear_tehl.ehl.seeded import solve_path
+
+    return PathSolver(solve_path, TUNING.continuation_chunk)
 
 
 def run_case(
@@ -59,7 +70,8 @@ def run_case(
         overrides["points"] = [p.name for p in selected]
     tasks = [SolveTask(point, case.lubricant, case.solver) for point in selected]
     if case.solver.accuracy is None:
-        solved, failed, refined = solve_refining(tasks, solver or ehl_solver(), jobs=jobs, progress=progress)
+        solver = solver or (path_solver(case) if points is None else ehl_solver())
+        solved, failed, refined = solve_refining(tasks, solver, jobs=jobs, progress=progress)
     else:  # the grid and models the accuracy target chooses, each point's record holding them
         solved = solve_to_accuracy(tasks, solver or ehl_solver(), jobs=jobs, progress=progress)
         failed, refined = tuple(i for i, s in enumerate(solved) if s.outcome is Outcome.FAILED), {}
@@ -104,7 +116,7 @@ class Refinement:
     stopped: str = ""  # the finer grid not started: it would have passed the point's time budget ("" if none)
 
 
-def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *, jobs: int | None = None,
+def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver | PathSolver, *, jobs: int | None = None,
                    progress: Progress | None = None
                    ) -> tuple[list[PointSolution], tuple[int, ...], dict[str, Refinement]]:
     """`parallel.solve_all`, then every point whose grid could not resolve its film (RetryPolicy.unresolved, or
@@ -137,7 +149,9 @@ def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
         if not closed:
             return solved, failed, refined
         finer = [replace(tasks[i], settings=next_grids[i]) for i in closed]
-        again, _ = solve_all(finer, solver, jobs=jobs, progress=progress)
+        # the refined points are not neighbours on the path: each from its own start
+        again, _ = solve_all(finer, ehl_solver() if isinstance(solver, PathSolver) else solver, jobs=jobs,
+                             progress=progress)
         for i, task, solution in zip(closed, finer, again):
             name, previous = task.point.name, solved[i]
             first = refined.get(name, Refinement(asked[name], asked[name], _coarse_reason(previous)))

@@ -162,8 +162,9 @@ def isothermal_layered_coefficients(pressure_pa, film, temperature, temperature_
 def temperature_factors(temperature, law):
     """The Roelands temperature factor of every layer node (lubricant.roelands_temperature_factor_at): it
     stays fixed while the pressure cycles run on a frozen film state, so it is computed once per state. A node at
-    the temperature of the one before it (an isothermal film) takes its factor."""
-    out = np.empty_like(temperature)
+    the temperature of the one before it (an isothermal film) takes its factor. `out` is C-ordered whatever the
+    layout of `temperature` (the ravel of a non-contiguous array is a copy: its factors would never reach `out`)."""
+    out = np.empty(temperature.shape)
     flat_t, flat_out = temperature.ravel(), out.ravel()
     for n in range(flat_t.size):
         if n > 0 and flat_t[n] == flat_t[n - 1]:

@@ -28,7 +28,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy import fft, integrate, optimize, special
+from scipy import fft  # the exact band source's quad, brentq and k0e are imported where used (start-up time)
 
 
 def _kernel_weights(nx: int) -> tuple[np.ndarray, np.ndarray]:
@@ -134,6 +134,8 @@ def surface_temperature_rise(
 
 def _source_weight(u: float) -> float:
     """exp(-u) K0(|u|), written with the scaled Bessel function k0e(z) = exp(z) K0(z) (no overflow)."""
+    from scipy import special
+
     if u < 0.0:
         return float(special.k0e(-u))
     return math.exp(-2.0 * u) * float(special.k0e(u))
@@ -150,6 +152,8 @@ def band_source_temperature(position: float, peclet: float) -> float:
     position: x/l (the source spans -1..1; the wake lies at x/l > 1, as in `surface_temperature_rise`).
     The log singularity of K0 at u = 0 is split out as an integration break point.
     """
+    from scipy import integrate
+
     if not peclet > 0.0:
         raise ValueError(f"Péclet number must be positive, got {peclet}")
     centre = -peclet * position
@@ -174,6 +178,8 @@ def band_source_maximum(peclet: float) -> tuple[float, float]:
 
     def slope(centre: float) -> float:
         return _source_weight(centre + peclet) - _source_weight(centre - peclet)
+
+    from scipy import optimize
 
     edge = peclet * (1.0 - 1e-12)
     centre = optimize.brentq(slope, -edge, edge, xtol=1e-14 * max(1.0, peclet))

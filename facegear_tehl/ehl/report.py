@@ -166,8 +166,10 @@ def _film_scalars(solve: Reported, level: Level, wall: float) -> dict[str, tuple
     film_scale = scaling.film_scale
     fine = summarise(level)
     x_min, y_min = _lowest_film_place(solve, level)
-    h_c_start = summaries[-1].h_c  # the error estimates compare the levels as the full-multigrid start left them
-    h_min_start = summaries[-1].h_min
+    # the error estimates compare the levels as the full-multigrid start left them (none where a start that stopped
+    # short of the load dropped its levels: estimate gives NaN without two)
+    last = summaries[-1] if summaries else fine
+    h_c_start, h_min_start, p_max_start = last.h_c, last.h_min, last.p_max
     return {
         "h_c": (fine.h_c * film_scale, "m"),
         "h_min": (fine.h_min * film_scale, "m"),
@@ -195,7 +197,7 @@ def _film_scalars(solve: Reported, level: Level, wall: float) -> dict[str, tuple
         "attempts": (float(solve.attempt), "1"),
         "error_estimate_h_c": (estimate(summaries, level, h_c_start, "h_c", ORDER), "1"),
         "error_estimate_h_min": (estimate(summaries, level, h_min_start, "h_min", ORDER), "1"),
-        "error_estimate_p_max": (estimate(summaries, level, summaries[-1].p_max, "p_max", ORDER), "1"),
+        "error_estimate_p_max": (estimate(summaries, level, p_max_start, "p_max", ORDER), "1"),
         "grid": (float(level.nx), "1"),
         "grid_y": (float(level.ny), "1"),
         "coarsest_grid": (float(solve.coarsest), "1"),

@@ -38,7 +38,12 @@ class StagedSolver:
     bounded: bool = True
 
     def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
-        first = solution = _completed(self, self.begin(point, lubricant, settings))
+        return self.retried(_completed(self, self.begin(point, lubricant, settings)), point, lubricant, settings)
+
+    def retried(self, first: PointSolution, point: ContactPoint, lubricant: Lubricant,
+                settings: SolverSettings) -> PointSolution:
+        """The first attempt's solution `first`, solved again with the policy's next attempts while it says so."""
+        solution = first
         while self.needs_retry(solution):
             solution = _completed(self, self.begin(point, lubricant, settings, solution))
         return first if solution is first else self.with_retry(first, solution)
@@ -64,7 +69,7 @@ class StagedSolver:
             begun = solve.begin()
         if isinstance(begun, PointSolve):
             return begun
-        return self._bounded(begun, point, lubricant, settings)
+        return self.bound(begun, point, lubricant, settings)
 
     def finish(self, stage: PointSolve) -> PointSolution:
         """The second stage (PointSolve.finish), with its error bounds (e_y from its coarse stage in a `full` solve:
@@ -74,9 +79,9 @@ class StagedSolver:
         coarse = None  # a reduced solve's finest figures are one film-state evaluation, its coarse stage's coupled
         if stage.mode is ThermalMode.FULL and len(stage.summaries) >= 2 and len(stage.solver.levels) >= 2:
             coarse = coarse_stage(stage.summaries[-2], stage.solver.levels[-2].ny, stage.scaling)
-        return self._bounded(solution, stage.point, stage.lubricant, stage.asked, coarse)
+        return self.bound(solution, stage.point, stage.lubricant, stage.asked, coarse)
 
-    def _bounded(self, solution: PointSolution, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
+    def bound(self, solution: PointSolution, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
                  coarse: CoarseStage | None = None) -> PointSolution:
         """The solution with its error bounds (error_bounds.with_error_bounds), as it is when not `bounded`."""
         if not self.bounded:

@@ -82,6 +82,7 @@ class Tuning:
     coarse_stage_limit: float = 5e-3  # ... and never looser than this share of the rise (it seeds the estimates)
     seed_stage_limit: float = 2e-2  # the seed stage (two grids below the finest) stops at this share of the rise
     min_seed_stage_grid: int = 129  # nodes in x of the seed stage's grid from which it runs (65: no saving)
+    continuation_chunk: int = 7  # points of a path solved in order by one worker, each seeded from the one before
     # --- outlet patches (outlet.py)
     patch_start: float = -0.5  # X_a / b of the first patch: on the outlet side of the centre
     nested_patch_starts: tuple[float, ...] = (-0.4, 0.0)  # X_a / b of the nested patches (a 1/4, an 1/8 spacing)

@@ -1,0 +1,199 @@
+"""The seeded start of a point solve on a path of contacts (the meshing cycle by continuation, docs/cycle.md).
+
+A thermal point whose plan has a coarse stage (plan.py) can start from its solved neighbour on the path instead of
+the full-multigrid start and the seed stage: the neighbour's pressure P = p/p_h and film state (temperatures,
+ln eta*/eta per layer) at the same Hertzian coordinates X = x/b, Y = y/a are interpolated bilinearly onto this
+point's grid below its finest (outside the neighbour's domain: its edge values; the pressure zero on the boundary),
+and H_0 is set so that the central film is this point's Hamrock & Dowson (1977) prediction times the neighbour's
+ratio of solved to predicted central film (a predictor along the path). The coarse stage, the finest grid, the
+outlet stage, their convergence tests and the error estimates (the coarse stage's summary against the finest grid's,
+report.py) are those of the cold start. The record's stages say `seeded start` with the neighbour's name; a seeded
+solve that fails is solved again from the cold start, with all of the retry policy, and the record says so.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+import time
+from typing import Sequence
+
+import numpy as np
+
+from facegear_tehl.contact import ContactPoint
+from facegear_tehl.ehl.domain import predicted_central_film
+from facegear_tehl.ehl.plan import PlannedStage, SolvePlan
+from facegear_tehl.ehl.report import summarise
+from facegear_tehl.ehl.solve import PointSolve
+from facegear_tehl.ehl.staged import RUN_AWAY_ARITHMETIC, STAGED
+from facegear_tehl.ehl.thermal import FilmState
+from facegear_tehl.ehl.tuning import TUNING
+from facegear_tehl.lubricant import Lubricant
+from facegear_tehl.record import Action, Reason, RetryRecord, Stage
+from facegear_tehl.settings import SolverSettings, ThermalMode
+from facegear_tehl.solution import PointSolution, Status
+
+
+@dataclass(frozen=True)
+class Seed:
+    """A solved point's pressure and film state on the grid it was reported on, in its Hertzian frame."""
+
+    source: str  # the point's name
+    x: np.ndarray  # X = x/b of the nodes
+    y: np.ndarray  # Y = y/a of the nodes
+    pressure: np.ndarray  # P = p/p_h, (ny, nx)
+    film_ratio: float  # solved central film over Hamrock & Dowson's prediction
+    state: FilmState  # temperatures (K) and eta*/eta per layer, (nz, ny, nx)
+    # the finest grid's converged pressure, temperatures and ln(eta*/eta) minus the interpolation of the coarse
+    # stage's (None: not a thermal full multigrid solve, or reported below its finest grid)
+    correction: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+
+
+def resample(values: np.ndarray, x: np.ndarray, y: np.ndarray, to_x: np.ndarray, to_y: np.ndarray) -> np.ndarray:
+    """values[..., j, i] on the ascending axes (x, y) interpolated bilinearly at the nodes of the axes (to_x, to_y);
+    beyond the axes the edge values."""
+    fx = np.interp(to_x, x, np.arange(len(x), dtype=float))
+    fy = np.interp(to_y, y, np.arange(len(y), dtype=float))
+    i = np.minimum(fx.astype(int), len(x) - 2)
+    j = np.minimum(fy.astype(int), len(y) - 2)
+    tx, ty = fx - i, (fy - j)[:, None]
+    near, far = values[..., j, :], values[..., j + 1, :]
+    return np.ascontiguousarray((1.0 - ty) * ((1.0 - tx) * near[..., i] + tx * near[..., i + 1])
+                                + ty * ((1.0 - tx) * far[..., i] + tx * far[..., i + 1]))
+
+
+def seeded_plan(plan: SolvePlan, source: str) -> SolvePlan:
+    """`plan` with the seeded start from point `source` on the coarse stage's grid in place of the full-multigrid
+    start and the seed stage."""
+    coarse = next(planned for planned in plan.stages if planned.stage is Stage.COARSE)
+    seeded = PlannedStage(Stage.SEEDED, coarse.nx, coarse.ny, f"from {source}: its pressure, central film and film "
+                                                                f"state in this contact's Hertzian frame")
+    return SolvePlan((seeded,) + tuple(p for p in plan.stages if p.stage not in (Stage.START, Stage.SEED)))
+
+
+class SeededSolve(PointSolve):
+    """A point solve that starts from `seed` (the module docstring) when its plan has a coarse stage, else cold; it
+    keeps the level and film state it reports, to seed the next point (`seed_for_next`)."""
+
+    def __init__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, seed: Seed | None):
+        super().__init__(point, lubricant, settings)
+        self.seed = seed if seed is not None and self.plan.has(Stage.COARSE) else None
+        if self.seed is not None:
+            self.plan = seeded_plan(self.plan, self.seed.source)
+        self.reported: tuple[int, FilmState | None] | None = None
+        self.coarse_pressure: np.ndarray | None = None  # the coarse stage's converged pressure (_start_fine_grid) ...
+        self.fine_index = -1  # ... and the level of the finest uniform grid (an outlet stage adds patches above it)
+
+    def begin(self) -> PointSolution | PointSolve:
+        """The seeded start and the coarse stage (self, to be finished), or the cold start's `begin`."""
+        if self.seed is None:
+            return super().begin()
+        index = len(self.solver.levels) - 2
+        mark = self._mark()
+        frozen = self._seeded_level(index)
+        status = self.cycle(index, TUNING.cycles_per_thermal_update)
+        self.summaries.append(summarise(self.solver.levels[index]))  # as the full-multigrid start's last level
+        self._stage_done(Stage.SEEDED, index, status, mark)
+        state = None
+        if not status.diverged:
+            mark = self._mark()
+            state, status = self.couple(index, frozen)
+            self._stage_done(Stage.COARSE, index, status, mark)
+        if state is None or status.diverged:
+            return self.report(index, status, state)
+        self.coarse_state = state
+        self.elapsed = time.perf_counter() - self._clock  # paused between stages, as PointSolve.begin
+        return self
+
+    def _seeded_level(self, index: int) -> FilmState:
+        """Level `index` set from the seed: pressure, H_0 and the frozen film state (returned)."""
+        seed, solver = self.seed, self.solver
+        level = solver.levels[index]
+        solver.reset_rhs(level)
+        level.pressure = np.maximum(resample(seed.pressure, seed.x, seed.y, level.x, level.y), 0.0)
+        level.pressure[0, :] = level.pressure[-1, :] = 0.0
+        level.pressure[:, 0] = level.pressure[:, -1] = 0.0
+        temperature = resample(seed.state.temperature, seed.x, seed.y, level.x, level.y)
+        factor = np.exp(resample(np.log(seed.state.viscosity_factor), seed.x, seed.y, level.x, level.y))
+        solver.h0 = 0.0
+        solver.update_film(level)
+        central = predicted_central_film(self.scaling) / self.scaling.film_scale * seed.film_ratio
+        solver.h0 = central - solver.central_film(level)
+        solver.set_film_state(index, temperature, factor)
+        return replace(seed.state, temperature=temperature, viscosity_factor=factor)
+
+    def _start_fine_grid(self, index: int) -> tuple[FilmState, Status]:
+        """The finest grid from the coarse stage (PointSolve._start_fine_grid); a seeded `full` solve adds the
+        neighbour's correction of its own coarse stage's interpolation (`Seed.correction`) to the interpolated
+        pressure, temperatures and ln(eta*/eta). Keeps the converged coarse pressure for the next point's seed."""
+        self.coarse_pressure, self.fine_index = self.solver.levels[index - 1].pressure.copy(), index
+        seed = self.seed
+        if seed is None or seed.correction is None or self.mode is not ThermalMode.FULL:
+            return super()._start_fine_grid(index)
+        solver = self.solver
+        solver.interpolate_up(index)
+        level = solver.levels[index]
+        pressure, temperature, log_factor = (resample(c, seed.x, seed.y, level.x, level.y) for c in seed.correction)
+        level.pressure = np.maximum(level.pressure + pressure, 0.0)
+        level.pressure[0, :] = level.pressure[-1, :] = 0.0
+        level.pressure[:, 0] = level.pressure[:, -1] = 0.0
+        temperature += solver.prolong_layers(index, self.coarse_state.temperature)
+        factor = np.exp(log_factor + solver.prolong_layers(index, np.log(self.coarse_state.viscosity_factor)))
+        solver.set_film_state(index, temperature, factor)
+        frozen = replace(self.coarse_state, temperature=temperature, viscosity_factor=factor)
+        return frozen, self.cycle(index, TUNING.cycles_per_thermal_update)
+
+    def report(self, index: int, status: Status, state: FilmState | None) -> PointSolution:
+        self.reported = (index, state)
+        return super().report(index, status, state)
+
+    def seed_for_next(self) -> Seed | None:
+        """This solve's reported level and film state as the next point's seed (None without a film state)."""
+        if self.reported is None or self.reported[1] is None or not self.plan.has(Stage.COARSE):
+            return None
+        index, state = self.reported
+        solver = self.solver
+        level = solver.levels[index]
+        predicted = predicted_central_film(self.scaling) / self.scaling.film_scale
+        correction = None
+        if index == self.fine_index and self.mode is ThermalMode.FULL:
+            coarse = self.coarse_state
+            correction = (level.pressure - solver.transfers[index].prolong_cubic(self.coarse_pressure),
+                          state.temperature - solver.prolong_layers(index, coarse.temperature),
+                          np.log(state.viscosity_factor) - solver.prolong_layers(index,
+                                                                                 np.log(coarse.viscosity_factor)))
+        return Seed(self.point.name, level.x, level.y, level.pressure.copy(), summarise(level).h_c / predicted,
+                    state, correction)
+
+
+def solve_seeded(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
+                 seed: Seed | None) -> tuple[PointSolution, Seed | None]:
+    """One point of a path from `seed` (None: the cold start), and the seed for the next point (None after a
+    failure). A seeded solve the retry policy would retry is solved again from the cold start (STAGED, with every
+    retry), recorded as such; a cold start that fails goes on with the policy's retries."""
+    solve = SeededSolve(point, lubricant, settings, seed)
+    with np.errstate(**RUN_AWAY_ARITHMETIC):
+        begun = solve.begin()
+    # with its error bounds as every solve of the staged solver
+    solution = STAGED.finish(begun) if isinstance(begun, PointSolve) else STAGED.bound(begun, point, lubricant,
+                                                                                       settings)
+    if not STAGED.needs_retry(solution):
+        return solution, solve.seed_for_next()
+    if solve.seed is None:
+        return STAGED.retried(solution, point, lubricant, settings), None
+    cold = STAGED(point, lubricant, settings)
+    retry = RetryRecord(Reason.SEEDED_START_FAILED, Action.COLD_START, 1,
+                        f"seeded from {solve.seed.source}: {solution.message}")
+    record = cold.record.with_retry(retry)
+    wall = solution.scalar("wall_time") + cold.scalar("wall_time")
+    return replace(cold, record=record, models={**cold.models, "solver": record.render()},
+                   scalars={**cold.scalars, "wall_time": (wall, "s")}), None
+
+
+def solve_path(tasks: Sequence[tuple[ContactPoint, Lubricant, SolverSettings]]) -> list[PointSolution]:
+    """Neighbouring points of a path in order, each seeded from the one before it (the first cold; after a failure
+    the next cold again)."""
+    solutions, seed = [], None
+    for point, lubricant, settings in tasks:
+        solution, seed = solve_seeded(point, lubricant, settings, seed)
+        solutions.append(solution)
+    return solutions
