@@ -43,8 +43,8 @@ class Choice:
 
 @dataclass(frozen=True)
 class SolveStep:
-    """One solve the target ran for the point: grid asked, model, why (start, model check, y-check, refine x|y), its
-    outcome and wall time (s)."""
+    """One solve the target ran for the point: grid asked, model, why (start, model check, refine x|y|xy), its
+    outcome and wall time with its error check's (s)."""
 
     grid: str
     model: str

@@ -13,12 +13,13 @@ Per point, on a start grid of TUNING.accuracy_start_grid nodes along x (the case
    grid along one axis that does not converge is followed by one along both, and where that fails too the converged
    coarser solution is kept.
 
-A figure's bound (`figure_bound`) is the solve's own `error_bound_<name>` where it reports one (ehl error bounds),
-else FALLBACK_SAFETY (|e_x| + |e_y|): e_x its Richardson estimate from the grid one coarser along x
-(`error_estimate_<name>`, ehl/report.py), e_y from a check solve of the same point and model on the same domain with
-half the nodes along y (`y_check`), unless the solve reports `error_estimate_y_<name>`. p_max is never bounded: the
-pressure maximum is the outlet spike, which grows with every refinement on practical grids (Venner & Lubrecht 2000,
-ch. 8): it is reported as achieved, "unresolved", and never refined for.
+A figure's bound (`figure_bound`) is the solve's own `error_bound_<name>` (ehl/error_bounds.py: every converged solve
+with a film reports it, with its y-check, or `unresolved_<name>`); a figure the solve reports unresolved, or without
+a bound, has none and is refined for while the grid and the time allow. The axis to refine is read from the solve's
+estimates along x (`error_estimate_<name>`) and y (`error_estimate_y_<name>`). p_max is never bounded: the pressure
+maximum is the outlet spike, which grows with every refinement on practical grids (Venner & Lubrecht 2000, ch. 8): it
+is reported as achieved, "unresolved", and never refined for. A solve's cost is its wall time and its error check's
+(`error_check_time`).
 """
 
 from __future__ import annotations
@@ -27,11 +28,8 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 import math
 
-import numpy as np
-
 from facegear_tehl.accuracy_record import AccuracyRecord, Choice, FigureBound, SolveStep, Verdict
 from facegear_tehl.ehl.domain import solution_domain
-from facegear_tehl.ehl.richardson import ORDER, richardson_error
 from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
@@ -40,17 +38,6 @@ from facegear_tehl.solution import PointSolution
 
 FIGURES = ("h_c", "h_min", "p_max", "dT_max", "mu")  # the figures the target asks for, where the model reports them
 NEVER_BOUNDED = ("p_max",)  # module docstring
-# Roache's (1994, J. Fluids Eng. 116: 405-413) safety factor of a two-grid estimate at an assumed order: the bound of a
-# solve that reports no error_bound_<name> of its own
-FALLBACK_SAFETY = 3.0
-
-
-def figure_order(name: str) -> int:
-    """The order a figure's Richardson estimates assume (ehl/report.py): first for dT_max and mu, else second."""
-    # imported on first use: ehl.report loads the solver's kernels, which the command line does not need
-    from facegear_tehl.ehl.report import ORDER_DT_MAX, ORDER_MU
-
-    return {"dT_max": ORDER_DT_MAX, "mu": ORDER_MU}.get(name, ORDER)
 
 
 Effects = Mapping[str, float]  # relative change of each figure
@@ -65,19 +52,16 @@ class Bound:
     e_y: float
 
 
-def figure_bound(solution: PointSolution, name: str, e_y: float = math.nan) -> Bound:
-    """The bound of figure `name` of `solution` (module docstring); `e_y` the driver's own y-estimate, used where the
-    solve reports none."""
+def figure_bound(solution: PointSolution, name: str) -> Bound:
+    """The bound of figure `name` of `solution`: the solve's own error_bound_<name>, inf where it reports the figure
+    unresolved or no bound (module docstring); its estimates along x and y as the solve reports them."""
     scalars = solution.scalars
     e_x = scalars.get(f"error_estimate_{name}", (math.nan, "1"))[0]
-    e_y = scalars.get(f"error_estimate_y_{name}", (e_y, "1"))[0]
-    if name in NEVER_BOUNDED or not solution.converged or name not in scalars:
+    e_y = scalars.get(f"error_estimate_y_{name}", (math.nan, "1"))[0]
+    unresolved = scalars.get(f"unresolved_{name}", (1.0, "1"))[0] != 0.0
+    if name in NEVER_BOUNDED or not solution.converged or unresolved:
         return Bound(math.inf, e_x, e_y)
-    if f"unresolved_{name}" in scalars:
-        unresolved = scalars[f"unresolved_{name}"][0] != 0.0
-        return Bound(math.inf if unresolved else scalars.get(f"error_bound_{name}", (math.inf, "1"))[0], e_x, e_y)
-    bound = FALLBACK_SAFETY * (abs(e_x) + abs(e_y))
-    return Bound(bound if math.isfinite(bound) else math.inf, e_x, e_y)
+    return Bound(scalars.get(f"error_bound_{name}", (math.inf, "1"))[0], e_x, e_y)
 
 
 def model_words(task: SolveTask) -> str:
@@ -184,44 +168,13 @@ def _applied(task: SolveTask, taken: Sequence[Cheaper]) -> SolveTask:
     return task
 
 
-def y_check(task: SolveTask, solution: PointSolution) -> SolveTask | None:
-    """The check solve of `solution`'s y-error: the same point and model on its domain with (ny + 1)/2 nodes along
-    y; None where the solution has its own y-estimates, a square grid (the hierarchy's estimate refines both axes),
-    no film, or too few rows to halve (then its y-estimate stays unknown)."""
-    if not solution.converged or "x" not in solution.axes or "error_estimate_y_h_c" in solution.scalars:
-        return None
-    x, y = solution.axes["x"].values, solution.axes["y"].values
-    if x.size == y.size or (y.size + 1) // 2 < task.settings.coarsest_grid:
-        return None
-    a, b = solution.scalar("a"), solution.scalar("b")
-    return replace(task, settings=replace(task.settings, grid=x.size, grid_y=(y.size + 1) // 2,
-                                          domain_x=(x[0] / b, x[-1] / b), domain_y=(y[0] / a, y[-1] / a)))
-
-
-def y_estimates(solution: PointSolution, check: PointSolution | None) -> dict[str, float]:
-    """e_y of each figure from the y-check (Richardson at the figure's order, figure_order); 0 on a square grid, NaN
-    where the check is missing, did not converge or was reported on another grid than asked."""
-    names = [name for name in FIGURES if name in solution.scalars]
-    if "x" not in solution.axes:
-        return dict.fromkeys(names, math.nan)
-    x, y = solution.axes["x"].values, solution.axes["y"].values
-    if x.size == y.size:
-        return dict.fromkeys(names, 0.0)
-    if check is None or not check.converged or check.axes["x"].values.size != x.size or (
-            check.axes["y"].values.size != (y.size + 1) // 2):  # a retry of the solver may report a coarser grid
-        return dict.fromkeys(names, math.nan)
-    return {name: richardson_error(solution.scalar(name), check.scalar(name), figure_order(name))
-            if name in check.scalars and solution.scalar(name) != 0.0 else math.nan for name in names}
-
-
 @dataclass(frozen=True)
 class Progressing:
-    """One point under the target: its task and latest solution (with the y-estimates measured for it), the
-    model's effects, the choices and solves so far, and why it stopped ("" while refining)."""
+    """One point under the target: its task and latest solution, the model's effects, the choices and solves so far,
+    and why it stopped ("" while refining)."""
 
     task: SolveTask
     solution: PointSolution
-    e_y: Mapping[str, float]
     effects: Mapping[str, float]
     choices: tuple[Choice, ...]
     steps: tuple[SolveStep, ...]
@@ -229,8 +182,7 @@ class Progressing:
     failed: str = ""  # the finer grid, refined along one axis, that did not converge: the next refines both
 
     def bounds(self) -> dict[str, Bound]:
-        return {name: figure_bound(self.solution, name, self.e_y.get(name, math.nan))
-                for name in FIGURES if name in self.solution.scalars}
+        return {name: figure_bound(self.solution, name) for name in FIGURES if name in self.solution.scalars}
 
     def missing(self, target: float) -> dict[str, Bound]:
         """The figures (p_max aside) whose bound plus model effect exceeds `target`."""
@@ -238,9 +190,15 @@ class Progressing:
                 if name not in NEVER_BOUNDED and bound.bound + self.effects.get(name, 0.0) > target}
 
 
+def solve_seconds(solution: PointSolution) -> float:
+    """Wall time of a solve with its error check's (s; ehl/error_bounds.py keeps that apart from `wall_time`)."""
+    scalars = solution.scalars
+    return scalars.get("wall_time", (0.0, "s"))[0] + scalars.get("error_check_time", (0.0, "s"))[0]
+
+
 def step(task: SolveTask, solution: PointSolution, purpose: str) -> SolveStep:
     return SolveStep(grid_words(task.settings), model_words(task), purpose, solution.outcome.value,
-                     solution.scalars.get("wall_time", (0.0, "s"))[0])
+                     solve_seconds(solution))
 
 
 def refined_axis(missing: Mapping[str, Bound]) -> str:
@@ -263,13 +221,12 @@ def refined_settings(settings: SolverSettings, axis: str) -> SolverSettings | No
 
 
 def over_budget(point: Progressing, finer: SolverSettings) -> bool:
-    """The finer solve would pass the point's time budget: time spent plus the last solve's time scaled by the
-    finer grid's nodes (multigrid work grows with the nodes) and a y-check at half of it."""
+    """The finer solve would pass the point's time budget: time spent plus the last solve's time with its error check
+    (`solve_seconds`) scaled by the finer grid's nodes (multigrid work grows with the nodes)."""
     settings = point.task.settings
     spent = sum(s.seconds for s in point.steps)
-    last = point.solution.scalars.get("wall_time", (0.0, "s"))[0]
     ratio = (finer.grid * finer.nodes_y) / (settings.grid * settings.nodes_y)
-    return spent + 1.5 * ratio * last > settings.time_budget
+    return spent + ratio * solve_seconds(point.solution) > settings.time_budget
 
 
 # solves tasks side by side, each with its purpose (for the progress lines), in task order
@@ -291,7 +248,7 @@ def screened(tasks: Sequence[SolveTask], solve: Batch, target: float) -> list[Pr
                                                       for c in each)
         taken, effects, choices = choose_models(start, by_what, base, target)
         solution = by_what[taken[0].what] if len(taken) == 1 else base
-        points.append(Screened(Progressing(_applied(start, taken), solution, {}, effects, choices, steps), start,
+        points.append(Screened(Progressing(_applied(start, taken), solution, effects, choices, steps), start,
                                base, taken, by_what))
     return combined(points, solve, target)
 
@@ -331,20 +288,6 @@ def combined(screens: Sequence[Screened], solve: Batch, target: float) -> list[P
     return points
 
 
-def with_y_checks(points: list[Progressing], fresh: Sequence[int], solve: Batch) -> list[Progressing]:
-    """The points `fresh` (just solved) with their y-estimates: from `y_check` solves where the solve reports none and
-    the point was not just refined along y alone (`refined`)."""
-    fresh = [i for i in fresh if not points[i].e_y]  # a point refined along y has its estimates from the pair
-    checks = {i: y_check(points[i].task, points[i].solution) for i in fresh}
-    wanted = [i for i, check in checks.items() if check is not None]
-    solved = dict(zip(wanted, solve([(checks[i], "y-check") for i in wanted])))
-    for i in fresh:
-        point, check = points[i], solved.get(i)
-        steps = point.steps if check is None else point.steps + (step(checks[i], check, "y-check"),)
-        points[i] = replace(point, e_y=y_estimates(point.solution, check), steps=steps)
-    return points
-
-
 def next_step(point: Progressing, target: float) -> tuple[Progressing, SolveTask | None]:
     """The point's next solve (None: it stops, with the reason): twice as fine along the axis that dominates the
     figures above the target, unless the grid cap or the time budget comes first."""
@@ -377,19 +320,7 @@ def refined(point: Progressing, task: SolveTask, solution: PointSolution) -> Pro
         before = f" (after {point.failed})" if point.failed else ""
         return replace(point, steps=steps, stop=f"{ended}{before}; the converged {grid_words(point.task.settings)} "
                                                 "solution kept")
-    # refined along y alone on the same domain: the solve before is the finer one's y-check
-    same = axis == "y" and _same_domain(point.solution, solution)
-    return replace(point, task=task, solution=solution, e_y=y_estimates(solution, point.solution) if same else {},
-                   steps=steps, failed="")
-
-
-def _same_domain(coarse: PointSolution, fine: PointSolution) -> bool:
-    """Both solutions span the same domain, with twice the rows and the same columns on `fine`."""
-    if not (coarse.converged and "x" in coarse.axes and "x" in fine.axes):
-        return False
-    (cx, cy), (fx, fy) = ((s.axes["x"].values, s.axes["y"].values) for s in (coarse, fine))
-    return (np.array_equal(cx, fx) and fy.size == 2 * cy.size - 1
-            and np.allclose((cy[0], cy[-1]), (fy[0], fy[-1]), rtol=1e-12, atol=0.0))
+    return replace(point, task=task, solution=solution, steps=steps, failed="")
 
 
 def solve_to_accuracy(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *, jobs: int | None = None,
@@ -402,17 +333,16 @@ def solve_to_accuracy(tasks: Sequence[SolveTask], solver: Solver | StagedSolver,
         return _solved_batch(batch, solver, jobs, progress)
 
     points = screened(tasks, solve, target)
-    fresh = list(range(len(points)))
-    while fresh:
-        points = with_y_checks(points, fresh, solve)
+    while True:
         planned = {}
         for i, point in enumerate(points):
             if not point.stop:
                 points[i], finer = next_step(point, target)
                 planned.update({} if finer is None else {i: finer})
+        if not planned:
+            break
         for i, solution in zip(planned, solve([(task, "refine") for task in planned.values()])):
             points[i] = refined(points[i], planned[i], solution)
-        fresh = [i for i in planned if not points[i].stop]
     return [finished(point, task, target) for point, task in zip(points, tasks)]
 
 
