@@ -202,8 +202,17 @@ def test_a_nested_stage_that_fails_reports_the_first_patch(monkeypatch):
     uniform_dT = first.scalars["dT_max"][0] * (1.0 - first.scalars["error_estimate_dT_max"][0])
     assert both.scalars["error_estimate_dT_max"][0] == pytest.approx(
         (both.scalars["dT_max"][0] - uniform_dT) / 3.0 / both.scalars["dT_max"][0], rel=1e-9)
-    real_update = PatchFilmModel.update
-    spacings = []
+    _poison_nested_patch(monkeypatch)
+    failed = _solved_as_one_patch(point, case, settings, first)
+    last = failed.record.retries[-1]
+    assert (last.reason, last.action) == (Reason.STAGE_FAILED, Action.KEPT_COARSER)
+    tried = [r.detail.split(":")[0] for r in failed.record.retries if r.action is Action.MORE_COARSE_CYCLES]
+    assert tried == [f"outlet patch 2, {cycles} per correction" for cycles in two.stage_coarse_cycles[:-1]]
+
+
+def _poison_nested_patch(monkeypatch) -> None:
+    """The energy equation of every patch finer than the first returns NaN temperatures: a nested patch runs away."""
+    real_update, spacings = PatchFilmModel.update, []
 
     def poisoned(self, *args, **kwargs):
         state = real_update(self, *args, **kwargs)
@@ -213,14 +222,15 @@ def test_a_nested_stage_that_fails_reports_the_first_patch(monkeypatch):
         return state
 
     monkeypatch.setattr(PatchFilmModel, "update", poisoned)
-    failed = solve_point(point, case.lubricant, settings)
-    assert failed.outcome == Outcome.CONVERGED and failed.scalars["outlet_patches"][0] == 1
+
+
+def _solved_as_one_patch(point, case, settings, first):
+    """The point solved again: converged with one patch, its figures exactly those of `first` (one patch alone)."""
+    solved = solve_point(point, case.lubricant, settings)
+    assert solved.outcome == Outcome.CONVERGED and solved.scalars["outlet_patches"][0] == 1
     for name in ("h_c", "h_min", "p_max", "dT_max", "mu", "error_estimate_dT_max"):
-        assert failed.scalars[name] == first.scalars[name], name
-    last = failed.record.retries[-1]
-    assert (last.reason, last.action) == (Reason.STAGE_FAILED, Action.KEPT_COARSER)
-    tried = [r.detail.split(":")[0] for r in failed.record.retries if r.action is Action.MORE_COARSE_CYCLES]
-    assert tried == [f"outlet patch 2, {cycles} per correction" for cycles in two.stage_coarse_cycles[:-1]]
+        assert solved.scalars[name] == first.scalars[name], name
+    return solved
 
 
 def test_a_stage_stops_once_its_hot_spot_has_settled():
@@ -374,20 +384,8 @@ def test_a_stage_failing_on_a_provisional_one_has_the_stages_below_solved_again(
         first = solve_point(point, case.lubricant, settings)
     monkeypatch.setattr(outlet, "TUNING", replace(outlet.TUNING,
                                                   nested_patch_starts=outlet.TUNING.nested_patch_starts[:1]))
-    real_update, spacings = PatchFilmModel.update, []
-
-    def poisoned(self, *args, **kwargs):
-        state = real_update(self, *args, **kwargs)
-        spacings.append(self.dx)
-        if self.dx < max(spacings):  # the nested patch
-            return replace(state, temperature=np.full_like(state.temperature, np.nan))
-        return state
-
-    monkeypatch.setattr(PatchFilmModel, "update", poisoned)
-    again = solve_point(point, case.lubricant, settings)
-    assert again.outcome == Outcome.CONVERGED and again.scalars["outlet_patches"][0] == 1
-    for name in ("h_c", "h_min", "p_max", "dT_max", "mu", "error_estimate_dT_max"):
-        assert again.scalars[name] == first.scalars[name], name
+    _poison_nested_patch(monkeypatch)
+    again = _solved_as_one_patch(point, case, settings, first)
     actions = [r.action for r in again.record.retries if r.reason is Reason.STAGE_FAILED]
     assert Action.STAGES_AGAIN in actions and actions[-1] is Action.KEPT_COARSER
     assert "on top of a provisional stage" in next(r.detail for r in again.record.retries
