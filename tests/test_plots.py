@@ -250,6 +250,32 @@ def test_trends_draw_no_line_across_a_jump_of_the_tooth_load(gear_run, tmp_path,
                 assert not any(x.min() < 1e3 * s < x.max() for s in jumps), (line.get_label(), x)
 
 
+def test_trend_error_bars_are_the_bounds_and_an_unresolved_figure_gets_a_cross(gear_run, tmp_path, monkeypatch):
+    """The h_c bar of each point spans value (1 -+ bound) (error_bound_h_c, not the smaller x-estimate); a point
+    whose h_min is unresolved has no h_min bar and a cross at its value."""
+    bounds = {"S1": 0.05, "S3": 0.10, "S5": 0.20}
+    points = tuple(replace(p, scalars={**p.scalars, "error_estimate_h_c": (0.001, "1"),
+                                       "error_bound_h_c": (bounds[p.name], "1"), "unresolved_h_c": (0.0, "1"),
+                                       "unresolved_h_min": (float(p.name == "S3"), "1"),
+                                       "error_bound_h_min": (0.01, "1")})
+                   for p in gear_run.points)
+    path = write_result(replace(gear_run, points=points), tmp_path / "bounds.h5")
+    figures = _capture(monkeypatch)
+    _plot(path, tmp_path / "figures", what=["trends"])
+    film = next(ax for ax in figures["trends"].axes if ax.get_title() == "film thickness")
+    containers = {c.get_label(): c for c in film.containers}
+    h_c = {p.name: p.scalars["h_c"][0] * 1e6 for p in points}  # µm, the axis unit
+    spans = sorted((seg[1][1] - seg[0][1]) for seg in containers["$h_c$ (central)"].lines[2][0].get_segments())
+    assert spans == pytest.approx(sorted(2 * bounds[n] * h_c[n] for n in bounds), rel=1e-6)
+    h_min_bars = [seg for seg in containers["$h_{min}$ (minimum)"].lines[2][0].get_segments() if seg[1][1] > seg[0][1]]
+    assert len(h_min_bars) == 2  # S1 and S5; none at the unresolved S3
+    crosses = [line for line in film.get_lines() if line.get_marker() == "x" and len(line.get_xdata())]
+    assert [float(y) for line in crosses for y in line.get_ydata()] == pytest.approx(
+        [points[1].scalars["h_min"][0] * 1e6])
+    legend = [t.get_text() for ax in figures["trends"].axes if ax.get_legend() for t in ax.get_legend().get_texts()]
+    assert "error bars: the solver's error bounds" in legend and "cross: unresolved (no bound)" in legend
+
+
 def test_convergence_draws_the_tolerances_of_the_case(gear_file, tmp_path, monkeypatch):
     figures = _capture(monkeypatch)
     _plot(gear_file, tmp_path, what=["convergence"])

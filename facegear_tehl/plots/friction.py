@@ -5,17 +5,18 @@ from __future__ import annotations
 from facegear_tehl.plots.common import Output, figure, legend_outside, title
 from facegear_tehl.plots.over_points import (
     SWEEP_FILE,
+    bars_note,
+    error_bars,
     jump_note,
     not_converged_note,
     per_point,
     plot_series,
     point_axis,
-    relative_errors,
 )
 from facegear_tehl.results import Result
 
 # Friction coefficients: scalar or /heat column name -> legend label.
-_FRICTION_LABELS = {"mu": r"$\mu$ of the solved film (error bars: the solver's estimate)",
+_FRICTION_LABELS = {"mu": r"$\mu$ of the solved film",
                     "mu_xu": r"$\mu$, Xu et al. (2007), empirical"}
 
 
@@ -43,10 +44,13 @@ def draw_friction(result: Result, out: Output) -> None:
     fig = figure(width=8.5, height=4.2)
     ax = fig.add_subplot()
     for key, values in series.items():
-        plot_series(ax, result, positions, values, _FRICTION_LABELS.get(key, key),
-                    errors=relative_errors(result, key, values))
+        errors, unresolved = error_bars(result, key, values)
+        plot_series(ax, result, positions, values, _FRICTION_LABELS.get(key, key), errors=errors,
+                    unresolved=unresolved)
     not_converged_note(ax, result)
     jump_note(ax, result, names)
+    if "mu" in keys:
+        bars_note(ax, result)
     ax.set_ylabel(r"friction coefficient $\mu$ (–)")
     ax.set_ylim(bottom=0.0)
     ax.grid(alpha=0.3)

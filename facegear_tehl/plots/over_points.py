@@ -84,10 +84,11 @@ def continuous_runs(result: Result, names: Sequence[str]) -> list[list[str]]:
 
 
 def plot_series(ax: Axes, result: Result, positions: Mapping[str, float], values: Mapping[str, float],
-                label: str, style: str = "o-", errors: Mapping[str, float] | None = None) -> None:
+                label: str, style: str = "o-", errors: Mapping[str, float] | None = None,
+                unresolved: Sequence[str] = ()) -> None:
     """A quantity over the points: markers, with error bars where `errors` (absolute, display units) has
-    them, joined by lines within the runs of `continuous_runs`; open markers for points that did not
-    converge."""
+    them and a cross over the `unresolved` points, joined by lines within the runs of `continuous_runs`; open
+    markers for points that did not converge."""
     names = [n for n in positions if n in values]
     marker, line_style = style[0], style[1:] or "-"
     x = [positions[n] for n in names]
@@ -98,16 +99,37 @@ def plot_series(ax: Axes, result: Result, positions: Mapping[str, float], values
     for run in continuous_runs(result, names):
         if len(run) > 1:
             ax.plot([positions[n] for n in run], [values[n] for n in run], line_style, color=colour)
+    crossed = [n for n in names if n in unresolved]
+    if crossed:
+        ax.plot([positions[n] for n in crossed], [values[n] for n in crossed], "x", color="black", markersize=9)
     open_names = [n for n in names if n in result.points and not result.points[n].converged]
     if open_names:
         ax.plot([positions[n] for n in open_names], [values[n] for n in open_names], "o", color="white",
                 markeredgecolor=colour, markersize=7)
 
 
-def relative_errors(result: Result, key: str, values: Mapping[str, float]) -> dict[str, float]:
-    """The error estimate of `key` per point in the units of `values`: |error_estimate_<key>| |value|."""
-    estimates = per_point(result, f"error_estimate_{key}")
-    return {n: abs(estimates[n] * v) for n, v in values.items() if n in estimates and np.isfinite(estimates[n])}
+def error_bars(result: Result, key: str, values: Mapping[str, float]) -> tuple[dict[str, float], list[str]]:
+    """The error bar of `key` per point in the units of `values` and the points whose `key` is unresolved (no bar):
+    the solve's error bound error_bound_<key> |value| (ehl/error_bounds.py); in a file written before the bounds,
+    |error_estimate_<key>| |value| and no point unresolved."""
+    flags = per_point(result, f"unresolved_{key}")
+    if not flags:
+        estimates = per_point(result, f"error_estimate_{key}")
+        return {n: abs(estimates[n] * v) for n, v in values.items()
+                if n in estimates and np.isfinite(estimates[n])}, []
+    bounds = per_point(result, f"error_bound_{key}")
+    unresolved = [n for n in values if flags.get(n, 0.0) != 0.0]
+    return {n: bounds[n] * abs(v) for n, v in values.items() if n in bounds and n not in unresolved}, unresolved
+
+
+def bars_note(ax: Axes, result: Result) -> None:
+    """A legend entry saying what the error bars are: the error bounds (a cross over a point whose figure is
+    unresolved) or, in a file written before the bounds, the error estimates."""
+    bounded = any(k.startswith("unresolved_") for p in result.points.values() for k in p.scalars)
+    ax.plot([], [], " ", label="error bars: the solver's error bounds" if bounded
+            else "error bars: the solver's error estimates")
+    if bounded:
+        ax.plot([], [], "x", color="black", label="cross: unresolved (no bound)")
 
 
 def jump_note(ax: Axes, result: Result, names: Sequence[str]) -> None:

@@ -1,5 +1,5 @@
 """Film characteristics over the meshing points (Fig. 13 of the seed paper): p_max with the dry Hertz p_h,
-h_c and h_min, ΔT_max and ΔT_min, with the solver's error estimates as error bars and no line across the
+h_c and h_min, ΔT_max and ΔT_min, with the solver's error bounds as error bars and no line across the
 jumps of the tooth load."""
 
 from __future__ import annotations
@@ -13,13 +13,14 @@ from facegear_tehl.plots.common import Output, figure, legend_outside, title
 from facegear_tehl.plots.field_data import KELVIN_RISE
 from facegear_tehl.plots.over_points import (
     SWEEP_FILE,
+    bars_note,
+    error_bars,
     jump_note,
     not_converged_note,
     on_path,
     per_point,
     plot_series,
     point_axis,
-    relative_errors,
 )
 from facegear_tehl.results import Result
 from facegear_tehl.units import MILLIMETRE, Unit, display
@@ -54,7 +55,7 @@ def draw_trends(result: Result, out: Output) -> None:
     for ax, (panel_title, quantity, unit, series) in zip(axes, panels):
         for key, label, style in series:
             values = {n: unit(v) for n, v in per_point(result, key).items()}
-            plot_series(ax, result, positions, values, label, style, relative_errors(result, key, values))
+            plot_series(ax, result, positions, values, label, style, *error_bars(result, key, values))
         if series[0][0] == "p_max":
             _path_hertz_pressure(ax, result, names, unit)
         if series[0][0] == "dT_max":
@@ -64,7 +65,7 @@ def draw_trends(result: Result, out: Output) -> None:
         ax.grid(alpha=0.3)
     not_converged_note(axes[0], result)
     jump_note(axes[0], result, names)
-    axes[0].plot([], [], " ", label="error bars: the solver's error estimates")
+    bars_note(axes[0], result)
     for ax in axes:
         legend_outside(ax)
     label_axis(axes[-1])
