@@ -14,6 +14,7 @@ from facegear_tehl.cycle import MeshCycle, mesh_cycle, with_film_parameter
 from facegear_tehl.ehl.domain import solution_domain
 from facegear_tehl.ehl.retry import POLICY, estimates
 from facegear_tehl.ehl.scaling import scaling_for
+from facegear_tehl.ehl.stopwatch import Spent, spent_on
 from facegear_tehl.ehl.tuning import TUNING, convergence_bands
 from facegear_tehl.heat_budget import heat_budget
 from facegear_tehl.parallel import PathSolver, Progress, Solver, SolveTask, StagedSolver, solve_all
@@ -155,7 +156,7 @@ def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver | P
         for i, task, solution in zip(closed, finer, again):
             name, previous = task.point.name, solved[i]
             first = refined.get(name, Refinement(asked[name], asked[name], _coarse_reason(previous)))
-            spent = previous.scalars.get("wall_time", (0.0, "s"))[0] + solution.scalars.get("wall_time", (0.0, "s"))[0]
+            spent = spent_on(previous) + spent_on(solution)
             if previous.converged and not solution.converged:
                 kept.add(i)
                 refined[name] = replace(first, tried=_shape(task.settings), outcome=solution.outcome.value)
@@ -169,17 +170,17 @@ def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver | P
             earlier = () if previous.record is None else tuple(
                 r for r in previous.record.retries if r.action is Action.FINER_GRID)  # this point's refinement so far
             solved[i] = _noted(solution, RetryRecord(reason, Action.FINER_GRID, 0, detail), earlier,
-                               scalars={**solution.scalars, "wall_time": (spent, "s")})
+                               scalars={**solution.scalars, **spent.scalars()})
 
 
-def _kept_coarser(previous: PointSolution, refinement: Refinement, spent: float) -> PointSolution:
+def _kept_coarser(previous: PointSolution, refinement: Refinement, spent: Spent) -> PointSolution:
     """The converged coarser solution after a finer grid did not converge, noted in its message and record."""
     note = (f"grid {refinement.tried} tried by the solver ended {refinement.outcome}; the result is the "
             f"converged {refinement.grid} solution" + (f" ({_coarse_reason(previous)})" if POLICY.coarse(previous)
                                                        else ""))
     retry = RetryRecord(Reason.FINER_GRID_FAILED, Action.KEPT_COARSER, 0,
                         f"{refinement.tried} ended {refinement.outcome}")
-    return _noted(previous, retry, message=note, scalars={**previous.scalars, "wall_time": (spent, "s")})
+    return _noted(previous, retry, message=note, scalars={**previous.scalars, **spent.scalars()})
 
 
 def _noted(solution: PointSolution, retry: RetryRecord, earlier: tuple[RetryRecord, ...] = (),
@@ -193,10 +194,10 @@ def _noted(solution: PointSolution, retry: RetryRecord, earlier: tuple[RetryReco
 
 
 def _over_budget(task: SolveTask, finer: SolverSettings, solution: PointSolution) -> bool:
-    """Solving the point on `finer` would pass its time budget: the time spent on it so far (s) and that time again
-    times the ratio of the finer grid's nodes to the last one's (multigrid work grows with the nodes) exceed
-    `solver.time_budget`."""
-    spent = solution.scalars.get("wall_time", (0.0, "s"))[0]
+    """Solving the point on `finer` would pass its time budget: the CPU time spent on it so far (s; ehl/stopwatch.py)
+    and that time again times the ratio of the finer grid's nodes to the last one's (multigrid work grows with the
+    nodes) exceed `solver.time_budget`."""
+    spent = spent_on(solution).cpu
     ratio = (finer.grid * finer.nodes_y) / (task.settings.grid * task.settings.nodes_y)
     return spent * (1.0 + ratio) > task.settings.time_budget
 

@@ -257,6 +257,22 @@ def test_the_thermal_film_the_coarse_stage_could_not_hold_converges():
     assert gupta - 0.02 <= ratio <= 1.0 + expansion, (ratio, gupta, expansion)
 
 
+def test_the_time_budget_reads_the_cpu_time_not_the_load_of_the_machine():
+    """On a loaded machine a solve's wall time (here 50 s) is many times its CPU time (1 s): the budget of 6 s reads
+    the CPU time (ehl/stopwatch.py), so the point is refined as on an idle machine (129, then 257: 2 + 8 > 6 s), and
+    the CPU and wall times of both grids are counted."""
+    solver = StandIn({129: (Outcome.CONVERGED, 2.6), 257: (Outcome.CONVERGED, 0.5), 513: (Outcome.CONVERGED, 0.04)})
+
+    def loaded(point, lubricant, settings) -> PointSolution:
+        solution = solver(point, lubricant, settings)
+        return replace(solution, scalars={**solution.scalars, "wall_time": (50.0, "s"), "cpu_time": (1.0, "s")})
+
+    task = replace(_task(), settings=replace(_task().settings, time_budget=6.0))
+    (solution,), _, refined = solve_refining([task], loaded, jobs=1)
+    assert solver.grids == [129, 257] and refined["contact"].stopped != ""
+    assert solution.scalar("cpu_time") == 2.0 and solution.scalar("wall_time") == 100.0
+
+
 @pytest.mark.parametrize(("budget", "grids"), [(4.0, [129]), (6.0, [129, 257]), (1e6, [129, 257, 513])])
 def test_refinement_stops_where_the_next_grid_would_pass_the_time_budget(budget, grids):
     """Each stand-in solve takes 1 s and the next grid has 4x the nodes: a grid is started only while the time spent

@@ -20,6 +20,7 @@ from facegear_tehl.ehl.layers import simpson_weights
 from facegear_tehl.ehl.multigrid import Level, MultigridSolver
 from facegear_tehl.ehl.richardson import ORDER, richardson_error
 from facegear_tehl.ehl.scaling import Scaling
+from facegear_tehl.ehl.stopwatch import Spent
 from facegear_tehl.ehl.thermal import FilmState, thermal_loading
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.record import Action, Reason, RetryRecord, SolveRecord
@@ -111,13 +112,13 @@ class Reported(Protocol):
 
 
 def point_solution(solve: Reported, level: Level, status: Status, state: FilmState | None,
-                   wall: float, record: SolveRecord) -> PointSolution:
+                   spent: Spent, record: SolveRecord) -> PointSolution:
     """The PointSolution of a finished solve reported on `level`: scalars with units, fields, histories, models and
     the solve record. A film that closed (h_min <= 0) gives no fields and no film scalars: only the point, its cost,
     histories and the reason."""
     record = _with_outlet_note(solve, record)
     scaling = solve.scaling
-    scalars = _film_scalars(solve, level, wall)
+    scalars = _film_scalars(solve, level, spent)
     fields = {
         "pressure": Field(level.pressure * scaling.p_h, "Pa", "film pressure"),
         "film_thickness": Field(level.film * scaling.film_scale, "m", "film thickness"),
@@ -160,7 +161,7 @@ def _with_outlet_note(solve: Reported, record: SolveRecord) -> SolveRecord:
     return record.with_retry(RetryRecord(Reason.STAGE_FAILED, action, solve.attempt, solve.outlet_note))
 
 
-def _film_scalars(solve: Reported, level: Level, wall: float) -> dict[str, tuple[float, str]]:
+def _film_scalars(solve: Reported, level: Level, spent: Spent) -> dict[str, tuple[float, str]]:
     """Film, pressure, contact and cost figures of any solve."""
     point, scaling, summaries, history = solve.point, solve.scaling, solve.summaries, solve.history
     film_scale = scaling.film_scale
@@ -193,7 +194,7 @@ def _film_scalars(solve: Reported, level: Level, wall: float) -> dict[str, tuple
         "load_error": (solve.solver.force_error(level) / solve.solver.problem.load_integral, "1"),
         "iterations": (float(history.cycles), "1"),
         "work_units": (solve.solver.work_units, "1"),
-        "wall_time": (wall, "s"),
+        **spent.scalars(),
         "attempts": (float(solve.attempt), "1"),
         "error_estimate_h_c": (estimate(summaries, level, h_c_start, "h_c", ORDER), "1"),
         "error_estimate_h_min": (estimate(summaries, level, h_min_start, "h_min", ORDER), "1"),

@@ -14,7 +14,6 @@ solve that fails is solved again from the cold start, with all of the retry poli
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-import time
 from typing import Sequence
 
 import numpy as np
@@ -25,6 +24,7 @@ from facegear_tehl.ehl.plan import PlannedStage, SolvePlan
 from facegear_tehl.ehl.report import summarise
 from facegear_tehl.ehl.solve import PointSolve
 from facegear_tehl.ehl.staged import RUN_AWAY_ARITHMETIC, STAGED
+from facegear_tehl.ehl.stopwatch import spent_on
 from facegear_tehl.ehl.thermal import FilmState
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.lubricant import Lubricant
@@ -101,7 +101,7 @@ class SeededSolve(PointSolve):
         if state is None or status.diverged:
             return self.report(index, status, state)
         self.coarse_state = state
-        self.elapsed = time.perf_counter() - self._clock  # paused between stages, as PointSolve.begin
+        self.elapsed = self._clock.spent()  # paused between stages, as PointSolve.begin
         return self
 
     def _seeded_level(self, index: int) -> FilmState:
@@ -184,9 +184,9 @@ def solve_seeded(point: ContactPoint, lubricant: Lubricant, settings: SolverSett
     retry = RetryRecord(Reason.SEEDED_START_FAILED, Action.COLD_START, 1,
                         f"seeded from {solve.seed.source}: {solution.message}")
     record = cold.record.with_retry(retry)
-    wall = solution.scalar("wall_time") + cold.scalar("wall_time")
+    spent = spent_on(solution) + spent_on(cold)
     return replace(cold, record=record, models={**cold.models, "solver": record.render()},
-                   scalars={**cold.scalars, "wall_time": (wall, "s")}), None
+                   scalars={**cold.scalars, **spent.scalars()}), None
 
 
 def solve_path(tasks: Sequence[tuple[ContactPoint, Lubricant, SolverSettings]]) -> list[PointSolution]:

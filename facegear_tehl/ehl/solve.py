@@ -32,6 +32,7 @@ from facegear_tehl.ehl.report import FILM_SCALARS, LevelSummary, point_solution,
 from facegear_tehl.ehl.retry import POLICY
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
 from facegear_tehl.ehl.start import start
+from facegear_tehl.ehl.stopwatch import NOTHING_SPENT, Spent, Stopwatch
 from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel, thermal_choice
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.lubricant import Lubricant
@@ -81,12 +82,12 @@ class PointSolve:
     fine stage follows, else the solution; `finish` runs the fine stage."""
 
     def __init__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
-                 relaxation: Relaxation = Relaxation(), elapsed: float = 0.0, escalate_start: bool = False,
+                 relaxation: Relaxation = Relaxation(), elapsed: Spent = NOTHING_SPENT, escalate_start: bool = False,
                  attempt: int = 1, max_doublings: int = TUNING.max_inlet_doublings, load_continuation: bool = False):
-        """`elapsed`: s already spent on this point (earlier attempts), counted in its wall time; `escalate_start`:
-        a start that runs away begins again from a finer coarsest grid (start.py); `attempt`: which attempt at the
-        point this is (1: the first); `max_doublings`: of the inlet (domain.py); `load_continuation`: above Moes M =
-        continuation_moes_m the start begins at a fraction of the load."""
+        """`elapsed`: time already spent on this point (earlier attempts), counted in its wall and CPU time;
+        `escalate_start`: a start that runs away begins again from a finer coarsest grid (start.py); `attempt`: which
+        attempt at the point this is (1: the first); `max_doublings`: of the inlet (domain.py); `load_continuation`:
+        above Moes M = continuation_moes_m the start begins at a fraction of the load."""
         self.scaling = scaling_for(point, lubricant)
         self.domain = solution_domain(self.scaling, settings, max_doublings)
         self.point, self.lubricant, self.asked = point, lubricant, settings
@@ -109,8 +110,8 @@ class PointSolve:
         self.retries: list[RetryRecord] = []
         self.outlet: Composite | None = None  # the outlet stage's composite solution (outlet.py), when it ran
         self.outlet_note = ""  # why the outlet stage was not reported (it ran away or did not converge)
-        self.elapsed = elapsed  # s spent up to the last pause (a solve paused between stages has no clock)
-        self._clock = time.perf_counter() - elapsed
+        self.elapsed = elapsed  # spent up to the last pause (a solve paused between stages has no clock)
+        self._clock = Stopwatch(elapsed)
 
     @property
     def solver(self) -> MultigridSolver:
@@ -146,7 +147,7 @@ class PointSolve:
         and frozen on the finest grid, its pressure converged; `reduced` evaluates the film state once there,
         `full` couples again on the finest grid. A finest grid that runs away reports the converged coarse
         solution."""
-        self._clock = time.perf_counter() - self.elapsed
+        self._clock = Stopwatch(self.elapsed)
         solver, top = self.solver, len(self.solver.levels) - 1
         coarse = solver.levels[top - 1]
         # the coarse level, now with its film state (its dT_max and mu give the fine grid's error estimates)
@@ -197,7 +198,7 @@ class PointSolve:
             self._stage_done(Stage.COARSE, index, status, mark)
             if state is not None and not status.diverged:
                 self.coarse_state = state
-                self.elapsed = time.perf_counter() - self._clock
+                self.elapsed = self._clock.spent()
                 return self
             if POLICY.couples_on_finest(self.attempt):
                 return self._couple_on_finest(status)
@@ -375,7 +376,7 @@ class PointSolve:
             message = FILM_CLOSED_MESSAGE.format(level.nx, level.ny)
             message += "; " + status.message if status.message else ""
             status = Status(Outcome.DIVERGED if status.diverged else Outcome.FILM_CLOSED, message)
-        solution = point_solution(self, level, status, state, time.perf_counter() - self._clock, self.record(iteration))
+        solution = point_solution(self, level, status, state, self._clock.spent(), self.record(iteration))
         if self.load_reached < 1.0:  # its film is that of a lighter contact: not this one's
             return self._lighter_contact(solution)
         return solution

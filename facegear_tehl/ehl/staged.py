@@ -11,6 +11,7 @@ from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.error_bounds import CoarseStage, coarse_stage, with_error_bounds
 from facegear_tehl.ehl.retry import POLICY
 from facegear_tehl.ehl.solve import PointSolve
+from facegear_tehl.ehl.stopwatch import spent_on
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.record import Action, RetryRecord
@@ -58,7 +59,7 @@ class StagedSolver:
             attempt = POLICY.next_attempt(retry_after)
             chosen = POLICY.attempts[attempt - 1]
             solve = PointSolve(point, lubricant, settings, chosen.relaxation,
-                               elapsed=retry_after.scalar("wall_time"), escalate_start=POLICY.escalates_start(attempt),
+                               elapsed=spent_on(retry_after), escalate_start=POLICY.escalates_start(attempt),
                                attempt=attempt, max_doublings=TUNING.retry_inlet_doublings,
                                load_continuation=chosen.load_continuation)
             previous = () if retry_after.record is None else retry_after.record.retries
@@ -103,7 +104,7 @@ class StagedSolver:
         record = replace(retry.record, stages=first.record.stages, attempt=first.record.attempt,
                          relaxation=first.record.relaxation, iteration=first.record.iteration,
                          notes=first.record.notes).with_retry(last)
-        return replace(first, scalars={**first.scalars, "wall_time": retry.scalars["wall_time"],
+        return replace(first, scalars={**first.scalars, **spent_on(retry).scalars(),
                                        "attempts": retry.scalars["attempts"]},
                        models={**first.models, "solver": record.render()}, record=record)
 
