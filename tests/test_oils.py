@@ -63,7 +63,7 @@ def test_the_users_hand_value_of_issue_45():
 
 # Stachowiak & Batchelor, Engineering Tribology (2nd ed. 2001), table 2.3 from the ASME Pressure-Viscosity Report
 # (1953): dynamic viscosity (mPa s) and pressure-viscosity coefficient (1/GPa) of mineral oils at 30, 60, 100 degC. The
-# table calls them the Barus coefficients of those oils and states no pressure range they were taken over.
+# table states neither the definition of the coefficient nor the pressure range it was taken over.
 ASME_1953 = {
     "heavy machine oil": ((153.0, 34.0, 9.1), (23.7, 20.5, 15.8)),
     "cylinder oil": ((810.0, 135.0, 26.8), (34.0, 28.0, 22.0)),
