@@ -148,10 +148,11 @@ def feature_nodes(solution: PointSolution, t_inlet: float) -> dict[str, int]:
 
 def compression_held(solution: PointSolution, cold_unresolved: bool) -> bool:
     """Whether the film's temperatures are its compression's, through an outlet spike the grid does not resolve: it
-    cools through the outlet at least as much as it heats (-dT_min >= dT_max > 0: the compression work -beta T u.grad p
-    outweighs the shear heating, as in pure rolling) and dT_min, the expansion behind the spike, is unresolved. The
-    spike's rising flank then heats the oil as its fall cools it, and grows with every refinement as p_max does: the
-    hot spot can move there on a finer grid (docs/accuracy.md, calibration: design 6's S3)."""
+    cools through the outlet at least as much as it heats (-dT_min >= dT_max > 0: the compression work
+    beta_T T u.grad p, heating where the pressure rises along the flow and cooling where it falls, outweighs the shear
+    heating, as in pure rolling) and dT_min, the expansion behind the spike, is unresolved. The spike's rising flank
+    then heats the oil as its fall cools it, and grows with every refinement as p_max does: the hot spot can move there
+    on a finer grid (docs/accuracy.md, calibration: design 6's S3)."""
     rise, cold = solution.scalars.get("dT_max", (0.0, "K"))[0], solution.scalars.get("dT_min", (0.0, "K"))[0]
     return cold_unresolved and rise > 0.0 and -cold >= rise
 
