@@ -78,6 +78,26 @@ def test_a_figure_without_an_estimate_or_with_a_large_one_is_unresolved_never_sm
     assert narrow["unresolved_h_min"][0] == 1.0 and narrow["unresolved_h_c"][0] == 0.0
 
 
+def test_a_rise_set_by_compression_through_an_unresolved_outlet_is_unresolved():
+    """Design 6's S3 of the calibration (docs/accuracy.md) on 257 x 33: dT_max 16.1 K with e_x 1.5 %, e_y -0.1 %
+    (bound 4.9 %), dT_min -23.9 K with e_x 15.7 %; on 1025 x 129 the hot spot is on the outlet spike's flank, 12 %
+    hotter. The film cools more than it heats and its cold spot is unresolved: dT_max is unresolved. A film whose
+    shear heating outweighs its cooling (34.5 K against -8 K) keeps its bound, and so does one whose cold spot is
+    resolved."""
+    estimates = {"error_estimate_dT_max": 0.0147, "error_estimate_dT_min": 0.157, "error_estimate_h_c": 0.001,
+                 "error_estimate_h_min": 0.001}
+    e_y = {"dT_max": -0.0011, "dT_min": 0.026, "h_c": 0.0, "h_min": 0.0}
+    rolling = bounds(_solution(dT_max=16.14, dT_min=-23.85, **estimates), e_y)
+    assert rolling["unresolved_dT_max"][0] == 1.0 and "error_bound_dT_max" not in rolling
+    assert rolling["unresolved_dT_min"][0] == 1.0 and rolling["unresolved_h_c"][0] == 0.0
+    sliding = bounds(_solution(dT_max=34.5, dT_min=-8.0, **estimates), e_y)
+    assert sliding["unresolved_dT_max"][0] == 0.0
+    assert sliding["error_bound_dT_max"][0] == pytest.approx(TUNING.bound_safety * (0.0147 + 0.0011))
+    resolved_cold = bounds(_solution(dT_max=16.14, dT_min=-23.85, **(estimates | {"error_estimate_dT_min": 0.01})),
+                           e_y | {"dT_min": 0.001})
+    assert resolved_cold["unresolved_dT_min"][0] == 0.0 and resolved_cold["unresolved_dT_max"][0] == 0.0
+
+
 def test_a_side_lobe_minimum_narrower_than_the_rows_is_counted_in_nodes():
     """A film h = 1 - 0.5 exp(-((y - y0)/w)^2) (a dip of width w along y, the whole x length): the dip spans as
     many rows as w covers within feature_depth of its minimum; coarse rows do not resolve it, fine rows do."""
