@@ -5,7 +5,19 @@ Each outer iteration evaluates the film state at the settled pressure, takes an 
 step towards it (anderson.py; Walker & Ni 2011), freezes the new state into the flow coefficients and cycles the
 pressure a few times. What the loop runs on is a `CoupledTarget`: the uniform grid's level (solve.py) or an outlet
 patch over the grid below (outlet.py). The target says when the loop has ended (`judge`); the loop itself handles
-divergence, the energy sweeps' forcing and the relaxation of a loop that stalls above its floor.
+divergence, the energy sweeps' forcing, the relaxation of a loop that stalls above its floor and a film that closes.
+
+A film state is evaluated on an open film only. Where the film of the pressure iterate is closed (h <= 0) the film
+has no thickness to shear, conduct across or carry heat in: the layer velocities and temperatures of the energy
+equation are undefined there, and its discrete form (energy.py) makes a closed column a sink of the enthalpy its open
+neighbours carry into it, handed to the solids' surfaces through their moving heat sources. That loop has no fixed
+point: on the thermal Ree-Eyring contacts of the wide envelope whose grid does not resolve the film (w34 on 129 x 65:
+169 pressurised nodes with H down to -0.011 against H_c = 0.007) the layer temperatures moved by the 50 K cap at every
+update from the second on, first on the closed band and downstream of it, above and below the inlet temperature,
+until they were not finite (docs/envelope.md). A closed film is therefore cycled on its frozen film state to the
+pressure's tolerance first (an iterate's closure can be transient); a film still closed then is what the grid
+solves, and the loop ends with it closed (`Ending.FILM_CLOSED`): the grid does not resolve the film (retry.py
+refines it), the thermal physics is not at fault.
 """
 
 from __future__ import annotations
@@ -35,6 +47,7 @@ class Ending(Enum):
     PROVISIONAL = "ended provisionally"  # an outlet stage whose next stage is certain
     STOPPED = "stopped"  # a seeding stage as good as its grid makes it (not converged, but usable)
     DIVERGED = "diverged"
+    FILM_CLOSED = "the film closed"  # the pressure iterate's film closed on its converged frozen state
     EXHAUSTED = "out of outer iterations"
 
 
@@ -84,6 +97,11 @@ class CoupledTarget(Protocol):
     def judge(self, loop: LoopState, status: Status, rise: float) -> tuple[Ending, Status]:
         """Whether the loop has ended after its last cycles (with `status`), the rise (K) its tolerance is relative
         to."""
+
+
+def film_closed(film: np.ndarray) -> bool:
+    """The film closes somewhere (h <= 0): not a film the smooth-film equations have (solve.FILM_CLOSED_MESSAGE)."""
+    return bool(film.min() <= 0.0)
 
 
 def energy_forcing(changes: list[float]) -> float:
@@ -143,6 +161,9 @@ class CoupledLoop:
         cycles = self.cycles if cycles is None else cycles
         for outer in range(self.max_iterations):
             loop.outer = outer
+            closed = self._closed_film(outer)
+            if closed is not None:
+                return self._end(Ending.DIVERGED if closed.diverged else Ending.FILM_CLOSED, closed, loop)
             forcing = energy_forcing(loop.changes) * last_change if last_change is not None else math.inf
             update = target.evaluate(temperature, forcing)
             rise = max(float(temperature.max() - self.t_inlet), TUNING.min_rise)
@@ -171,6 +192,22 @@ class CoupledLoop:
                 window = len(loop.changes)
                 self.accelerator.reset()
         return self._end(Ending.EXHAUSTED, Status(Outcome.NOT_CONVERGED), loop)
+
+    def _closed_film(self, outer: int) -> Status | None:
+        """None while the settled film is open (or opens when its pressure is cycled on the frozen film state to its
+        tolerance), else the status the loop ends with at outer iteration `outer` (0-based): the film closed, or the
+        pressure diverged."""
+        index = self.target.index
+        if not film_closed(self.pressure.settled_pressure(index)[1]):
+            return None
+        status = self.pressure.cycle(index, self.pressure.settings.max_cycles)
+        if not status.diverged and not film_closed(self.pressure.settled_pressure(index)[1]):
+            return None
+        if status.diverged:
+            return status
+        return Status(Outcome.FILM_CLOSED, (
+            f"the film closed before outer iteration {outer + 1}, its pressure cycled on the frozen film state "
+            f"({status.outcome.value}): no film state is evaluated on a closed film"))
 
     @staticmethod
     def _end(ending: Ending, status: Status, loop: LoopState) -> LoopEnd:

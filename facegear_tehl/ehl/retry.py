@@ -4,9 +4,10 @@ budget. Every remedy the solve has is decided here; the stages only ask.
 In the order a failing solve meets them:
 1. the start runs away (a heavy load's film and spike are not resolved by coarse grids): on a retry, the start is
    begun again from a coarsest grid twice as fine, as long as the hierarchy keeps the levels asked for (start.py);
-2. the seed stage runs away: the coarse stage begins again from the coarsest grid (solve.py);
-3. the coarse thermal stage runs away on a damped attempt: the coupled problem is solved on the finest grid alone,
-   from its converged isothermal solution (the grid below the finest may not hold a film the finest resolves);
+2. the seed stage runs away or its film closes: the coarse stage begins again from the coarsest grid (solve.py);
+3. the coarse thermal stage runs away on a damped attempt, or its film closes on any attempt: the coupled problem is
+   solved on the finest grid alone, from its converged isothermal solution (the grid below the finest may not hold a
+   film the finest resolves);
 4. an outlet stage fails: solved again with more V-cycles of the grid below per correction
    (`stage_coarse_cycles`); a stage that fails on top of a provisional one has the stages below it solved again to
    convergence; a stage that fails for good is dropped and the solution below it reported (outlet.py);
@@ -60,10 +61,12 @@ class RetryPolicy:
         """A start that runs away begins again from a finer coarsest grid: on every retry."""
         return attempt > 1
 
-    def couples_on_finest(self, attempt: int) -> bool:
+    def couples_on_finest(self, attempt: int, film_closed: bool = False) -> bool:
         """A coarse thermal stage that runs away is followed by the coupled problem on the finest grid alone: from
-        the damped attempt on (the attempts before it are where the points that converge do so)."""
-        return attempt >= TUNING.damped_attempt
+        the damped attempt on (the attempts before it are where the points that converge do so); one whose film
+        closed (coupled.CoupledLoop) on every attempt: the grid below the finest did not resolve the film, the finest
+        may."""
+        return film_closed or attempt >= TUNING.damped_attempt
 
     # --- between attempts
     def next_attempt(self, solution: PointSolution) -> int | None:

@@ -22,7 +22,7 @@ import numpy as np
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import grid
 from facegear_tehl.ehl.convergence import History, at_thermal_floor, h_c_error, h_c_steady, pressure_settled, stalled
-from facegear_tehl.ehl.coupled import CoupledLoop, Ending, LoopState
+from facegear_tehl.ehl.coupled import CoupledLoop, Ending, LoopState, film_closed
 from facegear_tehl.ehl.domain import solution_domain, venner_lubrecht_domain
 from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem, Relaxation
 from facegear_tehl.ehl.outlet import Composite, needs_outlet_patch, outlet_stages
@@ -196,11 +196,12 @@ class PointSolve:
             if seed is not None:  # this level's summary, after the seed stage's (the full-multigrid start's are below)
                 self.summaries.append(summarise(self.solver.levels[index]))
             self._stage_done(Stage.COARSE, index, status, mark)
-            if state is not None and not status.diverged:
+            closed = status.outcome is Outcome.FILM_CLOSED
+            if state is not None and not status.diverged and not closed:
                 self.coarse_state = state
                 self.elapsed = self._clock.spent()
                 return self
-            if POLICY.couples_on_finest(self.attempt):
+            if POLICY.couples_on_finest(self.attempt, closed):
                 return self._couple_on_finest(status)
         return self.report(index, status, state)
 
@@ -216,22 +217,25 @@ class PointSolve:
             self.cycle(index, self.settings.max_cycles)
             state, status = self.couple(index)
             self._stage_done(Stage.SEED, index, status, mark)
-            if state is not None and not status.diverged:
+            if state is not None and not status.diverged and status.outcome is not Outcome.FILM_CLOSED:
                 self.summaries[-1] = summarise(self.solver.levels[index])
                 coarse_mark = self._mark()
                 frozen, status = self._interpolated_state(index + 1, state, TUNING.cycles_per_thermal_update)
                 if not status.diverged:
                     return frozen, coarse_mark
-        self.retries.append(RetryRecord(Reason.SEED_RAN_AWAY, Action.COARSEST_GRID_AGAIN, self.attempt,
-                                        status.message))
+        reason = Reason.SEED_FILM_CLOSED if status.outcome is Outcome.FILM_CLOSED else Reason.SEED_RAN_AWAY
+        self.retries.append(RetryRecord(reason, Action.COARSEST_GRID_AGAIN, self.attempt, status.message))
         self.new_hierarchy(grid.hierarchy_shapes(self.settings.grid, self.settings.nodes_y, self.coarsest))
         return None
 
     def _couple_on_finest(self, status: Status) -> PointSolution:
-        """After the coarse thermal stage ran away with `status`, the coupled problem on the finest grid alone, from
-        its converged isothermal solution: the grid below the finest may not hold a film the finest resolves."""
+        """After the coarse thermal stage ran away or closed its film with `status`, the coupled problem on the finest
+        grid alone, from its converged isothermal solution: the grid below the finest may not hold a film the finest
+        resolves."""
         level = self.solver.levels[-2]
-        self.retries.append(RetryRecord(Reason.COARSE_STAGE_RAN_AWAY, Action.COUPLED_ON_FINEST, self.attempt,
+        reason = (Reason.COARSE_STAGE_FILM_CLOSED if status.outcome is Outcome.FILM_CLOSED
+                  else Reason.COARSE_STAGE_RAN_AWAY)
+        self.retries.append(RetryRecord(reason, Action.COUPLED_ON_FINEST, self.attempt,
                                         f"{level.nx} x {level.ny}: {status.message}"))
         self.new_hierarchy(grid.hierarchy_shapes(self.settings.grid, self.settings.nodes_y, self.coarsest))
         return self._solve_finest()
@@ -289,6 +293,8 @@ class PointSolve:
         if end.ending in (Ending.TOLERANCE, Ending.FLOOR, Ending.STOPPED):
             if end.ending is not Ending.STOPPED:
                 self.pressure.settle(index)
+            return model.completed(end.state), end.status
+        if end.ending is Ending.FILM_CLOSED:  # no film state on a closed film: the grid does not resolve it
             return model.completed(end.state), end.status
         if end.ending is Ending.DIVERGED:
             iterate, state = target.last_finite
@@ -372,7 +378,7 @@ class PointSolve:
         """The PointSolution of level `index`; a film that closes (h_min <= 0) is never reported as converged."""
         level = self.solver.levels[index]
         iteration = status.outcome
-        if level.film.min() <= 0.0:
+        if film_closed(level.film):
             message = FILM_CLOSED_MESSAGE.format(level.nx, level.ny)
             message += "; " + status.message if status.message else ""
             status = Status(Outcome.DIVERGED if status.diverged else Outcome.FILM_CLOSED, message)
