@@ -8,8 +8,8 @@ pressure p_h (0.4-2 GPa) and the ellipticity a/b (log, 1-100), each contact with
 fluid, in turn; and four ANCHORS at low heating. Steel on steel, R_x = 20 mm (suites/envelope.py
 `contact_geometry`). The thermal loading L_th = beta eta_0 u_e^2/k_f then spans 2.3e-3 to 2.0, the face gear points'
 0.08-1.42 inside. Where the hypercube's contacts do not converge on GRID in all three models they are solved on
-COARSE_GRID (scripts/thermal_auto_fit.py); several at p_h above 1.3 GPa below 3 m/s, and Newtonian ones at SRR above
-1.5, converge on neither.
+COARSE_GRID (scripts/thermal_auto_fit.py); the Ree-Eyring ones above 1.3 GPa below 3 m/s and the Newtonian ones at
+SRR above 1 converge on neither.
 """
 
 from __future__ import annotations
