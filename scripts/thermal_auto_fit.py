@@ -1,12 +1,13 @@
 """The correlation `solver.thermal: auto` decides by: each contact of the design (suites/thermal_auto.py) solved
 `off`, `reduced` and `full`, the errors of the cheaper two against `full`, and their upper-envelope fit.
 
-    python scripts/thermal_auto_fit.py [--save FILE] [--load FILE]
+    python scripts/thermal_auto_fit.py [--save FILE] [--load FILE] [--check]
 
 Each contact is solved on the shipped case's 257 x 65 and on 129 x 33: the fit takes the 257 x 65 errors, or the
 129 x 33 ones where 257 x 65 did not converge in all three models; the contacts converged on both grids show how much
 the errors move with the grid. --save writes the solutions' figures as JSON, --load tabulates and fits saved ones
-without solving.
+without solving. --check solves the contacts the fit did not see (suites/thermal_auto.py check_contacts) with
+`auto` and with `full` and prints auto's errors (tests/test_thermal_auto.py asserts them).
 """
 
 from __future__ import annotations
@@ -134,10 +135,26 @@ def print_fit(contacts, results) -> None:
               f"{thermal.thermal_choice('auto', c.point, c.lubricant)[0]} |")
 
 
+def print_check() -> None:
+    print(f"\nContacts the fit did not see, auto against full on {_grid_key(ta.GRID)} (%):\n")
+    print("| contact | G | auto picks | h_c | h_min | μ | CPU auto / full s |")
+    print("|---|---|---|---|---|---|---|")
+    for checked in ta.check_contacts(CASES):
+        model, results = ta.auto_against_full(checked)
+        number = thermal.heating_number(checked.point, checked.lubricant)
+        if not results:
+            print(f"| {checked.name} | {number:.3g} | full | – | – | – | – |")
+            continue
+        errors = " | ".join(_percent(ta.relative_error(results, "auto", f)) for f in thermal.AUTO_FIGURES)
+        print(f"| {checked.name} | {number:.3g} | {model} | {errors} | "
+              f"{results['auto'].cpu:.1f} / {results['full'].cpu:.1f} |")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--save", type=Path)
     parser.add_argument("--load", type=Path)
+    parser.add_argument("--check", action="store_true")
     parser.add_argument("--grid-check", type=int, nargs="*", default=[])
     args = parser.parse_args()
     contacts = ta.fit_contacts(CASES)
@@ -151,6 +168,8 @@ def main() -> None:
     print_table(contacts, results, grids)
     print_grid_check(contacts, by_grid)
     print_fit(contacts, results)
+    if args.check:
+        print_check()
 
 
 if __name__ == "__main__":

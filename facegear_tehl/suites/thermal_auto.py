@@ -25,8 +25,9 @@ import numpy as np
 from facegear_tehl.case import load_case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.staged import solve_point
-from facegear_tehl.ehl.thermal import AUTO_FIGURES, sliding_heating, thermal_loading
+from facegear_tehl.ehl.thermal import AUTO_FIGURES, sliding_heating, thermal_choice, thermal_loading
 from facegear_tehl.lubricant import Lubricant
+from facegear_tehl.points import contact_analysis
 from facegear_tehl.settings import SolverSettings
 from facegear_tehl.solution import PointSolution
 from facegear_tehl.suites.envelope import RADIUS_X, STEEL, contact_geometry
@@ -131,9 +132,19 @@ CHECKED_GEAR_SPEED = 120.0 * math.pi / 30.0  # rad/s (120 rpm): S3 of cases/face
 
 
 def check_contacts(cases_folder: Path) -> list[AutoContact]:
-    """The CHECKED contacts."""
+    """The CHECKED contacts and S3 of cases/facegear_110.yaml at CHECKED_GEAR_SPEED."""
     oils = shipped_oils(cases_folder)
-    return [contact(f"C{i:02d}", *row, oils) for i, row in enumerate(CHECKED)]
+    case = load_case(cases_folder / OIL_CASES[0])
+    case = replace(case, gear=replace(case.gear, pinion_speed=CHECKED_GEAR_SPEED))
+    gear = next(p for p in contact_analysis(case).points if p.name == "S3")
+    return ([contact(f"C{i:02d}", *row, oils) for i, row in enumerate(CHECKED)]
+            + [AutoContact("facegear_110 S3 at 120 rpm", gear, case.lubricant, Path(OIL_CASES[0]).stem)])
+
+
+def auto_against_full(checked: AutoContact, grid: tuple[int, int] = GRID) -> tuple[str, dict[str, ModelFigures]]:
+    """`auto`'s choice for the contact and, where it is not `full`, the contact solved with `auto` and with `full`."""
+    model = thermal_choice("auto", checked.point, checked.lubricant)[0]
+    return model, ({} if model == "full" else solve_models(checked, grid, ("auto", "full")))
 
 
 @dataclass(frozen=True)
