@@ -20,10 +20,8 @@ from facegear_tehl.ehl.staged import StagedSolver, solve_point
 from facegear_tehl.ehl.thermal import (
     FilmState,
     FilmThermalModel,
-    gupta_reduction,
     layer_viscosity,
     relaxed_steps,
-    thermal_choice,
 )
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.lubricant_laws import viscosity_ratio_at, viscosity_temperature_coefficient_at
@@ -126,16 +124,6 @@ def test_hard_thermal_case_converges_with_an_open_film():
     sol = solve_point(point, lub, dataclasses.replace(settings, thermal="full", max_thermal_iterations=10))
     assert sol.converged, sol.message
     assert 0.0 < sol.scalar("h_min") < sol.scalar("h_c")
-
-
-def test_auto_picks_the_cheapest_model_predicted_within_tolerance_and_says_why():
-    # Gupta et al. (1992) film reduction 1 - phi_T: ~0.5 % (cold), ~18 % (the sliding case), ~60 % (hot).
-    cold, lub, _ = plain(SLIDING, slide_roll_ratio=0.0, entrainment_speed=0.05)
-    moderate, _, _ = plain(SLIDING)
-    hot, _, _ = plain(SLIDING, entrainment_speed=10.0)
-    assert [thermal_choice("auto", p, lub)[0] for p in (cold, moderate, hot)] == ["off", "reduced", "full"]
-    assert "Gupta" in thermal_choice("auto", moderate, lub)[1]
-    assert 1.0 - gupta_reduction(cold, lub) < 0.01 < 1.0 - gupta_reduction(hot, lub)
 
 
 @pytest.fixture

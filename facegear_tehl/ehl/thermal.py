@@ -15,8 +15,9 @@ The surfaces (under-relaxed) and then the film's interior layers are iterated TU
 the state returned solves the film's discrete energy equation for its own surfaces (its energy budget closes,
 energy.energy_budget).
 
-`thermal_choice` picks the thermal model of `solver.thermal: auto` from the thermal loading number and the
-slide-to-roll ratio (Gupta et al. 1992), and says why.
+`thermal_choice` picks the thermal model of `solver.thermal: auto` from a correlation fitted to the project's own
+solutions (the heating number `heating_number`: the inlet's thermal loading and the Hertz zone's sliding heat), and
+says why.
 """
 
 from __future__ import annotations
@@ -31,6 +32,7 @@ from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import energy, jaeger, rheology
 from facegear_tehl.ehl.film_state import FilmState
 from facegear_tehl.ehl.tuning import TUNING
+from facegear_tehl.heat import blok_flash_temperature
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.lubricant_constants import ROELANDS
 from facegear_tehl.lubricant_laws import (
@@ -344,30 +346,53 @@ def gupta_reduction(point: ContactPoint, lubricant: Lubricant) -> float:
     """Thermal reduction factor of the central film (Gupta, Cheng, Zhu, Forster & Schrand 1992, Tribol. Trans.
     35:269-274), phi_T = [1 - 13.2 (p_h/E') L_th^0.42] / [1 + 0.213 (1 + 2.23 SRR^0.83) L_th^0.64], with p_h the
     Hertz pressure, E' the reduced modulus (Hamrock's 2/[(1 - nu1^2)/E1 + (1 - nu2^2)/E2]) and SRR the slide-to-roll
-    ratio; as quoted by Arana et al. (2019, Proc. IMechE J 233:303, eq. 24)."""
+    ratio; as quoted by Arana et al. (2019, Proc. IMechE J 233:303, eq. 24). A published reference the tests and
+    scripts/bench_thermal.py compare with; `auto` does not read it (our solutions find less reduction)."""
     srr, loading = abs(point.slide_roll_ratio), thermal_loading(point, lubricant)
     numerator = 1.0 - 13.2 * point.hertz.p_max / point.reduced_modulus * loading**0.42
     return numerator / (1.0 + 0.213 * (1.0 + 2.23 * srr**0.83) * loading**0.64)
 
 
-# `auto`: the predicted h_c error of each model against `full`, as a share of Gupta's reduction 1 - phi_T (`off`
-# neglects all of it)
-AUTO_ERROR_SHARE = {"off": 1.0, "reduced": TUNING.auto_error_share_reduced}
+def sliding_heating(point: ContactPoint, lubricant: Lubricant) -> float:
+    """Theta_s = beta dT_f/mu: the relative drop of the viscosity per unit friction coefficient by the sliding heat's
+    flash temperature dT_f of Blok (1937) on the centre line (heat.blok_flash_temperature, semi-elliptical flux,
+    B_i = sqrt(k_i rho_i c_i |u_i|) of each surface), dimensionless."""
+    u1, u2 = (float(np.hypot(*v)) for v in (point.velocity_1, point.velocity_2))
+    flash = blok_flash_temperature(1.0, point.load, point.sliding_speed, point.hertz.b, point.hertz.a,
+                                   point.body_1.thermal_effusivity_speed(u1),
+                                   point.body_2.thermal_effusivity_speed(u2))
+    return lubricant.temperature_viscosity * flash
+
+
+def heating_number(point: ContactPoint, lubricant: Lubricant) -> float:
+    """G = L_th + w Theta_s (w = TUNING.auto_sliding_weight): the inlet's shear heating and the sliding heat in the
+    Hertz zone, the number `auto`'s correlation reads (docs/accuracy.md, thermal model choice)."""
+    return thermal_loading(point, lubricant) + TUNING.auto_sliding_weight * sliding_heating(point, lubricant)
+
+
+# `auto`: the largest relative error of each cheaper model against `full` in h_c, h_min and mu is at most C G^n,
+# the upper envelope of the errors measured on the contacts of suites/thermal_auto.py (scripts/thermal_auto_fit.py)
+AUTO_ENVELOPES = {"off": (TUNING.auto_off_coefficient, TUNING.auto_off_exponent),
+                  "reduced": (TUNING.auto_reduced_coefficient, TUNING.auto_reduced_exponent)}
+AUTO_FIGURES = ("h_c", "h_min", "mu")  # the figures `auto` keeps within TUNING.auto_tolerance of `full`
+
+
+def predicted_error(model: str, number: float) -> float:
+    """The correlation's bound on the largest relative error of `model` (off, reduced) against `full` in
+    AUTO_FIGURES at the heating number G (`heating_number`)."""
+    coefficient, exponent = AUTO_ENVELOPES[model]
+    return coefficient * number**exponent
 
 
 def thermal_choice(mode: str, point: ContactPoint, lubricant: Lubricant) -> tuple[str, str]:
-    """The thermal model to run and why (for `auto`: the cheapest one predicted within 1 % of `full`)."""
+    """The thermal model to run and why (for `auto`: the cheapest one the correlation puts within
+    TUNING.auto_tolerance of `full` in h_c, h_min and mu)."""
     if mode != "auto":
         return mode, f"solver.thermal: {mode}"
-    reduction = 1.0 - gupta_reduction(point, lubricant)
-    for candidate in ("off", "reduced"):
-        predicted = AUTO_ERROR_SHARE[candidate] * reduction
-        if predicted < TUNING.auto_tolerance:
-            return candidate, (f"auto: Gupta thermal reduction {100 * reduction:.2f} % (L_th = "
-                               f"{thermal_loading(point, lubricant):.3g}, SRR = {point.slide_roll_ratio:.3f}); "
-                               f"predicted error of {candidate} {100 * predicted:.2f} % < "
-                               f"{100 * TUNING.auto_tolerance:g} %")
-    return "full", (f"auto: Gupta thermal reduction {100 * reduction:.2f} % (L_th = "
-                    f"{thermal_loading(point, lubricant):.3g}, SRR = {point.slide_roll_ratio:.3f}); "
-                    f"reduced predicted {100 * AUTO_ERROR_SHARE['reduced'] * reduction:.2f} % >= "
-                    f"{100 * TUNING.auto_tolerance:g} %")
+    number = heating_number(point, lubricant)
+    predicted = {model: predicted_error(model, number) for model in AUTO_ENVELOPES}
+    chosen = next((model for model in AUTO_ENVELOPES if predicted[model] < TUNING.auto_tolerance), "full")
+    return chosen, (f"auto: heating number G = {number:.3g} (L_th = {thermal_loading(point, lubricant):.3g}, "
+                    f"Theta_s = {sliding_heating(point, lubricant):.3g}); the fitted envelope bounds the error in "
+                    f"h_c, h_min, mu of off by {100 * predicted['off']:.3g} %, of reduced by "
+                    f"{100 * predicted['reduced']:.3g} % (tolerance {100 * TUNING.auto_tolerance:g} %): {chosen}")

@@ -73,8 +73,12 @@ class Tuning:
     gram_cutoff: float = 1e-10  # Anderson: relative cutoff of the normal equations' singular values
     anderson_growth: float = 1.0  # Anderson: the history is dropped when the weighted step grew by this factor
     support_share: float = 0.5  # Anderson: a support above this share of the components is taken whole
-    auto_error_share_reduced: float = 0.05  # `auto`: h_c error of `reduced` as a share of Gupta's reduction 1 - phi_T
-    auto_tolerance: float = 0.01  # `auto`: the cheapest model predicted within 1 % of `full` in h_c
+    auto_tolerance: float = 0.01  # `auto`: the cheapest model predicted within 1 % of `full` in h_c, h_min and mu
+    auto_sliding_weight: float = 0.01  # `auto`: G = L_th + w Theta_s, the w whose envelope of `off` is tightest
+    auto_off_coefficient: float = 4.64  # `auto`: error of `off` <= C G^n, the upper envelope of the errors ...
+    auto_off_exponent: float = 1.042  # ... measured on suites/thermal_auto.py's contacts (scripts/thermal_auto_fit.py)
+    auto_reduced_coefficient: float = 0.855  # `auto`: the same envelope of `reduced`'s errors ...
+    auto_reduced_exponent: float = 0.847  # ... its exponent
     patch_coarse_cycles: int = 3  # grid-below V-cycles per coarse-grid correction of a patch started cold
     # --- the thermal full multigrid's stages
     min_coarse_thermal_grid: int = 65  # the coupled problem is solved one grid coarser first from this grid up
