@@ -32,6 +32,7 @@ from facegear_tehl.accuracy_record import AccuracyRecord, Choice, FigureBound, S
 from facegear_tehl.ehl.domain import solution_domain
 from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.ehl.tuning import TUNING
+from facegear_tehl.grid_prediction import Estimate, predicted_grid, reachable
 from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
 from facegear_tehl.settings import SolverSettings, ThermalMode
 from facegear_tehl.solution import PointSolution
@@ -88,12 +89,20 @@ def start_task(task: SolveTask) -> SolveTask:
 
 @dataclass(frozen=True)
 class Cheaper:
-    """A cheaper model: what it changes, to what, and the change made to a task."""
+    """A cheaper model: what it changes, to what, the change made to a task, where it applies, and the share of a
+    solve's CPU time it saves (TUNING.accuracy_saving_*, scripts/model_cost.py)."""
 
     what: str
     chosen: str
     apply: Callable[[SolveTask], SolveTask]
     applies: Callable[[SolveTask], bool]
+    saving: float
+
+    def pays(self, expected_nodes: int, start_nodes: int) -> bool:
+        """Its check, one solve on the start grid in this model, can pay for itself: the point is expected to go on
+        past the start grid, and the saving on the grid it is expected to end on is at least the check's cost (both
+        scaled by the nodes: multigrid work grows with them)."""
+        return expected_nodes > start_nodes and self.saving * expected_nodes >= (1.0 - self.saving) * start_nodes
 
 
 def _reduced(task: SolveTask) -> SolveTask:
@@ -113,10 +122,12 @@ def _full(task: SolveTask) -> bool:
 
 
 CHEAPER = (  # in the order they are tried: the largest saving first
-    Cheaper("thermal", "reduced", _reduced, _full),
+    Cheaper("thermal", "reduced", _reduced, _full, TUNING.accuracy_saving_reduced),
     Cheaper("thermal_layers", str(TUNING.accuracy_fewer_layers), _fewer_layers,
-            lambda task: _full(task) and task.settings.thermal_layers > TUNING.accuracy_fewer_layers),
-    Cheaper("rheology", "newtonian", _newtonian, lambda task: task.lubricant.rheology == "ree_eyring"),
+            lambda task: _full(task) and task.settings.thermal_layers > TUNING.accuracy_fewer_layers,
+            TUNING.accuracy_saving_layers),
+    Cheaper("rheology", "newtonian", _newtonian, lambda task: task.lubricant.rheology == "ree_eyring",
+            TUNING.accuracy_saving_newtonian),
 )
 
 
@@ -180,6 +191,7 @@ class Progressing:
     steps: tuple[SolveStep, ...]
     stop: str = ""
     failed: str = ""  # the finer grid, refined along one axis, that did not converge: the next refines both
+    model_solved: bool = True  # the solution is in the task's model (False: the start's, before a cheaper one)
 
     def bounds(self) -> dict[str, Bound]:
         return {name: figure_bound(self.solution, name) for name in FIGURES if name in self.solution.scalars}
@@ -233,24 +245,54 @@ def over_budget(point: Progressing, finer: SolverSettings) -> bool:
 Batch = Callable[[Sequence[tuple[SolveTask, str]]], list[PointSolution]]
 
 
-def screened(tasks: Sequence[SolveTask], solve: Batch, target: float) -> list[Progressing]:
-    """Step 1 (module docstring): each point on the start grid in its case's model and each cheaper one, and the
-    cheaper models chosen (`choose_models`); where two or more are taken, `combined`."""
+def screened(tasks: Sequence[SolveTask], solve: Batch, check: Batch, target: float) -> list[Progressing]:
+    """Step 1 (module docstring): each point on the start grid in its case's model; the cheaper models whose check
+    can pay for itself on the grid the point is expected to end on (`expected_nodes`, Cheaper.pays) solved there by
+    `check` (figures alone, no error bounds: only their change is read), and chosen (`choose_models`); where two or
+    more are taken, `combined`. The point goes on from its start solve in the case's model."""
     starts = [start_task(task) for task in tasks]
-    trials = [[c for c in CHEAPER if c.applies(start)] for start in starts]
+    bases = solve([(start, "start") for start in starts])
+    trials, skipped = [], []
+    for start, base in zip(starts, bases):
+        expected, applying = expected_nodes(start, base, target), [c for c in CHEAPER if c.applies(start)]
+        trials.append([c for c in applying if c.pays(expected, nodes(start.settings))])
+        skipped.append(tuple(_not_checked(c, expected, nodes(start.settings)) for c in applying
+                             if c not in trials[-1]))
     checks = [(c.apply(start), f"model check: {c.what}") for start, each in zip(starts, trials) for c in each]
-    solutions = solve([(start, "start") for start in starts] + checks)
-    rest = iter(solutions[len(starts):])
+    rest = iter(check(checks))
     points = []
-    for start, base, each in zip(starts, solutions, trials):
+    for start, base, each, unchecked in zip(starts, bases, trials, skipped):
         by_what = {c.what: next(rest) for c in each}
         steps = (step(start, base, "start"),) + tuple(step(c.apply(start), by_what[c.what], f"model check: {c.what}")
                                                       for c in each)
         taken, effects, choices = choose_models(start, by_what, base, target)
-        solution = by_what[taken[0].what] if len(taken) == 1 else base
-        points.append(Screened(Progressing(_applied(start, taken), solution, effects, choices, steps), start,
-                               base, taken, by_what))
-    return combined(points, solve, target)
+        progressing = Progressing(_applied(start, taken), base, effects, unchecked + choices, steps,
+                                  model_solved=not taken)
+        points.append(Screened(progressing, start, base, taken, by_what))
+    return combined(points, check, target)
+
+
+def nodes(settings: SolverSettings) -> int:
+    return settings.grid * settings.nodes_y
+
+
+def expected_nodes(start: SolveTask, base: PointSolution, target: float) -> int:
+    """Nodes of the grid a point is expected to end on from its start solve: the start grid where it meets the
+    target, the predicted grid (`planned`) where there is one, else at least one doubling."""
+    point = Progressing(start, base, {}, (), ())
+    missing = point.missing(target)
+    if not missing:
+        return nodes(start.settings)
+    finer, _ = planned(point, missing, target)
+    return 2 * nodes(start.settings) if finer is None else nodes(finer)
+
+
+def _not_checked(cheaper: Cheaper, expected: int, start: int) -> Choice:
+    if expected <= start:
+        return Choice(cheaper.what, "as the case", f"{cheaper.chosen} not checked: the start grid meets the target")
+    return Choice(cheaper.what, "as the case", f"{cheaper.chosen} not checked: it saves {100 * cheaper.saving:.0f} % "
+                  f"of a solve, and the point is expected to end on {expected / start:.2g}x the start grid's nodes: "
+                  "its check would cost more than it can save")
 
 
 @dataclass(frozen=True)
@@ -265,45 +307,82 @@ class Screened:
     solved: Mapping[str, PointSolution]
 
 
-def combined(screens: Sequence[Screened], solve: Batch, target: float) -> list[Progressing]:
-    """The points that took two or more cheaper models solved in their combination: its measured effect against the
-    case's model replaces the sum, and beyond TUNING.accuracy_model_share of the target the first model alone is
-    kept, with its effect measured alone."""
+def combined(screens: Sequence[Screened], check: Batch, target: float) -> list[Progressing]:
+    """The points that took two or more cheaper models solved in their combination (by `check`): its measured effect
+    against the case's model replaces the sum, and beyond TUNING.accuracy_model_share of the target the first model
+    alone is kept, with its effect measured alone."""
     points = [screen.point for screen in screens]
     together = [i for i, screen in enumerate(screens) if len(screen.taken) > 1]
     share = TUNING.accuracy_model_share * target
-    for i, solution in zip(together, solve([(points[i].task, "model check: combined") for i in together])):
+    for i, solution in zip(together, check([(points[i].task, "model check: combined") for i in together])):
         screen, effects = screens[i], model_effect(screens[i].base, solution)
         point = replace(points[i], steps=points[i].steps + (step(points[i].task, solution, "model check: combined"),))
         if max(effects.values(), default=math.inf) <= share:
             note = Choice("model", model_words(point.task), f"the combination changes {_percent(effects)}")
-            points[i] = replace(point, solution=solution, effects=effects, choices=point.choices + (note,))
+            points[i] = replace(point, effects=effects, choices=point.choices + (note,))
             continue
         first = screen.taken[0]
-        alone = screen.solved[first.what]
         note = Choice("model", model_words(first.apply(screen.start)), f"the combination changes {_percent(effects)}:"
                       f" beyond {100 * share:.2g} %; {first.what} {first.chosen} alone kept")
-        points[i] = replace(point, task=first.apply(screen.start), solution=alone,
-                            effects=model_effect(screen.base, alone), choices=point.choices + (note,))
+        points[i] = replace(point, task=first.apply(screen.start), effects=model_effect(screen.base,
+                                                                                         screen.solved[first.what]),
+                            choices=point.choices + (note,))
     return points
 
 
+def estimates(point: Progressing, missing: Mapping[str, Bound]) -> dict[str, Estimate]:
+    """The figures above the target as the grid prediction reads them: bound, estimates, order, model effect."""
+    from facegear_tehl.ehl.error_bounds import ORDERS  # imported on first use: it loads the solver's kernels
+
+    return {name: Estimate(b.bound, b.e_x, b.e_y, ORDERS[name], point.effects.get(name, 0.0))
+            for name, b in missing.items()}
+
+
+def planned(point: Progressing, missing: Mapping[str, Bound], target: float) -> tuple[SolverSettings | None, str]:
+    """The point's next grid and why (None: none, with the reason). After a finer grid along one axis that did not
+    converge: both axes twice as fine. Where every figure above the target has a bound: the predicted grid
+    (grid_prediction.py) for those predicted to come within the target at all within the caps (none: it stops).
+    Else twice as fine along the axis whose estimate dominates (`refined_axis`; at its cap along the other)."""
+    settings = point.task.settings
+    largest = f"the largest grid {TUNING.accuracy_max_grid} x {TUNING.accuracy_max_grid_y}"
+    if point.failed:
+        finer = refined_settings(settings, "xy")
+        return finer, (f"refining xy would pass {largest}" if finer is None else f"both axes after {point.failed}")
+    figures = estimates(point, missing)
+    if all(e.predictable for e in figures.values()):
+        pursued = reachable(settings.grid, settings.nodes_y, figures, target)
+        beyond = ", ".join(name for name in figures if name not in pursued)
+        beyond = f"; {beyond} predicted above the target even on {largest}" if beyond else ""
+        prediction = predicted_grid(settings.grid, settings.nodes_y, pursued, target) if pursued else None
+        if prediction is None:
+            return None, f"none predicted within the target even on {largest}"
+        margin = f"{100 * TUNING.accuracy_jump_margin * target:.2g} %"
+        return (replace(settings, grid=prediction.grid, grid_y=prediction.grid_y),
+                f"{prediction.words()} (margin {margin}){beyond}")
+    axis = refined_axis(missing)
+    finer = refined_settings(settings, axis) or (refined_settings(settings, "xy".replace(axis, ""))
+                                                 if axis != "xy" else None)
+    why = f"refining {axis} would pass {largest}" if finer is None else f"twice as fine along {axis} or, at its " \
+          "cap, the other axis: a figure above the target without a bound to predict from"
+    return finer, why
+
+
 def next_step(point: Progressing, target: float) -> tuple[Progressing, SolveTask | None]:
-    """The point's next solve (None: it stops, with the reason): twice as fine along the axis that dominates the
-    figures above the target, unless the grid cap or the time budget comes first."""
+    """The point's next solve (None: it stops, with the reason): the grid `planned` for the figures above the target,
+    its reason recorded, unless the grid cap or the time budget comes first."""
     missing = point.missing(target)
     if not missing:
         return replace(point, stop="every bounded figure within the target"), None
-    axis = "xy" if point.failed else refined_axis(missing)
-    finer = refined_settings(point.task.settings, axis)
+    finer, why = planned(point, missing, target)
     above = ", ".join(missing)
     if finer is None:
-        return replace(point, stop=f"{above} above the target; refining {axis} would pass the largest grid "
-                                   f"{TUNING.accuracy_max_grid} x {TUNING.accuracy_max_grid_y}"), None
+        return replace(point, stop=f"{above} above the target; {why}"), None
     if over_budget(point, finer):
         return replace(point, stop=f"{above} above the target; {grid_words(finer)} not started: it would pass the "
                                    f"time budget {point.task.settings.time_budget:g} s (solver.time_budget)"), None
-    return point, replace(point.task, settings=finer)
+    choice = Choice("refine", grid_words(finer), f"{above} above the target on {grid_words(point.task.settings)}: "
+                                                 f"{why}")
+    return replace(point, choices=point.choices + (choice,)), replace(point.task, settings=finer)
 
 
 def refined(point: Progressing, task: SolveTask, solution: PointSolution) -> Progressing:
@@ -320,29 +399,34 @@ def refined(point: Progressing, task: SolveTask, solution: PointSolution) -> Pro
         before = f" (after {point.failed})" if point.failed else ""
         return replace(point, steps=steps, stop=f"{ended}{before}; the converged {grid_words(point.task.settings)} "
                                                 "solution kept")
-    return replace(point, task=task, solution=solution, steps=steps, failed="")
+    return replace(point, task=task, solution=solution, steps=steps, failed="", model_solved=True)
 
 
-def solve_to_accuracy(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *, jobs: int | None = None,
+def solve_to_accuracy(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
+                      checks: Solver | StagedSolver | None = None, jobs: int | None = None,
                       progress: Progress | None = None) -> list[PointSolution]:
     """Every task solved to its settings' accuracy target (module docstring), the points side by side on `jobs`
-    worker processes; each solution carries its AccuracyRecord and the wall time of all its solves."""
+    worker processes; `checks` solves the model checks (None: `solver`; the EHL solver's without error bounds: only
+    their figures are read). Each solution carries its AccuracyRecord and the wall time of all its solves."""
     target = float(tasks[0].settings.accuracy)
 
     def solve(batch: Sequence[tuple[SolveTask, str]]) -> list[PointSolution]:
         return _solved_batch(batch, solver, jobs, progress)
 
-    points = screened(tasks, solve, target)
+    def check(batch: Sequence[tuple[SolveTask, str]]) -> list[PointSolution]:
+        return _solved_batch(batch, checks or solver, jobs, progress)
+
+    points = screened(tasks, solve, check, target)
     while True:
-        planned = {}
+        finer_tasks = {}
         for i, point in enumerate(points):
             if not point.stop:
                 points[i], finer = next_step(point, target)
-                planned.update({} if finer is None else {i: finer})
-        if not planned:
+                finer_tasks.update({} if finer is None else {i: finer})
+        if not finer_tasks:
             break
-        for i, solution in zip(planned, solve([(task, "refine") for task in planned.values()])):
-            points[i] = refined(points[i], planned[i], solution)
+        for i, solution in zip(finer_tasks, solve([(task, "refine") for task in finer_tasks.values()])):
+            points[i] = refined(points[i], finer_tasks[i], solution)
     return [finished(point, task, target) for point, task in zip(points, tasks)]
 
 
@@ -360,6 +444,10 @@ def _solved_batch(batch: Sequence[tuple[SolveTask, str]], solver: Solver | Stage
 def finished(point: Progressing, case_task: SolveTask, target: float) -> PointSolution:
     """The point's reported solution with its AccuracyRecord: each figure's bound and verdict, the choices (the
     grid's with the reason the refinement stopped), the solves and their cost."""
+    if not point.model_solved:  # stopped before a solve in the cheaper model chosen: the start's model reported
+        note = Choice("model", "as the case", f"{model_words(point.task)} chosen, but no grid was solved in it "
+                      "before the refinement stopped: the start solve's model is reported")
+        point = replace(point, effects={}, choices=point.choices + (note,))
     figures = []
     for name, bound in point.bounds().items():
         effect = point.effects.get(name, 0.0)
