@@ -2,16 +2,22 @@
 chosen by the solver until the error bound of every asked figure (h_c, h_min, p_max, dT_max, mu) is within the target.
 
 Per point, on a start grid of TUNING.accuracy_start_grid nodes along x (the case's aspect along y):
-1. The case's model (thermal `auto`: `full`) and each cheaper one (thermal `reduced`, TUNING.accuracy_fewer_layers
-   layers, Newtonian instead of Ree-Eyring) are solved; a cheaper model is taken where its measured change of every
-   asked figure, summed over the cheaper models taken, stays within TUNING.accuracy_model_share of the target (the
-   solve's own measured effect, not a correlation: Gupta et al.'s 1992 thermal factor is pessimistic on the project's
-   own solutions, docs/accuracy.md).
-2. The chosen model is refined, x (`grid`) or y (`grid_y`) twice as fine, the axis whose estimate dominates the
-   figures above the target, until each figure's bound plus its model effect is within the target, or the next grid
-   passes TUNING.accuracy_max_grid / accuracy_max_grid_y or the point's time budget (`solver.time_budget`); a finer
-   grid along one axis that does not converge is followed by one along both, and where that fails too the converged
-   coarser solution is kept.
+1. The case's model (thermal `auto`: `full`) is solved with its error bounds, and the grid the point is expected to
+   end on predicted from them (`planned`).
+2. Each cheaper model (thermal `reduced`, TUNING.accuracy_fewer_layers layers, Newtonian instead of Ree-Eyring) whose
+   check can pay for itself on that grid (Cheaper.pays, its measured saving TUNING.accuracy_saving_*) is solved on
+   the start grid without error bounds; a cheaper model is taken where its measured change of every asked figure,
+   summed over the cheaper models taken, stays within TUNING.accuracy_model_share of the target (the solve's own
+   measured effect, not a correlation: Gupta et al.'s 1992 thermal factor is pessimistic on the project's own
+   solutions, docs/accuracy.md).
+3. The chosen model is solved on the grid predicted from the last solve's estimates (grid_prediction.py: e ~ h^p of
+   each axis, the grid of fewest nodes predicted to bring every figure above the target within
+   TUNING.accuracy_jump_margin of it), and again from that solve's estimates, until each figure's bound plus its
+   model effect is within the target, or no grid within TUNING.accuracy_max_grid x accuracy_max_grid_y is predicted
+   to bring the rest within it, or the next grid passes the point's time budget (`solver.time_budget`). A figure
+   without a bound to predict from is refined for twice as fine along the axis whose estimate dominates (at its cap:
+   the other). A finer grid along one axis that does not converge is followed by one along both; where that fails
+   too the converged coarser solution is kept.
 
 A figure's bound (`figure_bound`) is the solve's own `error_bound_<name>` (ehl/error_bounds.py: every converged solve
 with a film reports it, with its y-check, or `unresolved_<name>`); a figure the solve reports unresolved, or without
@@ -191,6 +197,8 @@ class Progressing:
     steps: tuple[SolveStep, ...]
     stop: str = ""
     failed: str = ""  # the finer grid, refined along one axis, that did not converge: the next refines both
+    after_jump: str = ""  # the predicted grid, past one doubling, that did not converge: one doubling at a time on
+    failed_grids: tuple[tuple[int, int], ...] = ()  # the grids (nx, ny) that did not converge: not solved again
     model_solved: bool = True  # the solution is in the task's model (False: the start's, before a cheaper one)
 
     def bounds(self) -> dict[str, Bound]:
@@ -342,14 +350,17 @@ def planned(point: Progressing, missing: Mapping[str, Bound], target: float) -> 
     """The point's next grid and why (None: none, with the reason). After a finer grid along one axis that did not
     converge: both axes twice as fine. Where every figure above the target has a bound: the predicted grid
     (grid_prediction.py) for those predicted to come within the target at all within the caps (none: it stops).
-    Else twice as fine along the axis whose estimate dominates (`refined_axis`; at its cap along the other)."""
+    Else, and once a predicted grid past one doubling did not converge, twice as fine along the axis whose estimate
+    dominates (`refined_axis`; at its cap along the other)."""
     settings = point.task.settings
     largest = f"the largest grid {TUNING.accuracy_max_grid} x {TUNING.accuracy_max_grid_y}"
     if point.failed:
         finer = refined_settings(settings, "xy")
+        if finer is not None and (finer.grid, finer.nodes_y) in point.failed_grids:
+            return None, f"{grid_words(finer)} did not converge before"
         return finer, (f"refining xy would pass {largest}" if finer is None else f"both axes after {point.failed}")
     figures = estimates(point, missing)
-    if all(e.predictable for e in figures.values()):
+    if not point.after_jump and all(e.predictable for e in figures.values()):
         pursued = reachable(settings.grid, settings.nodes_y, figures, target)
         beyond = ", ".join(name for name in figures if name not in pursued)
         beyond = f"; {beyond} predicted above the target even on {largest}" if beyond else ""
@@ -362,8 +373,11 @@ def planned(point: Progressing, missing: Mapping[str, Bound], target: float) -> 
     axis = refined_axis(missing)
     finer = refined_settings(settings, axis) or (refined_settings(settings, "xy".replace(axis, ""))
                                                  if axis != "xy" else None)
+    if finer is not None and (finer.grid, finer.nodes_y) in point.failed_grids:  # as if it had failed again
+        return planned(replace(point, failed=f"{grid_words(finer)} ended as before"), missing, target)
+    reason = f"after {point.after_jump}" if point.after_jump else "a figure above the target without a bound"
     why = f"refining {axis} would pass {largest}" if finer is None else f"twice as fine along {axis} or, at its " \
-          "cap, the other axis: a figure above the target without a bound to predict from"
+          f"cap, the other axis: {reason}"
     return finer, why
 
 
@@ -385,18 +399,28 @@ def next_step(point: Progressing, target: float) -> tuple[Progressing, SolveTask
     return replace(point, choices=point.choices + (choice,)), replace(point.task, settings=finer)
 
 
+def doublings_to(coarse: SolverSettings, fine: SolverSettings) -> tuple[int, int]:
+    """How many times `fine` is twice as fine as `coarse` along x and along y."""
+    return (round(math.log2((fine.grid - 1) / (coarse.grid - 1))),
+            round(math.log2((fine.nodes_y - 1) / (coarse.nodes_y - 1))))
+
+
 def refined(point: Progressing, task: SolveTask, solution: PointSolution) -> Progressing:
     """The point after its finer solve: the finer solution; where it did not converge after a converged one, the
-    coarser one kept, refined next along both axes if this solve refined one alone (the cells' aspect kept: the
-    default case's S2 and S4 diverge on 513 x 65 and converge on 1025 x 129, docs/accuracy.md), else stopped."""
-    axis = "x" if task.settings.nodes_y == point.task.settings.nodes_y else (
-        "y" if task.settings.grid == point.task.settings.grid else "xy")
+    coarser one kept: after a jump past one doubling, one doubling at a time from then on; after one doubling along
+    one axis, both axes next (the cells' aspect kept: the default case's S2 and S4 diverge on 513 x 65 and converge
+    on 1025 x 129, docs/accuracy.md); after both, stopped."""
+    kx, ky = doublings_to(point.task.settings, task.settings)
+    axis = "x" * (kx > 0) + "y" * (ky > 0)
     steps = point.steps + (step(task, solution, f"refine {axis}"),)
     if point.solution.converged and not solution.converged:
         ended = f"{grid_words(task.settings)} ended {solution.outcome.value}"
+        point = replace(point, failed_grids=point.failed_grids + ((task.settings.grid, task.settings.nodes_y),))
+        if max(kx, ky) > 1:
+            return replace(point, steps=steps, after_jump=ended)
         if axis != "xy":
             return replace(point, steps=steps, failed=ended)
-        before = f" (after {point.failed})" if point.failed else ""
+        before = f" (after {point.failed or point.after_jump})" if point.failed or point.after_jump else ""
         return replace(point, steps=steps, stop=f"{ended}{before}; the converged {grid_words(point.task.settings)} "
                                                 "solution kept")
     return replace(point, task=task, solution=solution, steps=steps, failed="", model_solved=True)

@@ -258,14 +258,15 @@ def test_the_time_budget_stops_the_refinement_before_a_grid_that_would_pass_it()
     assert "time budget" in solution.accuracy.stop and "257 x 33 not started" in solution.accuracy.stop
 
 
-def test_a_finer_solve_that_does_not_converge_keeps_the_coarser_one_and_refines_both_axes_next():
+def test_a_finer_solve_that_does_not_converge_keeps_the_coarser_one_and_refines_one_doubling_at_a_time():
+    """The predicted 513 x 33 fails: one doubling from 129 x 33 (257 x 33); its next along x would be the failed
+    513 x 33 again: both axes instead, 513 x 65, which fails too: the converged 257 x 33 is kept."""
     solver = AnalyticSolver(c_x=600.0, fails_from=513)
     (solution,) = solve_to_accuracy([_task()], solver, jobs=1)
-    assert solution.converged and (solution.scalar("grid"), solution.scalar("grid_y")) == (257, 65)
-    # predicted 513 x 33 fails: both axes from 129 x 33; predicted 513 x 65 fails: both axes, failing as well
-    assert solver.grids == [(129, 33), (513, 33), (257, 65), (513, 65), (513, 129)]
-    assert solution.accuracy.stop == ("513 x 129 ended not converged (after 513 x 65 ended not converged); the "
-                                      "converged 257 x 65 solution kept")
+    assert solution.converged and (solution.scalar("grid"), solution.scalar("grid_y")) == (257, 33)
+    assert solver.grids == [(129, 33), (513, 33), (257, 33), (513, 65)]
+    assert solution.accuracy.stop == ("513 x 65 ended not converged (after 513 x 33 ended not converged); the "
+                                      "converged 257 x 33 solution kept")
 
 
 def test_refining_both_axes_after_one_failed_goes_on_from_the_finer_grid():
