@@ -36,6 +36,7 @@ import math
 
 from facegear_tehl.accuracy_record import AccuracyRecord, Choice, FigureBound, SolveStep, Verdict
 from facegear_tehl.ehl.domain import solution_domain
+from facegear_tehl.ehl.richardson import ORDER
 from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.grid_prediction import Estimate, predicted_grid, reachable
@@ -339,11 +340,10 @@ def combined(screens: Sequence[Screened], check: Batch, target: float) -> list[P
 
 
 def estimates(point: Progressing, missing: Mapping[str, Bound]) -> dict[str, Estimate]:
-    """The figures above the target as the grid prediction reads them: bound, estimates, order, model effect."""
-    from facegear_tehl.ehl.error_bounds import ORDERS  # imported on first use: it loads the solver's kernels
-
-    return {name: Estimate(b.bound, b.e_x, b.e_y, ORDERS[name], point.effects.get(name, 0.0))
-            for name, b in missing.items()}
+    """The figures above the target as the grid prediction reads them: bound, estimates, the discretisation's order
+    for every figure (grid_prediction.py: the plan never passes the first grid that can meet the target), model
+    effect."""
+    return {name: Estimate(b.bound, b.e_x, b.e_y, ORDER, point.effects.get(name, 0.0)) for name, b in missing.items()}
 
 
 def planned(point: Progressing, missing: Mapping[str, Bound], target: float) -> tuple[SolverSettings | None, str]:

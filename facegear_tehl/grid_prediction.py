@@ -7,12 +7,15 @@ Engineering", ch. 5) each estimate falls as h^p, so kx doublings along x and ky 
 
     B(kx, ky) = F_s (|e_x| 2^(-p kx) + |e_y| 2^(-p ky)) + e_it + m,
 
-p the figure's order (2 for the film, 1 for dT_max and mu: ehl/error_bounds.ORDERS), m the cheaper model's measured
-effect (it does not fall with the grid). The predicted grid is the one of fewest nodes within TUNING.accuracy_max_grid
-x accuracy_max_grid_y whose B of every figure is within TUNING.accuracy_jump_margin of the target (else within the
-target); on a square grid (its e_x covers both axes, e_y = 0) both axes are refined together. A figure whose B stays
-above the target even on the finest grid within the caps is not refined for (`reachable`). A prediction is never a
-verdict: a figure is met only by the bound of its own solve on the grid reached.
+m the cheaper model's measured effect (it does not fall with the grid). The plan takes p = 2, the order of the
+discretisation (ehl/richardson.ORDER), for every figure, also for dT_max and mu, whose bounds assume the first order
+(ehl/report.py: their observed order is 0.7-1.7): an error that falls no faster than h^2 is not within the target
+before the predicted grid, so the plan never passes the first grid that can meet it, and where the error falls slower
+the next plan starts from the finer solve's own estimates. The predicted grid is the one of fewest nodes within
+TUNING.accuracy_max_grid x accuracy_max_grid_y whose B of every figure is within TUNING.accuracy_jump_margin of the
+target (else within the target); on a square grid (its e_x covers both axes, e_y = 0) both axes are refined together.
+A figure whose B stays above the target even on the finest grid within the caps is not refined for (`reachable`). A
+prediction is never a verdict: a figure is met only by the bound of its own solve on the grid reached.
 """
 
 from __future__ import annotations

@@ -47,12 +47,13 @@ class AnalyticSolver:
     factors: dict = field(default_factory=dict)
     fails_from: int = 10**9
     seconds_per_node: float = 1e-5
+    first_order_scale: float = 1e-3  # the first-order figures' coefficients over the film's
     grids: list = field(default_factory=list)
     seconds: list = field(default_factory=list)
 
     def value(self, name: str, nx: int, ny: int, settings, lubricant) -> float:
         order = ORDERS[name]
-        scale = 1.0 if order == 2 else 1e-3  # the first-order figures' coefficients a thousandth of the film's
+        scale = 1.0 if order == 2 else self.first_order_scale
         model = (self.factors.get(("thermal", str(settings.thermal)), 1.0)
                  * self.factors.get(("layers", settings.thermal_layers), 1.0)
                  * self.factors.get(("rheology", lubricant.rheology), 1.0))
@@ -136,6 +137,19 @@ def test_the_target_jumps_to_the_first_grid_the_error_model_predicts_within_the_
     # the cost: every solve's wall time with its error check's
     assert solution.scalar("wall_time") == pytest.approx(sum(s.seconds for s in record.steps))
     assert record.wall_time == pytest.approx(sum(solver.seconds))
+
+
+def test_a_first_order_figure_is_planned_at_the_second_order_and_never_past_the_first_grid_that_meets_it():
+    """dT_max and mu with a first-order error (c = 2): the plan from each solve assumes h^2, so it stops short of a
+    first-order error's grid and plans again from the finer solve; it never solves past the first x grid whose bound
+    meets the target, and ends on it."""
+    solver = AnalyticSolver(c_x=2.0, first_order_scale=1.0)
+    (solution,) = solve_to_accuracy([_task()], solver, jobs=1)
+    first = _smallest_grid(2.0, 0.01, order=1)
+    assert first == 1025
+    assert max(nx for nx, _ in solver.grids) == first and solution.scalar("grid") == first
+    assert len(solver.grids) < 4  # fewer solves than stepping 129, 257, 513, 1025
+    assert {f.name: f.verdict for f in solution.accuracy.figures}["dT_max"] is Verdict.MET
 
 
 def test_a_start_grid_that_meets_the_target_ends_the_point_without_model_checks():
