@@ -10,7 +10,7 @@ Per point, on a start grid of TUNING.accuracy_start_grid nodes along x (the case
    summed over the cheaper models taken, stays within TUNING.accuracy_model_share of the target (the solve's own
    measured effect, not a correlation: Gupta et al.'s 1992 thermal factor is pessimistic on the project's own
    solutions, docs/accuracy.md).
-3. The chosen model is solved on the grid predicted from the last solve's estimates (grid_prediction.py: e ~ h^p of
+3. The chosen model is solved on the grid predicted from the last solve's estimates (grid_prediction.py: e ~ h^2 of
    each axis, the grid of fewest nodes predicted to bring every figure above the target within
    TUNING.accuracy_jump_margin of it), and again from that solve's estimates, until each figure's bound plus its
    model effect is within the target, or no grid within TUNING.accuracy_max_grid x accuracy_max_grid_y is predicted
@@ -255,7 +255,7 @@ Batch = Callable[[Sequence[tuple[SolveTask, str]]], list[PointSolution]]
 
 
 def screened(tasks: Sequence[SolveTask], solve: Batch, check: Batch, target: float) -> list[Progressing]:
-    """Step 1 (module docstring): each point on the start grid in its case's model; the cheaper models whose check
+    """Steps 1 and 2 (module docstring): each point on the start grid in its case's model; the cheaper models whose check
     can pay for itself on the grid the point is expected to end on (`expected_nodes`, Cheaper.pays) solved there by
     `check` (figures alone, no error bounds: only their change is read), and chosen (`choose_models`); where two or
     more are taken, `combined`. The point goes on from its start solve in the case's model."""
