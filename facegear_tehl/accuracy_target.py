@@ -255,10 +255,10 @@ Batch = Callable[[Sequence[tuple[SolveTask, str]]], list[PointSolution]]
 
 
 def screened(tasks: Sequence[SolveTask], solve: Batch, check: Batch, target: float) -> list[Progressing]:
-    """Steps 1 and 2 (module docstring): each point on the start grid in its case's model; the cheaper models whose check
-    can pay for itself on the grid the point is expected to end on (`expected_nodes`, Cheaper.pays) solved there by
-    `check` (figures alone, no error bounds: only their change is read), and chosen (`choose_models`); where two or
-    more are taken, `combined`. The point goes on from its start solve in the case's model."""
+    """Steps 1 and 2 (module docstring): each point on the start grid in its case's model; the cheaper models whose
+    check can pay for itself on the grid the point is expected to end on (`expected_nodes`, Cheaper.pays) solved
+    there by `check` (figures alone, no error bounds: only their change is read), and chosen (`choose_models`); where
+    two or more are taken, `combined`. The point goes on from its start solve in the case's model."""
     starts = [start_task(task) for task in tasks]
     bases = solve([(start, "start") for start in starts])
     trials, skipped = [], []
@@ -383,12 +383,16 @@ def planned(point: Progressing, missing: Mapping[str, Bound], target: float) -> 
 
 def next_step(point: Progressing, target: float) -> tuple[Progressing, SolveTask | None]:
     """The point's next solve (None: it stops, with the reason): the grid `planned` for the figures above the target,
-    its reason recorded, unless the grid cap or the time budget comes first."""
+    its reason recorded, unless the grid cap or the time budget comes first; a predicted grid past one doubling that
+    would pass the time budget turns the point to one doubling at a time."""
     missing = point.missing(target)
     if not missing:
         return replace(point, stop="every bounded figure within the target"), None
     finer, why = planned(point, missing, target)
     above = ", ".join(missing)
+    if finer is not None and over_budget(point, finer) and max(doublings_to(point.task.settings, finer)) > 1:
+        point = replace(point, after_jump=f"{grid_words(finer)} would pass the time budget")  # one doubling on
+        finer, why = planned(point, missing, target)
     if finer is None:
         return replace(point, stop=f"{above} above the target; {why}"), None
     if over_budget(point, finer):

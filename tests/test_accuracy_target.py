@@ -272,6 +272,16 @@ def test_the_time_budget_stops_the_refinement_before_a_grid_that_would_pass_it()
     assert "time budget" in solution.accuracy.stop and "257 x 33 not started" in solution.accuracy.stop
 
 
+def test_a_predicted_grid_past_the_time_budget_gives_way_to_one_doubling_within_it():
+    """Predicted 513 x 33 (four times the start's nodes) would pass the budget; 257 x 33 (twice) fits and is solved,
+    and the point stops there before the grid after it."""
+    solver = AnalyticSolver(c_x=600.0, seconds_per_node=1e-3)  # 129 x 33: 5.3 s with its check
+    (solution,) = solve_to_accuracy([_task(time_budget=20.0)], solver, jobs=1)
+    assert _smallest_grid(600.0, MARGIN * 0.01) == 513
+    assert solver.grids == [(129, 33), (257, 33)]
+    assert "time budget" in solution.accuracy.stop
+
+
 def test_a_finer_solve_that_does_not_converge_keeps_the_coarser_one_and_refines_one_doubling_at_a_time():
     """The predicted 513 x 33 fails: one doubling from 129 x 33 (257 x 33); its next along x would be the failed
     513 x 33 again: both axes instead, 513 x 65, which fails too: the converged 257 x 33 is kept."""
