@@ -3,8 +3,9 @@ f(nx, ny) = f* m (1 + C_x h_x^p + C_y h_y^p), h = 1/(n - 1), p its order (2 for 
 model's factor; it reports the estimates and bounds as the solver does: along x as its hierarchy (Richardson against
 nx coarser by two, both axes on a square grid), along y as its y-check (against (ny + 1)/2 rows; none below the
 coarsest grid), and the bound and unresolved flags of ehl/error_bounds.py from them. The true error is then known, so
-the chosen grid and the verdicts are checked against it; and the settings' validation (solver.accuracy,
---accuracy)."""
+the chosen grid, the grids solved on the way (the plan's jumps, one doubling after a failure or past the time budget)
+and the verdicts are checked against grids computed here from the analytic error; the model checks against the
+saving rule; and the settings' validation (solver.accuracy, --accuracy)."""
 
 from __future__ import annotations
 
@@ -105,7 +106,8 @@ def _true_error(solver: AnalyticSolver, solution: PointSolution, name: str) -> f
 
 def _smallest_grid(c: float, target: float, start: int = TUNING.accuracy_start_grid, order: int = 2) -> int:
     """The first grid from `start` whose bound, F_s (Roache 1994) times the two-grid Richardson estimate of the
-    analytic error along the refined axis, is within `target`."""
+    analytic error along the refined axis, is within `target` (computed from the analytic error on each grid, not
+    from the plan's h^p extrapolation)."""
     n = start
     while True:
         fine, coarse = 1 + c / (n - 1) ** order, 1 + c / ((n + 1) // 2 - 1) ** order
