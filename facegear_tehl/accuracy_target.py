@@ -2,24 +2,31 @@
 chosen by the solver until the error bound of every asked figure (h_c, h_min, p_max, dT_max, mu) is within the target.
 
 Per point, on a start grid of TUNING.accuracy_start_grid nodes along x (the case's aspect along y):
-1. The case's model (thermal `auto`: `full`) and each cheaper one (thermal `reduced`, TUNING.accuracy_fewer_layers
-   layers, Newtonian instead of Ree-Eyring) are solved; a cheaper model is taken where its measured change of every
-   asked figure, summed over the cheaper models taken, stays within TUNING.accuracy_model_share of the target (the
-   solve's own measured effect, not a correlation: Gupta et al.'s 1992 thermal factor is pessimistic on the project's
-   own solutions, docs/accuracy.md).
-2. The chosen model is refined, x (`grid`) or y (`grid_y`) twice as fine, the axis whose estimate dominates the
-   figures above the target, until each figure's bound plus its model effect is within the target, or the next grid
-   passes TUNING.accuracy_max_grid / accuracy_max_grid_y or the point's time budget (`solver.time_budget`); a finer
-   grid along one axis that does not converge is followed by one along both, and where that fails too the converged
-   coarser solution is kept.
+1. The case's model (thermal `auto`: `full`) is solved with its error bounds, and the grid the point is expected to
+   end on predicted from them (`planned`).
+2. Each cheaper model (thermal `reduced`, TUNING.accuracy_fewer_layers layers, Newtonian instead of Ree-Eyring) whose
+   check can pay for itself on that grid (Cheaper.pays, its measured saving TUNING.accuracy_saving_*) is solved on
+   the start grid without error bounds; a cheaper model is taken where its measured change of every asked figure,
+   summed over the cheaper models taken, stays within TUNING.accuracy_model_share of the target (the solve's own
+   measured effect, not a correlation: Gupta et al.'s 1992 thermal factor is pessimistic on the project's own
+   solutions, docs/accuracy.md).
+3. The chosen model is solved on the grid predicted from the last solve's estimates (grid_prediction.py: e ~ h^2 of
+   each axis, the grid of fewest nodes predicted to bring every figure above the target within
+   TUNING.accuracy_jump_margin of it), and again from that solve's estimates, until each figure's bound plus its
+   model effect is within the target, or no grid within TUNING.accuracy_max_grid x accuracy_max_grid_y is predicted
+   to bring the rest within it, or the next grid passes the point's time budget (`solver.time_budget`). A figure
+   without a bound to predict from is refined for twice as fine along the axis whose estimate dominates (at its cap:
+   the other). A finer grid along one axis that does not converge is followed by one along both; where that fails
+   too the converged coarser solution is kept.
 
 A figure's bound (`figure_bound`) is the solve's own `error_bound_<name>` (ehl/error_bounds.py: every converged solve
 with a film reports it, with its y-check, or `unresolved_<name>`); a figure the solve reports unresolved, or without
 a bound, has none and is refined for while the grid and the time allow. The axis to refine is read from the solve's
 estimates along x (`error_estimate_<name>`) and y (`error_estimate_y_<name>`). p_max is never bounded: the pressure
 maximum is the outlet spike, which grows with every refinement on practical grids (Venner & Lubrecht 2000, ch. 8): it
-is reported as achieved, "unresolved", and never refined for. A solve's cost is its wall time and its error check's
-(`error_check_time`).
+is reported as achieved, "unresolved", and never refined for; so is a dT_max the solve reports unresolved because the
+film's compression sets its temperatures through the outlet spike (`never_refined`). A solve's cost is its wall time
+and its error check's (`error_check_time`).
 """
 
 from __future__ import annotations
@@ -30,8 +37,11 @@ import math
 
 from facegear_tehl.accuracy_record import AccuracyRecord, Choice, FigureBound, SolveStep, Verdict
 from facegear_tehl.ehl.domain import solution_domain
+from facegear_tehl.ehl.error_bounds import compression_held
+from facegear_tehl.ehl.richardson import ORDER
 from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.ehl.tuning import TUNING
+from facegear_tehl.grid_prediction import Estimate, predicted_grid, reachable
 from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
 from facegear_tehl.settings import SolverSettings, ThermalMode
 from facegear_tehl.solution import PointSolution
@@ -64,6 +74,16 @@ def figure_bound(solution: PointSolution, name: str) -> Bound:
     return Bound(scalars.get(f"error_bound_{name}", (math.inf, "1"))[0], e_x, e_y)
 
 
+def never_refined(solution: PointSolution, name: str) -> bool:
+    """A figure no finer grid bounds: p_max (NEVER_BOUNDED), and dT_max where the solve reports it unresolved because
+    the film's compression sets its temperatures through an outlet spike it does not resolve (error_bounds.
+    compression_held: the hot spot grows with the spike under refinement, as p_max does)."""
+    if name in NEVER_BOUNDED:
+        return True
+    flags = {k: solution.scalars.get(f"unresolved_{k}", (0.0, "1"))[0] != 0.0 for k in ("dT_max", "dT_min")}
+    return name == "dT_max" and flags["dT_max"] and compression_held(solution, flags["dT_min"])
+
+
 def model_words(task: SolveTask) -> str:
     """The model of a task in words: thermal model (with its layers when full) and rheology."""
     settings = task.settings
@@ -88,12 +108,20 @@ def start_task(task: SolveTask) -> SolveTask:
 
 @dataclass(frozen=True)
 class Cheaper:
-    """A cheaper model: what it changes, to what, and the change made to a task."""
+    """A cheaper model: what it changes, to what, the change made to a task, where it applies, and the share of a
+    solve's CPU time it saves (TUNING.accuracy_saving_*, scripts/model_cost.py)."""
 
     what: str
     chosen: str
     apply: Callable[[SolveTask], SolveTask]
     applies: Callable[[SolveTask], bool]
+    saving: float
+
+    def pays(self, expected_nodes: int, start_nodes: int) -> bool:
+        """Its check, one solve on the start grid in this model, can pay for itself: the point is expected to go on
+        past the start grid, and the saving on the grid it is expected to end on is at least the check's cost (both
+        scaled by the nodes: multigrid work grows with them)."""
+        return expected_nodes > start_nodes and self.saving * expected_nodes >= (1.0 - self.saving) * start_nodes
 
 
 def _reduced(task: SolveTask) -> SolveTask:
@@ -113,10 +141,12 @@ def _full(task: SolveTask) -> bool:
 
 
 CHEAPER = (  # in the order they are tried: the largest saving first
-    Cheaper("thermal", "reduced", _reduced, _full),
+    Cheaper("thermal", "reduced", _reduced, _full, TUNING.accuracy_saving_reduced),
     Cheaper("thermal_layers", str(TUNING.accuracy_fewer_layers), _fewer_layers,
-            lambda task: _full(task) and task.settings.thermal_layers > TUNING.accuracy_fewer_layers),
-    Cheaper("rheology", "newtonian", _newtonian, lambda task: task.lubricant.rheology == "ree_eyring"),
+            lambda task: _full(task) and task.settings.thermal_layers > TUNING.accuracy_fewer_layers,
+            TUNING.accuracy_saving_layers),
+    Cheaper("rheology", "newtonian", _newtonian, lambda task: task.lubricant.rheology == "ree_eyring",
+            TUNING.accuracy_saving_newtonian),
 )
 
 
@@ -180,14 +210,17 @@ class Progressing:
     steps: tuple[SolveStep, ...]
     stop: str = ""
     failed: str = ""  # the finer grid, refined along one axis, that did not converge: the next refines both
+    after_jump: str = ""  # the predicted grid, past one doubling, that did not converge: one doubling at a time on
+    failed_grids: tuple[tuple[int, int], ...] = ()  # the grids (nx, ny) that did not converge: not solved again
+    model_solved: bool = True  # the solution is in the task's model (False: the start's, before a cheaper one)
 
     def bounds(self) -> dict[str, Bound]:
         return {name: figure_bound(self.solution, name) for name in FIGURES if name in self.solution.scalars}
 
     def missing(self, target: float) -> dict[str, Bound]:
-        """The figures (p_max aside) whose bound plus model effect exceeds `target`."""
+        """The figures (those never refined for aside) whose bound plus model effect exceeds `target`."""
         return {name: bound for name, bound in self.bounds().items()
-                if name not in NEVER_BOUNDED and bound.bound + self.effects.get(name, 0.0) > target}
+                if not never_refined(self.solution, name) and bound.bound + self.effects.get(name, 0.0) > target}
 
 
 def solve_seconds(solution: PointSolution) -> float:
@@ -233,24 +266,54 @@ def over_budget(point: Progressing, finer: SolverSettings) -> bool:
 Batch = Callable[[Sequence[tuple[SolveTask, str]]], list[PointSolution]]
 
 
-def screened(tasks: Sequence[SolveTask], solve: Batch, target: float) -> list[Progressing]:
-    """Step 1 (module docstring): each point on the start grid in its case's model and each cheaper one, and the
-    cheaper models chosen (`choose_models`); where two or more are taken, `combined`."""
+def screened(tasks: Sequence[SolveTask], solve: Batch, check: Batch, target: float) -> list[Progressing]:
+    """Steps 1 and 2 (module docstring): each point on the start grid in its case's model; the cheaper models whose
+    check can pay for itself on the grid the point is expected to end on (`expected_nodes`, Cheaper.pays) solved
+    there by `check` (figures alone, no error bounds: only their change is read), and chosen (`choose_models`); where
+    two or more are taken, `combined`. The point goes on from its start solve in the case's model."""
     starts = [start_task(task) for task in tasks]
-    trials = [[c for c in CHEAPER if c.applies(start)] for start in starts]
+    bases = solve([(start, "start") for start in starts])
+    trials, skipped = [], []
+    for start, base in zip(starts, bases):
+        expected, applying = expected_nodes(start, base, target), [c for c in CHEAPER if c.applies(start)]
+        trials.append([c for c in applying if c.pays(expected, nodes(start.settings))])
+        skipped.append(tuple(_not_checked(c, expected, nodes(start.settings)) for c in applying
+                             if c not in trials[-1]))
     checks = [(c.apply(start), f"model check: {c.what}") for start, each in zip(starts, trials) for c in each]
-    solutions = solve([(start, "start") for start in starts] + checks)
-    rest = iter(solutions[len(starts):])
+    rest = iter(check(checks))
     points = []
-    for start, base, each in zip(starts, solutions, trials):
+    for start, base, each, unchecked in zip(starts, bases, trials, skipped):
         by_what = {c.what: next(rest) for c in each}
         steps = (step(start, base, "start"),) + tuple(step(c.apply(start), by_what[c.what], f"model check: {c.what}")
                                                       for c in each)
         taken, effects, choices = choose_models(start, by_what, base, target)
-        solution = by_what[taken[0].what] if len(taken) == 1 else base
-        points.append(Screened(Progressing(_applied(start, taken), solution, effects, choices, steps), start,
-                               base, taken, by_what))
-    return combined(points, solve, target)
+        progressing = Progressing(_applied(start, taken), base, effects, unchecked + choices, steps,
+                                  model_solved=not taken)
+        points.append(Screened(progressing, start, base, taken, by_what))
+    return combined(points, check, target)
+
+
+def nodes(settings: SolverSettings) -> int:
+    return settings.grid * settings.nodes_y
+
+
+def expected_nodes(start: SolveTask, base: PointSolution, target: float) -> int:
+    """Nodes of the grid a point is expected to end on from its start solve: the start grid where it meets the
+    target, the predicted grid (`planned`) where there is one, else at least one doubling."""
+    point = Progressing(start, base, {}, (), ())
+    missing = point.missing(target)
+    if not missing:
+        return nodes(start.settings)
+    finer, _ = planned(point, missing, target)
+    return 2 * nodes(start.settings) if finer is None else nodes(finer)
+
+
+def _not_checked(cheaper: Cheaper, expected: int, start: int) -> Choice:
+    if expected <= start:
+        return Choice(cheaper.what, "as the case", f"{cheaper.chosen} not checked: the start grid meets the target")
+    return Choice(cheaper.what, "as the case", f"{cheaper.chosen} not checked: it saves {100 * cheaper.saving:.0f} % "
+                  f"of a solve, and the point is expected to end on {expected / start:.2g}x the start grid's nodes: "
+                  "its check would cost more than it can save")
 
 
 @dataclass(frozen=True)
@@ -265,84 +328,145 @@ class Screened:
     solved: Mapping[str, PointSolution]
 
 
-def combined(screens: Sequence[Screened], solve: Batch, target: float) -> list[Progressing]:
-    """The points that took two or more cheaper models solved in their combination: its measured effect against the
-    case's model replaces the sum, and beyond TUNING.accuracy_model_share of the target the first model alone is
-    kept, with its effect measured alone."""
+def combined(screens: Sequence[Screened], check: Batch, target: float) -> list[Progressing]:
+    """The points that took two or more cheaper models solved in their combination (by `check`): its measured effect
+    against the case's model replaces the sum, and beyond TUNING.accuracy_model_share of the target the first model
+    alone is kept, with its effect measured alone."""
     points = [screen.point for screen in screens]
     together = [i for i, screen in enumerate(screens) if len(screen.taken) > 1]
     share = TUNING.accuracy_model_share * target
-    for i, solution in zip(together, solve([(points[i].task, "model check: combined") for i in together])):
+    for i, solution in zip(together, check([(points[i].task, "model check: combined") for i in together])):
         screen, effects = screens[i], model_effect(screens[i].base, solution)
         point = replace(points[i], steps=points[i].steps + (step(points[i].task, solution, "model check: combined"),))
         if max(effects.values(), default=math.inf) <= share:
             note = Choice("model", model_words(point.task), f"the combination changes {_percent(effects)}")
-            points[i] = replace(point, solution=solution, effects=effects, choices=point.choices + (note,))
+            points[i] = replace(point, effects=effects, choices=point.choices + (note,))
             continue
         first = screen.taken[0]
-        alone = screen.solved[first.what]
         note = Choice("model", model_words(first.apply(screen.start)), f"the combination changes {_percent(effects)}:"
                       f" beyond {100 * share:.2g} %; {first.what} {first.chosen} alone kept")
-        points[i] = replace(point, task=first.apply(screen.start), solution=alone,
-                            effects=model_effect(screen.base, alone), choices=point.choices + (note,))
+        points[i] = replace(point, task=first.apply(screen.start), effects=model_effect(screen.base,
+                                                                                         screen.solved[first.what]),
+                            choices=point.choices + (note,))
     return points
 
 
+def estimates(point: Progressing, missing: Mapping[str, Bound]) -> dict[str, Estimate]:
+    """The figures above the target as the grid prediction reads them: bound, estimates, the discretisation's order
+    for every figure (grid_prediction.py: the plan never passes the first grid that can meet the target), model
+    effect."""
+    return {name: Estimate(b.bound, b.e_x, b.e_y, ORDER, point.effects.get(name, 0.0)) for name, b in missing.items()}
+
+
+def planned(point: Progressing, missing: Mapping[str, Bound], target: float) -> tuple[SolverSettings | None, str]:
+    """The point's next grid and why (None: none, with the reason). After a finer grid along one axis that did not
+    converge: both axes twice as fine. Where every figure above the target has a bound: the predicted grid
+    (grid_prediction.py) for those predicted to come within the target at all within the caps (none: it stops).
+    Else, and once a predicted grid past one doubling did not converge, twice as fine along the axis whose estimate
+    dominates (`refined_axis`; at its cap along the other)."""
+    settings = point.task.settings
+    largest = f"the largest grid {TUNING.accuracy_max_grid} x {TUNING.accuracy_max_grid_y}"
+    if point.failed:
+        finer = refined_settings(settings, "xy")
+        if finer is not None and (finer.grid, finer.nodes_y) in point.failed_grids:
+            return None, f"{grid_words(finer)} did not converge before"
+        return finer, (f"refining xy would pass {largest}" if finer is None else f"both axes after {point.failed}")
+    figures = estimates(point, missing)
+    if not point.after_jump and all(e.predictable for e in figures.values()):
+        pursued = reachable(settings.grid, settings.nodes_y, figures, target)
+        beyond = ", ".join(name for name in figures if name not in pursued)
+        beyond = f"; {beyond} predicted above the target even on {largest}" if beyond else ""
+        prediction = predicted_grid(settings.grid, settings.nodes_y, pursued, target) if pursued else None
+        if prediction is None:
+            return None, f"none predicted within the target even on {largest}"
+        margin = f"{100 * TUNING.accuracy_jump_margin * target:.2g} %"
+        return (replace(settings, grid=prediction.grid, grid_y=prediction.grid_y),
+                f"{prediction.words()} (margin {margin}){beyond}")
+    axis = refined_axis(missing)
+    finer = refined_settings(settings, axis) or (refined_settings(settings, "xy".replace(axis, ""))
+                                                 if axis != "xy" else None)
+    if finer is not None and (finer.grid, finer.nodes_y) in point.failed_grids:  # as if it had failed again
+        return planned(replace(point, failed=f"{grid_words(finer)} ended as before"), missing, target)
+    reason = f"after {point.after_jump}" if point.after_jump else "a figure above the target without a bound"
+    why = f"refining {axis} would pass {largest}" if finer is None else f"twice as fine along {axis} or, at its " \
+          f"cap, the other axis: {reason}"
+    return finer, why
+
+
 def next_step(point: Progressing, target: float) -> tuple[Progressing, SolveTask | None]:
-    """The point's next solve (None: it stops, with the reason): twice as fine along the axis that dominates the
-    figures above the target, unless the grid cap or the time budget comes first."""
+    """The point's next solve (None: it stops, with the reason): the grid `planned` for the figures above the target,
+    its reason recorded, unless the grid cap or the time budget comes first; a predicted grid past one doubling that
+    would pass the time budget turns the point to one doubling at a time."""
     missing = point.missing(target)
     if not missing:
         return replace(point, stop="every bounded figure within the target"), None
-    axis = "xy" if point.failed else refined_axis(missing)
-    finer = refined_settings(point.task.settings, axis)
+    finer, why = planned(point, missing, target)
     above = ", ".join(missing)
+    if finer is not None and over_budget(point, finer) and max(doublings_to(point.task.settings, finer)) > 1:
+        point = replace(point, after_jump=f"{grid_words(finer)} would pass the time budget")  # one doubling on
+        finer, why = planned(point, missing, target)
     if finer is None:
-        return replace(point, stop=f"{above} above the target; refining {axis} would pass the largest grid "
-                                   f"{TUNING.accuracy_max_grid} x {TUNING.accuracy_max_grid_y}"), None
+        return replace(point, stop=f"{above} above the target; {why}"), None
     if over_budget(point, finer):
         return replace(point, stop=f"{above} above the target; {grid_words(finer)} not started: it would pass the "
                                    f"time budget {point.task.settings.time_budget:g} s (solver.time_budget)"), None
-    return point, replace(point.task, settings=finer)
+    choice = Choice("refine", grid_words(finer), f"{above} above the target on {grid_words(point.task.settings)}: "
+                                                 f"{why}")
+    return replace(point, choices=point.choices + (choice,)), replace(point.task, settings=finer)
+
+
+def doublings_to(coarse: SolverSettings, fine: SolverSettings) -> tuple[int, int]:
+    """How many times `fine` is twice as fine as `coarse` along x and along y."""
+    return (round(math.log2((fine.grid - 1) / (coarse.grid - 1))),
+            round(math.log2((fine.nodes_y - 1) / (coarse.nodes_y - 1))))
 
 
 def refined(point: Progressing, task: SolveTask, solution: PointSolution) -> Progressing:
     """The point after its finer solve: the finer solution; where it did not converge after a converged one, the
-    coarser one kept, refined next along both axes if this solve refined one alone (the cells' aspect kept: the
-    default case's S2 and S4 diverge on 513 x 65 and converge on 1025 x 129, docs/accuracy.md), else stopped."""
-    axis = "x" if task.settings.nodes_y == point.task.settings.nodes_y else (
-        "y" if task.settings.grid == point.task.settings.grid else "xy")
+    coarser one kept: after a jump past one doubling, one doubling at a time from then on; after one doubling along
+    one axis, both axes next (the cells' aspect kept: the default case's S2 and S4 diverge on 513 x 65 and converge
+    on 1025 x 129, docs/accuracy.md); after both, stopped."""
+    kx, ky = doublings_to(point.task.settings, task.settings)
+    axis = "x" * (kx > 0) + "y" * (ky > 0)
     steps = point.steps + (step(task, solution, f"refine {axis}"),)
     if point.solution.converged and not solution.converged:
         ended = f"{grid_words(task.settings)} ended {solution.outcome.value}"
+        point = replace(point, failed_grids=point.failed_grids + ((task.settings.grid, task.settings.nodes_y),))
+        if max(kx, ky) > 1:
+            return replace(point, steps=steps, after_jump=ended)
         if axis != "xy":
             return replace(point, steps=steps, failed=ended)
-        before = f" (after {point.failed})" if point.failed else ""
+        before = f" (after {point.failed or point.after_jump})" if point.failed or point.after_jump else ""
         return replace(point, steps=steps, stop=f"{ended}{before}; the converged {grid_words(point.task.settings)} "
                                                 "solution kept")
-    return replace(point, task=task, solution=solution, steps=steps, failed="")
+    return replace(point, task=task, solution=solution, steps=steps, failed="", model_solved=True)
 
 
-def solve_to_accuracy(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *, jobs: int | None = None,
+def solve_to_accuracy(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
+                      checks: Solver | StagedSolver | None = None, jobs: int | None = None,
                       progress: Progress | None = None) -> list[PointSolution]:
     """Every task solved to its settings' accuracy target (module docstring), the points side by side on `jobs`
-    worker processes; each solution carries its AccuracyRecord and the wall time of all its solves."""
+    worker processes; `checks` solves the model checks (None: `solver`; the EHL solver's without error bounds: only
+    their figures are read). Each solution carries its AccuracyRecord and the wall time of all its solves."""
     target = float(tasks[0].settings.accuracy)
 
     def solve(batch: Sequence[tuple[SolveTask, str]]) -> list[PointSolution]:
         return _solved_batch(batch, solver, jobs, progress)
 
-    points = screened(tasks, solve, target)
+    def check(batch: Sequence[tuple[SolveTask, str]]) -> list[PointSolution]:
+        return _solved_batch(batch, checks or solver, jobs, progress)
+
+    points = screened(tasks, solve, check, target)
     while True:
-        planned = {}
+        finer_tasks = {}
         for i, point in enumerate(points):
             if not point.stop:
                 points[i], finer = next_step(point, target)
-                planned.update({} if finer is None else {i: finer})
-        if not planned:
+                finer_tasks.update({} if finer is None else {i: finer})
+        if not finer_tasks:
             break
-        for i, solution in zip(planned, solve([(task, "refine") for task in planned.values()])):
-            points[i] = refined(points[i], planned[i], solution)
+        for i, solution in zip(finer_tasks, solve([(task, "refine") for task in finer_tasks.values()])):
+            points[i] = refined(points[i], finer_tasks[i], solution)
     return [finished(point, task, target) for point, task in zip(points, tasks)]
 
 
@@ -360,6 +484,10 @@ def _solved_batch(batch: Sequence[tuple[SolveTask, str]], solver: Solver | Stage
 def finished(point: Progressing, case_task: SolveTask, target: float) -> PointSolution:
     """The point's reported solution with its AccuracyRecord: each figure's bound and verdict, the choices (the
     grid's with the reason the refinement stopped), the solves and their cost."""
+    if not point.model_solved:  # stopped before a solve in the cheaper model chosen: the start's model reported
+        note = Choice("model", "as the case", f"{model_words(point.task)} chosen, but no grid was solved in it "
+                      "before the refinement stopped: the start solve's model is reported")
+        point = replace(point, effects={}, choices=point.choices + (note,))
     figures = []
     for name, bound in point.bounds().items():
         effect = point.effects.get(name, 0.0)

@@ -32,6 +32,21 @@ def ehl_solver() -> StagedSolver:
     return STAGED
 
 
+def ehl_checks() -> StagedSolver:
+    """The EHL solver without error bounds: the accuracy target's model checks read only their figures."""
+    from facegear_tehl.ehl.staged import UNBOUNDED
+
+    return UNBOUNDED
+
+
+def _solved_to_accuracy(tasks: Sequence[SolveTask], solver: Solver | StagedSolver | None, jobs: int | None,
+                        progress: Progress | None) -> list[PointSolution]:
+    """The tasks solved to their accuracy target; the model checks by the EHL solver without error bounds unless a
+    stand-in `solver` is given (it solves them too)."""
+    checks = None if solver else ehl_checks()
+    return solve_to_accuracy(tasks, solver or ehl_solver(), checks=checks, jobs=jobs, progress=progress)
+
+
 def path_solver(case: Case) -> StagedSolver | PathSolver:
     """The EHL solver for the points of `case`: by continuation along the path (PathSolver over ehl.seeded.solve_path,
     chunks of continuation_chunk points) for a thermal face gear case of evenly spaced points (`gear.points: n`,
@@ -74,8 +89,8 @@ def run_case(
         solver = solver or (path_solver(case) if points is None else ehl_solver())
         solved, failed, refined = solve_refining(tasks, solver, jobs=jobs, progress=progress)
     else:  # the grid and models the accuracy target chooses, each point's record holding them
-        solved = solve_to_accuracy(tasks, solver or ehl_solver(), jobs=jobs, progress=progress)
-        failed, refined = tuple(i for i, s in enumerate(solved) if s.outcome is Outcome.FAILED), {}
+        solved, refined = _solved_to_accuracy(tasks, solver, jobs, progress), {}
+        failed = tuple(i for i, s in enumerate(solved) if s.outcome is Outcome.FAILED)
         overrides["accuracy"] = case.solver.accuracy
     by_name = {s.name: s for s in solved}
     warnings = analysis.warnings + tuple(refinement_note(name, refinement, by_name[name])

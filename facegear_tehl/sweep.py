@@ -51,7 +51,7 @@ from facegear_tehl.ehl.tuning import convergence_bands
 from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
 from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.results import RunResult
-from facegear_tehl.run import ehl_solver
+from facegear_tehl.run import ehl_checks, ehl_solver
 from facegear_tehl.schema import CaseError, check
 from facegear_tehl.settings import SolverSettings
 from facegear_tehl.solution import Field, PointSolution
@@ -226,7 +226,8 @@ def run_sweep(
     targeted: list[PointSolution] = []
     if case.solver.accuracy is not None:  # the point solved to the accuracy target, against the sweep's f*
         targeted = solve_to_accuracy([SolveTask(replace(target, name=f"{target.name}@accuracy"), case.lubricant,
-                                                case.solver)], solver or ehl_solver(), jobs=jobs, progress=progress)
+                                                case.solver)], solver or ehl_solver(),
+                                      checks=None if solver else ehl_checks(), jobs=jobs, progress=progress)
         overrides["accuracy"] = case.solver.accuracy
     run = RunResult(
         case=case,

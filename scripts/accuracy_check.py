@@ -7,7 +7,8 @@ second twice as fine (both axes); DEFAULT.h5 from `tehl run CASE` on the case's 
 is the Richardson value of FINE and FINER at each figure's order (second for the film and p_max, first for dT_max
 and mu: ehl/error_bounds.py), or FINE alone where FINER is not given or did not converge. Per point and figure it
 prints the target's value, its bound and verdict, the reference and the target's error against it; per point the grid
-chosen, the solves and their wall time against the default run's (each with its error check's time).
+chosen, the cheaper models taken, the grids solved, the solves and their wall time, and the reported grid's nodes over
+the default run's with its wall time (each with its error check's time).
 """
 
 from __future__ import annotations
@@ -53,18 +54,28 @@ def _seconds(scalars) -> float:
     return scalars["wall_time"] + scalars.get("error_check_time", 0.0)
 
 
+MODEL_CHOICES = ("thermal", "thermal_layers", "rheology", "model")  # the choices of a cheaper model (the rest: grids)
+
+
 def cost_rows(target, default) -> list[list[str]]:
-    """One row per point: the grid chosen, the models, the solves, their wall time and the default run's."""
+    """One row per point: the grid chosen, the cheaper models taken, the grids solved, their wall time, and the
+    reported grid's nodes over the default run's (as solved) with its wall time."""
     rows = []
     for point, solved in target.points.items():
         record = solved.accuracy
         grid = next(c.chosen for c in record.choices if c.what == "grid")
-        models = "; ".join(f"{c.what} {c.chosen}" for c in record.choices if c.what not in ("grid", "model"))
-        default_time = "-" if default is None else f"{_seconds(default.points[point].scalars):.1f}"
-        default_grid = "-" if default is None else (f"{default.points[point].scalars['grid']:.0f} x "
-                                                    f"{default.points[point].scalars['grid_y']:.0f}")
-        rows.append([point, grid, models, str(len(record.steps)), f"{record.wall_time:.1f}", default_grid,
-                     default_time, record.stop])
+        taken = [c for c in record.choices if c.what in MODEL_CHOICES and c.chosen != "as the case"]
+        models = "; ".join(f"{c.what} {c.chosen}" for c in taken) or "the case's"
+        grids = ", ".join(s.grid + ("" if s.outcome == "converged" else f" ({s.outcome})") for s in record.steps
+                          if not s.purpose.startswith("model check"))
+        default_time, default_grid, nodes = "-", "-", "-"
+        if default is not None:
+            scalars = default.points[point].scalars
+            default_time = f"{_seconds(scalars):.1f}"
+            default_grid = f"{scalars['grid']:.0f} x {scalars['grid_y']:.0f}"
+            nodes = f"{record.nodes / (scalars['grid'] * scalars['grid_y']):.2g}"
+        rows.append([point, grid, models, grids, str(len(record.steps)), f"{record.wall_time:.1f}", default_grid,
+                     nodes, default_time, record.stop])
     return rows
 
 
@@ -82,8 +93,8 @@ def main() -> None:
     print(format_table(["point", "figure", "value (SI)", "bound %", "verdict", "reference", "error %"],
                        figure_rows(target, fine, finer)))
     print()
-    print(format_table(["point", "grid chosen", "models", "solves", "wall s", "default grid", "default wall s", "stop"],
-                       cost_rows(target, default)))
+    print(format_table(["point", "grid chosen", "models", "grids solved", "solves", "wall s", "default grid",
+                        "nodes / default", "default wall s", "stop"], cost_rows(target, default)))
 
 
 if __name__ == "__main__":

@@ -3,8 +3,9 @@ f(nx, ny) = f* m (1 + C_x h_x^p + C_y h_y^p), h = 1/(n - 1), p its order (2 for 
 model's factor; it reports the estimates and bounds as the solver does: along x as its hierarchy (Richardson against
 nx coarser by two, both axes on a square grid), along y as its y-check (against (ny + 1)/2 rows; none below the
 coarsest grid), and the bound and unresolved flags of ehl/error_bounds.py from them. The true error is then known, so
-the chosen grid and the verdicts are checked against it; and the settings' validation (solver.accuracy,
---accuracy)."""
+the chosen grid, the grids solved on the way (the plan's jumps, one doubling after a failure or past the time budget)
+and the verdicts are checked against grids computed here from the analytic error; the model checks against the
+saving rule; and the settings' validation (solver.accuracy, --accuracy)."""
 
 from __future__ import annotations
 
@@ -15,6 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from facegear_tehl import accuracy_target
 from facegear_tehl.accuracy_record import Verdict, accuracy_from_dict, accuracy_lines, accuracy_to_dict
 from facegear_tehl.accuracy_target import figure_bound, solve_to_accuracy
 from facegear_tehl.case import ACCURACY_RANGE, load_case
@@ -46,12 +48,13 @@ class AnalyticSolver:
     factors: dict = field(default_factory=dict)
     fails_from: int = 10**9
     seconds_per_node: float = 1e-5
+    first_order_scale: float = 1e-3  # the first-order figures' coefficients over the film's
     grids: list = field(default_factory=list)
     seconds: list = field(default_factory=list)
 
     def value(self, name: str, nx: int, ny: int, settings, lubricant) -> float:
         order = ORDERS[name]
-        scale = 1.0 if order == 2 else 1e-3  # the first-order figures' coefficients a thousandth of the film's
+        scale = 1.0 if order == 2 else self.first_order_scale
         model = (self.factors.get(("thermal", str(settings.thermal)), 1.0)
                  * self.factors.get(("layers", settings.thermal_layers), 1.0)
                  * self.factors.get(("rheology", lubricant.rheology), 1.0))
@@ -103,7 +106,8 @@ def _true_error(solver: AnalyticSolver, solution: PointSolution, name: str) -> f
 
 def _smallest_grid(c: float, target: float, start: int = TUNING.accuracy_start_grid, order: int = 2) -> int:
     """The first grid from `start` whose bound, F_s (Roache 1994) times the two-grid Richardson estimate of the
-    analytic error along the refined axis, is within `target`: the grid the target must stop on."""
+    analytic error along the refined axis, is within `target` (computed from the analytic error on each grid, not
+    from the plan's h^p extrapolation)."""
     n = start
     while True:
         fine, coarse = 1 + c / (n - 1) ** order, 1 + c / ((n + 1) // 2 - 1) ** order
@@ -112,12 +116,17 @@ def _smallest_grid(c: float, target: float, start: int = TUNING.accuracy_start_g
         n = 2 * n - 1
 
 
-def test_the_target_stops_on_the_first_x_grid_whose_bound_meets_it_and_the_true_error_is_within_it():
+MARGIN = TUNING.accuracy_jump_margin
+
+
+def test_the_target_jumps_to_the_first_grid_the_error_model_predicts_within_the_margin_and_meets_it_there():
+    """One solve after the start: on the first x grid whose analytic error's bound is within the margin of the
+    target (e ~ h^p from the start's estimate), not every grid between; the true error is within the target."""
     solver = AnalyticSolver(c_x=200.0)
     (solution,) = solve_to_accuracy([_task()], solver, jobs=1)
-    expected = _smallest_grid(200.0, 0.01)
-    assert expected > TUNING.accuracy_start_grid  # the case must need refining
-    assert solution.scalar("grid") == expected and solution.scalar("grid_y") == 33  # y kept at the start's aspect
+    expected = _smallest_grid(200.0, MARGIN * 0.01)
+    assert expected > 2 * TUNING.accuracy_start_grid - 1  # more than one doubling: a jump
+    assert solver.grids == [(TUNING.accuracy_start_grid, 33), (expected, 33)]  # y kept at the start's aspect
     for name in ("h_c", "h_min"):
         assert _true_error(solver, solution, name) <= 0.01
     record = solution.accuracy
@@ -125,9 +134,33 @@ def test_the_target_stops_on_the_first_x_grid_whose_bound_meets_it_and_the_true_
     assert verdicts == {"h_c": Verdict.MET, "h_min": Verdict.MET, "p_max": Verdict.UNRESOLVED,
                         "dT_max": Verdict.MET, "mu": Verdict.MET}
     assert record.stop == "every bounded figure within the target"
+    refine = next(c for c in record.choices if c.what == "refine")
+    assert refine.chosen == f"{expected} x 33" and "predicted to bound h_c" in refine.reason
     # the cost: every solve's wall time with its error check's
     assert solution.scalar("wall_time") == pytest.approx(sum(s.seconds for s in record.steps))
     assert record.wall_time == pytest.approx(sum(solver.seconds))
+
+
+def test_a_first_order_figure_is_planned_at_the_second_order_and_never_past_the_first_grid_that_meets_it():
+    """dT_max and mu with a first-order error (c = 2): the plan from each solve assumes h^2, so it stops short of a
+    first-order error's grid and plans again from the finer solve; it never solves past the first x grid whose bound
+    meets the target, and ends on it."""
+    solver = AnalyticSolver(c_x=2.0, first_order_scale=1.0)
+    (solution,) = solve_to_accuracy([_task()], solver, jobs=1)
+    first = _smallest_grid(2.0, 0.01, order=1)
+    assert first == 1025
+    assert max(nx for nx, _ in solver.grids) == first and solution.scalar("grid") == first
+    assert len(solver.grids) < 4  # fewer solves than stepping 129, 257, 513, 1025
+    assert {f.name: f.verdict for f in solution.accuracy.figures}["dT_max"] is Verdict.MET
+
+
+def test_a_start_grid_that_meets_the_target_ends_the_point_without_model_checks():
+    solver = AnalyticSolver(c_x=1.0, factors={("thermal", "reduced"): 1.0})
+    (solution,) = solve_to_accuracy([_task(ThermalMode.FULL, "ree_eyring")], solver, jobs=1)
+    assert solver.grids == [(TUNING.accuracy_start_grid, 33)]
+    reasons = {c.what: c.reason for c in solution.accuracy.choices}
+    assert reasons["thermal"] == "reduced not checked: the start grid meets the target"
+    assert solution.models["thermal"] == "full"
 
 
 def test_a_figure_the_solve_cannot_bound_along_y_is_refined_along_y():
@@ -143,17 +176,23 @@ def test_the_axis_whose_estimate_dominates_is_refined_y_from_the_solves_y_estima
     solver = AnalyticSolver(c_x=0.01, c_y=20.0)
     (solution,) = solve_to_accuracy([_task()], solver, jobs=1)
     assert solution.scalar("grid") == TUNING.accuracy_start_grid  # x never refined
-    assert solution.scalar("grid_y") == _smallest_grid(20.0, 0.01, start=33) > 33
+    assert solution.scalar("grid_y") == _smallest_grid(20.0, MARGIN * 0.01, start=33) > 33
     assert _true_error(solver, solution, "h_c") <= 0.01
     purposes = [s.purpose for s in solution.accuracy.steps]
     assert "refine y" in purposes and "refine x" not in purposes
     assert "y-check" not in purposes  # the solver's own
 
 
+@pytest.fixture
+def paying(monkeypatch):
+    """Cheaper models that save half a solve: a check pays wherever the point goes past its start grid."""
+    monkeypatch.setattr(accuracy_target, "CHEAPER", tuple(replace(c, saving=0.5) for c in accuracy_target.CHEAPER))
+
+
 @pytest.mark.parametrize("effect, taken", [(0.002, True), (0.02, False)])
-def test_a_cheaper_model_is_taken_only_where_its_measured_effect_is_within_the_share(effect, taken):
+def test_a_cheaper_model_is_taken_only_where_its_measured_effect_is_within_the_share(paying, effect, taken):
     factors = {("thermal", "reduced"): 1.0 + effect, ("layers", FEWER): 1.0 + 10 * effect}
-    solver = AnalyticSolver(c_x=1.0, factors=factors)
+    solver = AnalyticSolver(c_x=200.0, factors=factors)
     (solution,) = solve_to_accuracy([_task(ThermalMode.FULL)], solver, jobs=1)
     choices = {c.what: c.chosen for c in solution.accuracy.choices}
     assert choices["thermal"] == ("reduced" if taken else "as the case")
@@ -166,9 +205,9 @@ def test_a_cheaper_model_is_taken_only_where_its_measured_effect_is_within_the_s
     assert figure.bound <= 0.01 and _true_error(solver, solution, "h_c") <= 0.01 + 1e-12
 
 
-def test_two_cheaper_models_are_combined_and_their_combination_measured():
-    solver = AnalyticSolver(c_x=1.0, factors={("thermal", "reduced"): 1.05, ("layers", FEWER): 1.001,
-                                          ("rheology", "newtonian"): 1.001})
+def test_two_cheaper_models_are_combined_and_their_combination_measured(paying):
+    solver = AnalyticSolver(c_x=200.0, factors={("thermal", "reduced"): 1.05, ("layers", FEWER): 1.001,
+                                            ("rheology", "newtonian"): 1.001})
     (solution,) = solve_to_accuracy([_task(ThermalMode.FULL, "ree_eyring")], solver, jobs=1)
     choices = {c.what: c.chosen for c in solution.accuracy.choices}
     chosen = (choices["thermal"], choices["thermal_layers"], choices["rheology"])
@@ -178,12 +217,89 @@ def test_two_cheaper_models_are_combined_and_their_combination_measured():
     assert figure.model_effect == pytest.approx(1.001**2 - 1.0, rel=1e-9)  # measured, not summed
 
 
-def test_the_grid_cap_stops_the_refinement_with_the_figures_not_met():
+@pytest.mark.parametrize("saving, checked", [(0.15, False), (0.25, True)])
+def test_a_model_check_runs_only_where_its_saving_on_the_predicted_grid_pays_for_it(monkeypatch, saving, checked):
+    """The point is predicted to end on 513 x 33, four times the start's nodes: a check (one start solve) pays for
+    itself where the model saves at least 1/(1 + 4) of a solve."""
+    cheaper = tuple(replace(c, saving=saving) for c in accuracy_target.CHEAPER)
+    monkeypatch.setattr(accuracy_target, "CHEAPER", cheaper)
+    solver = AnalyticSolver(c_x=200.0, factors={("thermal", "reduced"): 1.0})
+    (solution,) = solve_to_accuracy([_task(ThermalMode.FULL)], solver, jobs=1)
+    assert _smallest_grid(200.0, MARGIN * 0.01) == 513
+    purposes = [s.purpose for s in solution.accuracy.steps]
+    assert ("model check: thermal" in purposes) is checked
+    reasons = {c.what: c.reason for c in solution.accuracy.choices}
+    assert ("not checked" in reasons["thermal"]) is (not checked)
+
+
+def _analytic_bound(c_x: float, c_y: float, nx: int, ny: int, order: int = 2) -> float:
+    """h_c's bound on nx x ny as the solver reports it there: F_s times the two-grid Richardson estimates of the
+    analytic error along x and along y."""
+    def value(mx: int, my: int) -> float:
+        return 1.0 + c_x / (mx - 1) ** order + c_y / (my - 1) ** order
+
+    e_x = richardson_error(value(nx, ny), value((nx + 1) // 2, ny), order)
+    e_y = richardson_error(value(nx, ny), value(nx, (ny + 1) // 2), order)
+    return 3.0 * (abs(e_x) + abs(e_y))
+
+
+def test_a_figure_predicted_above_the_target_even_on_the_largest_grid_is_not_refined_for():
     solver = AnalyticSolver(c_x=1e4)
     (solution,) = solve_to_accuracy([_task()], solver, jobs=1)
-    assert solution.scalar("grid") == TUNING.accuracy_max_grid
-    assert "largest grid" in solution.accuracy.stop
+    assert _analytic_bound(1e4, 0.0, TUNING.accuracy_max_grid, 33) > 0.01  # truly out of reach
+    assert solution.scalar("grid") < TUNING.accuracy_max_grid  # the largest grid not solved for nothing
+    assert "predicted within the target even on the largest grid" in solution.accuracy.stop
     assert {f.name: f.verdict for f in solution.accuracy.figures}["h_c"] is Verdict.NOT_MET
+
+
+@dataclass
+class CoolingSolver(AnalyticSolver):
+    """The analytic solver with a film that cools through its outlet by `cooling` K, its dT_min unresolved (an
+    x-estimate of 20 %, above the asymptotic range): the error bounds' compression rule applies where the cooling is at
+    least the rise dT_max (50 K)."""
+
+    cooling: float = 100.0
+
+    def value(self, name: str, nx: int, ny: int, settings, lubricant) -> float:
+        """dT_max's error coefficient 3000 times the other first-order figure's (mu's)."""
+        value = super().value(name, nx, ny, settings, lubricant)
+        return EXACT[name] + 3000.0 * (value - EXACT[name]) if name == "dT_max" else value
+
+    def __call__(self, point, lubricant, settings) -> PointSolution:
+        solution = super().__call__(point, lubricant, settings)
+        scalars = {**solution.scalars, "dT_min": (-self.cooling, "K"), "error_estimate_dT_min": (0.2, "1")}
+        e_y = {k[len("error_estimate_y_"):]: v[0] for k, v in scalars.items() if k.startswith("error_estimate_y_")}
+        cooled = replace(solution, scalars=scalars)
+        return replace(cooled, scalars={**scalars, **bounds(cooled, e_y | {"dT_min": 0.0})})
+
+
+@pytest.mark.parametrize(("cooling", "refined"), [(100.0, False), (10.0, True)])
+def test_a_compression_held_dt_max_is_not_refined_for(cooling, refined):
+    """dT_max's x-estimate on the start grid is too large for the target (first order, about 2 %): a film that cools
+    through its outlet at least as much as it heats, its cold spot unresolved, has its dT_max unresolved by the
+    error bounds (compression_held) and the target does not refine for it, as for p_max; a film that cools less is
+    refined until dT_max is within the target."""
+    solver = CoolingSolver(cooling=cooling)
+    (solution,) = solve_to_accuracy([_task()], solver, jobs=1)
+    verdicts = {f.name: f.verdict for f in solution.accuracy.figures}
+    assert (len(solver.grids) > 1) == refined
+    assert verdicts["dT_max"] is (Verdict.MET if refined else Verdict.UNRESOLVED)
+    assert verdicts["h_c"] is Verdict.MET
+
+
+def test_where_x_alone_cannot_meet_the_target_y_is_refined_with_it():
+    """x reaches its largest grid, 1025, and y goes on: the grid is the one of fewest nodes among the doublings of
+    129 x 33 on which the analytic bound is within the margin of the target."""
+    c_x, c_y = 1500.0, 100.0
+    solver = AnalyticSolver(c_x=c_x, c_y=c_y)
+    (solution,) = solve_to_accuracy([_task()], solver, jobs=1)
+    grids = [((129 - 1) * 2**i + 1, (33 - 1) * 2**j + 1) for i in range(4) for j in range(5)]
+    expected = min((g for g in grids if _analytic_bound(c_x, c_y, *g) <= MARGIN * 0.01), key=lambda g: g[0] * g[1])
+    assert expected[0] == TUNING.accuracy_max_grid and expected[1] > 33
+    assert (solution.scalar("grid"), solution.scalar("grid_y")) == expected
+    assert solver.grids == [(129, 33), expected]
+    assert _true_error(solver, solution, "h_c") <= 0.01
+    assert {f.name: f.verdict for f in solution.accuracy.figures}["h_c"] is Verdict.MET
 
 
 def test_the_time_budget_stops_the_refinement_before_a_grid_that_would_pass_it():
@@ -193,11 +309,23 @@ def test_the_time_budget_stops_the_refinement_before_a_grid_that_would_pass_it()
     assert "time budget" in solution.accuracy.stop and "257 x 33 not started" in solution.accuracy.stop
 
 
-def test_a_finer_solve_that_does_not_converge_keeps_the_coarser_one_and_refines_both_axes_next():
+def test_a_predicted_grid_past_the_time_budget_gives_way_to_one_doubling_within_it():
+    """Predicted 513 x 33 (four times the start's nodes) would pass the budget; 257 x 33 (twice) fits and is solved,
+    and the point stops there before the grid after it."""
+    solver = AnalyticSolver(c_x=600.0, seconds_per_node=1e-3)  # 129 x 33: 5.3 s with its check
+    (solution,) = solve_to_accuracy([_task(time_budget=20.0)], solver, jobs=1)
+    assert _smallest_grid(600.0, MARGIN * 0.01) == 513
+    assert solver.grids == [(129, 33), (257, 33)]
+    assert "time budget" in solution.accuracy.stop
+
+
+def test_a_finer_solve_that_does_not_converge_keeps_the_coarser_one_and_refines_one_doubling_at_a_time():
+    """The predicted 513 x 33 fails: one doubling from 129 x 33 (257 x 33); its next along x would be the failed
+    513 x 33 again: both axes instead, 513 x 65, which fails too: the converged 257 x 33 is kept."""
     solver = AnalyticSolver(c_x=600.0, fails_from=513)
     (solution,) = solve_to_accuracy([_task()], solver, jobs=1)
-    assert solution.converged and solution.scalar("grid") == 257
-    assert solver.grids[-2:] == [(513, 33), (513, 65)]  # x alone, then both (failing as well here)
+    assert solution.converged and (solution.scalar("grid"), solution.scalar("grid_y")) == (257, 33)
+    assert solver.grids == [(129, 33), (513, 33), (257, 33), (513, 65)]
     assert solution.accuracy.stop == ("513 x 65 ended not converged (after 513 x 33 ended not converged); the "
                                       "converged 257 x 33 solution kept")
 
@@ -278,7 +406,7 @@ def test_the_sweep_compares_the_target_with_its_extrapolation():
     assert scalars["h_c_accuracy_error"] == pytest.approx(_true_error(solver, targeted, "h_c"), rel=1e-6)
     assert abs(scalars["h_c_accuracy_error"]) <= 0.01
     text = report(swept.run.sweep, scalars)
-    assert "accuracy target 1 %: solved on 257 x 33" in text
+    assert f"accuracy target 1 %: solved on {_smallest_grid(200.0, MARGIN * 0.01)} x 33" in text
 
 
 def test_the_study_sets_the_accuracy_in_every_variant_over_its_set(tmp_path):
