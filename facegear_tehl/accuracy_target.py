@@ -37,7 +37,6 @@ import math
 
 from facegear_tehl.accuracy_record import AccuracyRecord, Choice, FigureBound, SolveStep, Verdict
 from facegear_tehl.ehl.domain import solution_domain
-from facegear_tehl.ehl.error_bounds import compression_held
 from facegear_tehl.ehl.richardson import ORDER
 from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.ehl.tuning import TUNING
@@ -80,6 +79,8 @@ def never_refined(solution: PointSolution, name: str) -> bool:
     compression_held: the hot spot grows with the spike under refinement, as p_max does)."""
     if name in NEVER_BOUNDED:
         return True
+    from facegear_tehl.ehl.error_bounds import compression_held  # here: the command line loads no solver kernels
+
     flags = {k: solution.scalars.get(f"unresolved_{k}", (0.0, "1"))[0] != 0.0 for k in ("dT_max", "dT_min")}
     return name == "dT_max" and flags["dT_max"] and compression_held(solution, flags["dT_min"])
 
