@@ -616,16 +616,28 @@ def info_text(result: Result, si: bool = False) -> str:
         lines += ["", CYCLE_TITLE, cycle_table(result), cycle_summary(result)]
     if result.verdict:
         lines += ["", verdict_text(result)]
-    for p in points:
-        if p.record is not None:
-            lines += ["", *record_lines(p.name, p.record)]
-        if p.accuracy is not None:
-            lines += ["", *accuracy_lines(p.name, p.accuracy)]
+    lines += _point_sections(points)
     if result.contact_scalars:
         contact_rows = [_scalar_row(key, result.contact_units[key], [value], abs(value), si)
                         for key, value in result.contact_scalars.items()]
         lines += ["", format_table(["contact", "unit", "value"], contact_rows)]
     return "\n".join(lines)
+
+
+def _point_sections(points: list[PointResult]) -> list[str]:
+    """The thermal model `thermal: auto` chose at each point and why, then each point's solve record and accuracy
+    record, for `tehl info`."""
+    lines = []
+    choices = [f"  {p.name}: {p.models['thermal']} ({p.models['thermal_reason']})" for p in points
+               if p.models.get("thermal_reason", "").startswith("auto")]
+    if choices:
+        lines += ["", "thermal model chosen by `thermal: auto` (docs/accuracy.md):", *choices]
+    for p in points:
+        if p.record is not None:
+            lines += ["", *record_lines(p.name, p.record)]
+        if p.accuracy is not None:
+            lines += ["", *accuracy_lines(p.name, p.accuracy)]
+    return lines
 
 
 def _unresolved_cells(key: str, points: list[PointResult], row: list[str]) -> list[str]:

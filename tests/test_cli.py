@@ -432,6 +432,19 @@ def test_info_shows_round_off_as_zero(tmp_path):
     assert _invoke("info", path, "--si").stdout.count("1.1e-18") == 1
 
 
+def test_info_says_which_thermal_model_auto_chose_and_why(tmp_path):
+    """A point solved with `thermal: auto` lists the model it ran and the reason the solver gave (ehl/thermal.py
+    thermal_choice); a point whose model was given (`solver.thermal: full`) adds no such line."""
+    run = synthetic.run_result()
+    point = run.points[0]
+    reason = "auto: heating number G 0.0021; predicted error of off 0.75 % < 1 %"
+    auto = replace(point, models={**point.models, "thermal": "off", "thermal_reason": reason})
+    text = _invoke("info", write_result(replace(run, points=(auto,)), tmp_path / "auto.h5")).stdout
+    assert f"  contact: off ({reason})" in text.splitlines()
+    given = replace(point, models={**point.models, "thermal": "full", "thermal_reason": "solver.thermal: full"})
+    assert "thermal: auto" not in _invoke("info", write_result(replace(run, points=(given,)), tmp_path / "g.h5")).stdout
+
+
 @pytest.mark.parametrize("content", [b"not hdf5", None])
 def test_info_rejects_what_is_not_a_result(tmp_path, content):
     path = tmp_path / "r.h5"
