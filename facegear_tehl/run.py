@@ -39,7 +39,7 @@ def ehl_checks() -> StagedSolver:
     return UNBOUNDED
 
 
-def _solved_to_accuracy(tasks: Sequence[SolveTask], solver: Solver | StagedSolver | None, jobs: int | None,
+def solved_to_accuracy(tasks: Sequence[SolveTask], solver: Solver | StagedSolver | None, jobs: int | None,
                         progress: Progress | None) -> list[PointSolution]:
     """The tasks solved to their accuracy target; the model checks by the EHL solver without error bounds unless a
     stand-in `solver` is given (it solves them too)."""
@@ -89,7 +89,7 @@ def run_case(
         solver = solver or (path_solver(case) if points is None else ehl_solver())
         solved, failed, refined = solve_refining(tasks, solver, jobs=jobs, progress=progress)
     else:  # the grid and models the accuracy target chooses, each point's record holding them
-        solved, refined = _solved_to_accuracy(tasks, solver, jobs, progress), {}
+        solved, refined = solved_to_accuracy(tasks, solver, jobs, progress), {}
         failed = tuple(i for i, s in enumerate(solved) if s.outcome is Outcome.FAILED)
         overrides["accuracy"] = case.solver.accuracy
     by_name = {s.name: s for s in solved}

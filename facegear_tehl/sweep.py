@@ -40,7 +40,6 @@ from pathlib import Path
 
 import numpy as np
 
-from facegear_tehl.accuracy_target import solve_to_accuracy
 from facegear_tehl.atomic_files import remove_stale, temporary_beside
 from facegear_tehl.case import THERMAL_MODELS, Case
 from facegear_tehl.contact import ContactPoint
@@ -51,7 +50,7 @@ from facegear_tehl.ehl.tuning import convergence_bands
 from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
 from facegear_tehl.points import contact_analysis, select_points
 from facegear_tehl.results import RunResult
-from facegear_tehl.run import ehl_checks, ehl_solver
+from facegear_tehl.run import ehl_solver, solved_to_accuracy
 from facegear_tehl.schema import CaseError, check
 from facegear_tehl.settings import SolverSettings
 from facegear_tehl.solution import Field, PointSolution
@@ -225,9 +224,8 @@ def run_sweep(
         overrides["thermal"] = thermal
     targeted: list[PointSolution] = []
     if case.solver.accuracy is not None:  # the point solved to the accuracy target, against the sweep's f*
-        targeted = solve_to_accuracy([SolveTask(replace(target, name=f"{target.name}@accuracy"), case.lubricant,
-                                                case.solver)], solver or ehl_solver(),
-                                      checks=None if solver else ehl_checks(), jobs=jobs, progress=progress)
+        targeted = solved_to_accuracy([SolveTask(replace(target, name=f"{target.name}@accuracy"), case.lubricant,
+                                                 case.solver)], solver, jobs, progress)
         overrides["accuracy"] = case.solver.accuracy
     run = RunResult(
         case=case,
