@@ -44,19 +44,21 @@ class Choice:
 @dataclass(frozen=True)
 class SolveStep:
     """One solve the target ran for the point: grid asked, model, why (start, model check, refine x|y|xy), its
-    outcome and wall time with its error check's (s)."""
+    outcome, and its wall and CPU time with its error check's (s; the time budget reads the CPU time)."""
 
     grid: str
     model: str
     purpose: str
     outcome: str
     seconds: float
+    cpu_seconds: float
 
 
 @dataclass(frozen=True)
 class AccuracyRecord:
     """The accuracy target of one point: the target (relative), the figures' bounds, the choices, the solves, why the
-    refinement stopped, and the cost: wall time of all solves (s) and the reported grid's nodes against the case's."""
+    refinement stopped, and the cost: wall and CPU time of all solves (s) and the reported grid's nodes against the
+    case's."""
 
     target: float
     figures: tuple[FigureBound, ...]
@@ -70,6 +72,10 @@ class AccuracyRecord:
     def wall_time(self) -> float:
         return sum(step.seconds for step in self.steps)
 
+    @property
+    def cpu_time(self) -> float:
+        return sum(step.cpu_seconds for step in self.steps)
+
 
 def accuracy_to_dict(record: AccuracyRecord) -> dict[str, object]:
     """The record as plain data (enums by their words; an unresolved bound as None), for the file and JSON."""
@@ -79,7 +85,7 @@ def accuracy_to_dict(record: AccuracyRecord) -> dict[str, object]:
                      "model_effect": f.model_effect, "verdict": f.verdict.value} for f in record.figures],
         "choices": [{"what": c.what, "chosen": c.chosen, "reason": c.reason} for c in record.choices],
         "steps": [{"grid": s.grid, "model": s.model, "purpose": s.purpose, "outcome": s.outcome,
-                   "seconds": s.seconds} for s in record.steps],
+                   "seconds": s.seconds, "cpu_seconds": s.cpu_seconds} for s in record.steps],
         "stop": record.stop,
         "nodes": record.nodes,
         "case_nodes": record.case_nodes,
@@ -87,12 +93,13 @@ def accuracy_to_dict(record: AccuracyRecord) -> dict[str, object]:
 
 
 def accuracy_from_dict(data: dict[str, object]) -> AccuracyRecord:
-    """The record from `accuracy_to_dict`'s plain data."""
+    """The record from `accuracy_to_dict`'s plain data (a step without `cpu_seconds`, written before it was kept:
+    its wall time)."""
     figures = tuple(FigureBound(str(f["name"]), math.nan if f["bound"] is None else float(f["bound"]),
                                 float(f["model_effect"]), Verdict(f["verdict"])) for f in data["figures"])
     choices = tuple(Choice(str(c["what"]), str(c["chosen"]), str(c["reason"])) for c in data["choices"])
     steps = tuple(SolveStep(str(s["grid"]), str(s["model"]), str(s["purpose"]), str(s["outcome"]),
-                            float(s["seconds"])) for s in data["steps"])
+                            float(s["seconds"]), float(s.get("cpu_seconds", s["seconds"]))) for s in data["steps"])
     return AccuracyRecord(float(data["target"]), figures, choices, steps, str(data["stop"]), int(data["nodes"]),
                           int(data["case_nodes"]))
 
@@ -106,8 +113,10 @@ def accuracy_lines(name: str, record: AccuracyRecord) -> list[str]:
         model = f" (model {100 * figure.model_effect:.2g} %)" if figure.model_effect > 0.0 else ""
         lines.append(f"  figure   {figure.name}: {bound}{model}, {figure.verdict.value}")
     lines += [f"  chose    {c.what} {c.chosen}: {c.reason}" for c in record.choices]
-    lines += [f"  solved   {s.grid}, {s.model}, {s.purpose}: {s.outcome}, {s.seconds:.2f} s" for s in record.steps]
-    lines.append(f"  cost     {len(record.steps)} solves, {record.wall_time:.1f} s; reported grid {record.nodes} "
+    lines += [f"  solved   {s.grid}, {s.model}, {s.purpose}: {s.outcome}, {s.seconds:.2f} s ({s.cpu_seconds:.2f} s "
+              "CPU)" for s in record.steps]
+    lines.append(f"  cost     {len(record.steps)} solves, {record.wall_time:.1f} s ({record.cpu_time:.1f} s CPU); "
+                 f"reported grid {record.nodes} "
                  f"nodes, the case's grid {record.case_nodes} ({record.nodes / record.case_nodes:.2g}x)")
     return lines
 
@@ -117,4 +126,4 @@ def accuracy_summary(name: str, record: AccuracyRecord) -> str:
     grid = next((c.chosen for c in record.choices if c.what == "grid"), "")
     figures = ", ".join(f"{f.name} " + ("unresolved" if math.isnan(f.bound) else
                                         f"{100 * f.bound:.2g} % {f.verdict.value}") for f in record.figures)
-    return f"{name}: {grid}; {figures}; {len(record.steps)} solves, {record.wall_time:.1f} s"
+    return f"{name}: {grid}; {figures}; {len(record.steps)} solves, {record.wall_time:.1f} s ({record.cpu_time:.1f} s CPU)"

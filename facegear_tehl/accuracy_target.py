@@ -25,8 +25,8 @@ a bound, has none and is refined for while the grid and the time allow. The axis
 estimates along x (`error_estimate_<name>`) and y (`error_estimate_y_<name>`). p_max is never bounded: the pressure
 maximum is the outlet spike, which grows with every refinement on practical grids (Venner & Lubrecht 2000, ch. 8): it
 is reported as achieved, "unresolved", and never refined for; so is a dT_max the solve reports unresolved because the
-film's compression sets its temperatures through the outlet spike (`never_refined`). A solve's cost is its wall time
-and its error check's (`error_check_time`).
+film's compression sets its temperatures through the outlet spike (`never_refined`). A solve's cost is its wall and
+CPU time and its error check's (`error_check_time`, `error_check_cpu_time`); the time budget reads the CPU time.
 """
 
 from __future__ import annotations
@@ -39,6 +39,7 @@ from facegear_tehl.accuracy_record import AccuracyRecord, Choice, FigureBound, S
 from facegear_tehl.ehl.domain import solution_domain
 from facegear_tehl.ehl.richardson import ORDER
 from facegear_tehl.ehl.scaling import scaling_for
+from facegear_tehl.ehl.stopwatch import Spent, spent_on
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.grid_prediction import Estimate, predicted_grid, reachable
 from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
@@ -224,15 +225,17 @@ class Progressing:
                 if not never_refined(self.solution, name) and bound.bound + self.effects.get(name, 0.0) > target}
 
 
-def solve_seconds(solution: PointSolution) -> float:
-    """Wall time of a solve with its error check's (s; ehl/error_bounds.py keeps that apart from `wall_time`)."""
-    scalars = solution.scalars
-    return scalars.get("wall_time", (0.0, "s"))[0] + scalars.get("error_check_time", (0.0, "s"))[0]
+def solve_seconds(solution: PointSolution) -> Spent:
+    """Wall and CPU time of a solve with its error check's (s; ehl/error_bounds.py keeps that apart from the solve's
+    own; a solution without CPU times counts its wall times)."""
+    check = solution.scalars.get("error_check_time", (0.0, "s"))[0]
+    return spent_on(solution) + Spent(check, solution.scalars.get("error_check_cpu_time", (check, "s"))[0])
 
 
 def step(task: SolveTask, solution: PointSolution, purpose: str) -> SolveStep:
-    return SolveStep(grid_words(task.settings), model_words(task), purpose, solution.outcome.value,
-                     solve_seconds(solution))
+    spent = solve_seconds(solution)
+    return SolveStep(grid_words(task.settings), model_words(task), purpose, solution.outcome.value, spent.wall,
+                     spent.cpu)
 
 
 def refined_axis(missing: Mapping[str, Bound]) -> str:
@@ -255,12 +258,13 @@ def refined_settings(settings: SolverSettings, axis: str) -> SolverSettings | No
 
 
 def over_budget(point: Progressing, finer: SolverSettings) -> bool:
-    """The finer solve would pass the point's time budget: time spent plus the last solve's time with its error check
-    (`solve_seconds`) scaled by the finer grid's nodes (multigrid work grows with the nodes)."""
+    """The finer solve would pass the point's time budget: the CPU time spent plus the last solve's with its error
+    check (`solve_seconds`) scaled by the finer grid's nodes (multigrid work grows with the nodes). CPU time, as the
+    refinement of run.py reads it (ehl/stopwatch.py): a loaded machine does not change the grid a point ends on."""
     settings = point.task.settings
-    spent = sum(s.seconds for s in point.steps)
+    spent = sum(s.cpu_seconds for s in point.steps)
     ratio = (finer.grid * finer.nodes_y) / (settings.grid * settings.nodes_y)
-    return spent + ratio * solve_seconds(point.solution) > settings.time_budget
+    return spent + ratio * solve_seconds(point.solution).cpu > settings.time_budget
 
 
 # solves tasks side by side, each with its purpose (for the progress lines), in task order
@@ -502,7 +506,7 @@ def finished(point: Progressing, case_task: SolveTask, target: float) -> PointSo
     grid = Choice("grid", f"{grid_words(point.task.settings)} ({solved} solved)", point.stop)
     record = AccuracyRecord(target, tuple(figures), point.choices + (grid,), point.steps, point.stop,
                             _nodes(solution), case_nodes(case_task))
-    scalars = {**solution.scalars, "wall_time": (record.wall_time, "s")}
+    scalars = {**solution.scalars, **Spent(record.wall_time, record.cpu_time).scalars()}
     return replace(solution, scalars=scalars, accuracy=record)
 
 

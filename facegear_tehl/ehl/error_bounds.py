@@ -187,16 +187,17 @@ def bounds(solution: PointSolution, e_y: dict[str, float],
 
 def with_error_bounds(solution: PointSolution, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
                       solve: Solve, coarse: CoarseStage | None = None) -> PointSolution:
-    """The solution with its error bounds, unresolved flags, y-estimates and the check's time (`error_check_time`,
-    s; apart from `wall_time`, which the grid refinement's time budget reads as the solve's own); a solution without a
-    film is returned as it is, one that did not converge with every figure unresolved and no check."""
+    """The solution with its error bounds, unresolved flags, y-estimates and the check's wall and CPU time
+    (`error_check_time`, `error_check_cpu_time`, s; apart from the solve's own `wall_time` and `cpu_time`); a solution
+    without a film is returned as it is, one that did not converge with every figure unresolved and no check."""
     if "h_min" not in solution.scalars or "film_thickness" not in solution.fields:
         return solution
-    clock = time.perf_counter()
+    clock, cpu = time.perf_counter(), time.process_time()
     e_y = {}
     if solution.outcome is Outcome.CONVERGED:
         e_y = y_estimates(solution, point, lubricant, settings, solve, coarse)
     extra = bounds(solution, e_y, feature_nodes(solution, lubricant.inlet_temperature))
     extra |= {f"error_estimate_y_{k}": (v, "1") for k, v in e_y.items() if math.isfinite(v)}
     extra["error_check_time"] = (time.perf_counter() - clock, "s")
+    extra["error_check_cpu_time"] = (time.process_time() - cpu, "s")
     return replace(solution, scalars={**solution.scalars, **extra})
