@@ -126,4 +126,5 @@ def accuracy_summary(name: str, record: AccuracyRecord) -> str:
     grid = next((c.chosen for c in record.choices if c.what == "grid"), "")
     figures = ", ".join(f"{f.name} " + ("unresolved" if math.isnan(f.bound) else
                                         f"{100 * f.bound:.2g} % {f.verdict.value}") for f in record.figures)
-    return f"{name}: {grid}; {figures}; {len(record.steps)} solves, {record.wall_time:.1f} s ({record.cpu_time:.1f} s CPU)"
+    cost = f"{record.wall_time:.1f} s ({record.cpu_time:.1f} s CPU)"
+    return f"{name}: {grid}; {figures}; {len(record.steps)} solves, {cost}"

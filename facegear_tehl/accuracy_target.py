@@ -32,7 +32,7 @@ CPU time and its error check's (`error_check_time`, `error_check_cpu_time`); the
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 import math
 
 from facegear_tehl.accuracy_record import AccuracyRecord, Choice, FigureBound, SolveStep, Verdict
@@ -201,6 +201,24 @@ def _applied(task: SolveTask, taken: Sequence[Cheaper]) -> SolveTask:
 
 
 @dataclass(frozen=True)
+class Spans:
+    """The grid a solution was solved on (as asked: nx x ny) and the nodes across each local figure's feature along x
+    and y (error_bounds.feature_runs)."""
+
+    grid: int
+    grid_y: int
+    runs: Mapping[str, tuple[int, int]]
+
+    def short(self, name: str) -> str:
+        """The axes along which figure `name`'s feature spans fewer than TUNING.feature_nodes nodes ("": none)."""
+        runs = self.runs.get(name, (TUNING.feature_nodes, TUNING.feature_nodes))
+        return "x" * (runs[0] < TUNING.feature_nodes) + "y" * (runs[1] < TUNING.feature_nodes)
+
+
+FEATURES = {"h_min": "the lowest film's basin", "dT_max": "the hot spot"}  # the local figures' features
+
+
+@dataclass(frozen=True)
 class Progressing:
     """One point under the target: its task and latest solution, the model's effects, the choices and solves so far,
     and why it stopped ("" while refining)."""
@@ -215,14 +233,27 @@ class Progressing:
     after_jump: str = ""  # the predicted grid, past one doubling, that did not converge: one doubling at a time on
     failed_grids: tuple[tuple[int, int], ...] = ()  # the grids (nx, ny) that did not converge: not solved again
     model_solved: bool = True  # the solution is in the task's model (False: the start's, before a cheaper one)
+    coarser: Spans | None = None  # the features' spans on the converged grid before this one (None: none)
+    beyond_reach: Mapping[str, str] = field(default_factory=dict)  # the figures left unresolved, each with why
 
     def bounds(self) -> dict[str, Bound]:
         return {name: figure_bound(self.solution, name) for name in FIGURES if name in self.solution.scalars}
 
     def missing(self, target: float) -> dict[str, Bound]:
-        """The figures (those never refined for aside) whose bound plus model effect exceeds `target`."""
+        """The figures (those never refined for, or beyond reach, aside) whose bound plus model effect exceeds
+        `target`."""
         return {name: bound for name, bound in self.bounds().items()
-                if not never_refined(self.solution, name) and bound.bound + self.effects.get(name, 0.0) > target}
+                if not never_refined(self.solution, name) and name not in self.beyond_reach
+                and bound.bound + self.effects.get(name, 0.0) > target}
+
+    def spans(self) -> Spans:
+        """The nodes across each local figure's feature on the solution's grid (none without its fields)."""
+        settings, solution = self.task.settings, self.solution
+        if not solution.converged or "film_thickness" not in solution.fields:
+            return Spans(settings.grid, settings.nodes_y, {})
+        from facegear_tehl.ehl.error_bounds import feature_runs  # here: the command line loads no solver kernels
+
+        return Spans(settings.grid, settings.nodes_y, feature_runs(solution, self.task.lubricant.inlet_temperature))
 
 
 def solve_seconds(solution: PointSolution) -> Spent:
@@ -246,6 +277,47 @@ def refined_axis(missing: Mapping[str, Bound]) -> str:
     if math.isinf(along_x) and math.isinf(along_y):
         return "xy"
     return "x" if along_x >= along_y else "y"
+
+
+def out_of_reach(point: Progressing, name: str, bound: Bound, spans: Spans) -> str:
+    """Why no grid within the caps and the time budget can bound figure `name` ("" where one may): it has no bound
+    because its feature spans fewer than TUNING.feature_nodes nodes along an axis (error_bounds.py), and either a grid
+    finer along that axis than the last converged one left the feature on no more nodes there (it narrows with the
+    grid: a feature below the grid spacing, as the outlet spike, is not resolved by refining), or the fewest doublings
+    that could bring it onto TUNING.feature_nodes nodes pass the largest grid or the time budget (a feature across n
+    nodes is narrower than n + 1 spacings, so after k doublings it spans fewer than (n + 1) 2^k nodes: k >=
+    log2((feature_nodes + 1)/(n + 1)))."""
+    short = spans.short(name)
+    if not math.isinf(bound.bound) or not short or name not in FEATURES:
+        return ""
+    feature, here, coarser, finer = FEATURES[name], grid_words(point.task.settings), point.coarser, point.task.settings
+    for k, axis in ((0, "x"), (1, "y")):
+        if axis not in short:
+            continue
+        nodes_along = spans.runs[name][k]
+        if coarser is not None and _finer_along(coarser, spans, k) and coarser.runs.get(name, (0, 0))[k] >= nodes_along:
+            return (f"{feature} spans {nodes_along} nodes along {axis} on {here}, {coarser.runs[name][k]} on the "
+                    f"coarser {coarser.grid} x {coarser.grid_y}: it narrows with the grid, refining does not "
+                    "resolve it")
+        for _ in range(math.ceil(math.log2((TUNING.feature_nodes + 1) / (nodes_along + 1)))):
+            finer = None if finer is None else refined_settings(finer, axis)
+    needs = ", ".join(f"{spans.runs[name][k]} nodes along {axis}" for k, axis in ((0, "x"), (1, "y")) if axis in short)
+    if finer is None:
+        return f"{feature} spans {needs} on {here}: the grid that could resolve it passes the largest grid"
+    if over_budget(point, finer):
+        return f"{feature} spans {needs} on {here}: {grid_words(finer)}, the first grid that could resolve it, " \
+               f"would pass the time budget {point.task.settings.time_budget:g} s"
+    return ""
+
+
+def _finer_along(coarser: Spans, spans: Spans, k: int) -> bool:
+    return (spans.grid, spans.grid_y)[k] > (coarser.grid, coarser.grid_y)[k]
+
+
+def feature_axes(missing: Mapping[str, Bound], spans: Spans) -> str:
+    """The axes along which the features of the figures without a bound among `missing` span too few nodes."""
+    short = "".join(spans.short(name) for name, bound in missing.items() if math.isinf(bound.bound))
+    return "".join(axis for axis in "xy" if axis in short)
 
 
 def refined_settings(settings: SolverSettings, axis: str) -> SolverSettings | None:
@@ -387,7 +459,7 @@ def planned(point: Progressing, missing: Mapping[str, Bound], target: float) -> 
         margin = f"{100 * TUNING.accuracy_jump_margin * target:.2g} %"
         return (replace(settings, grid=prediction.grid, grid_y=prediction.grid_y),
                 f"{prediction.words()} (margin {margin}){beyond}")
-    axis = refined_axis(missing)
+    axis = feature_axes(missing, point.spans()) or refined_axis(missing)
     finer = refined_settings(settings, axis) or (refined_settings(settings, "xy".replace(axis, ""))
                                                  if axis != "xy" else None)
     if finer is not None and (finer.grid, finer.nodes_y) in point.failed_grids:  # as if it had failed again
@@ -402,9 +474,11 @@ def next_step(point: Progressing, target: float) -> tuple[Progressing, SolveTask
     """The point's next solve (None: it stops, with the reason): the grid `planned` for the figures above the target,
     its reason recorded, unless the grid cap or the time budget comes first; a predicted grid past one doubling that
     would pass the time budget turns the point to one doubling at a time."""
+    point = reached(point, target)
     missing = point.missing(target)
     if not missing:
-        return replace(point, stop="every bounded figure within the target"), None
+        beyond = f"; {', '.join(point.beyond_reach)} unresolved, beyond reach" if point.beyond_reach else ""
+        return replace(point, stop=f"every bounded figure within the target{beyond}"), None
     finer, why = planned(point, missing, target)
     above = ", ".join(missing)
     if finer is not None and over_budget(point, finer) and max(doublings_to(point.task.settings, finer)) > 1:
@@ -418,6 +492,18 @@ def next_step(point: Progressing, target: float) -> tuple[Progressing, SolveTask
     choice = Choice("refine", grid_words(finer), f"{above} above the target on {grid_words(point.task.settings)}: "
                                                  f"{why}")
     return replace(point, choices=point.choices + (choice,)), replace(point.task, settings=finer)
+
+
+def reached(point: Progressing, target: float) -> Progressing:
+    """The point with the figures above the target that no grid within reach can bound (`out_of_reach`) set aside:
+    they are reported unresolved, each with why, and not refined for."""
+    spans = point.spans()
+    beyond = {name: why for name, bound in point.missing(target).items() if (why := out_of_reach(point, name, bound,
+                                                                                                   spans))}
+    if not beyond:
+        return point
+    notes = tuple(Choice(name, "unresolved", why) for name, why in beyond.items())
+    return replace(point, beyond_reach={**point.beyond_reach, **beyond}, choices=point.choices + notes)
 
 
 def doublings_to(coarse: SolverSettings, fine: SolverSettings) -> tuple[int, int]:
@@ -444,7 +530,8 @@ def refined(point: Progressing, task: SolveTask, solution: PointSolution) -> Pro
         before = f" (after {point.failed or point.after_jump})" if point.failed or point.after_jump else ""
         return replace(point, steps=steps, stop=f"{ended}{before}; the converged {grid_words(point.task.settings)} "
                                                 "solution kept")
-    return replace(point, task=task, solution=solution, steps=steps, failed="", model_solved=True)
+    return replace(point, task=task, solution=solution, steps=steps, failed="", model_solved=True,
+                   coarser=point.spans() if point.solution.converged else point.coarser)
 
 
 def solve_to_accuracy(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,

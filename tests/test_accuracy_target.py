@@ -20,7 +20,7 @@ from facegear_tehl import accuracy_target
 from facegear_tehl.accuracy_record import Verdict, accuracy_from_dict, accuracy_lines, accuracy_to_dict
 from facegear_tehl.accuracy_target import figure_bound, solve_to_accuracy
 from facegear_tehl.case import ACCURACY_RANGE, load_case
-from facegear_tehl.ehl.error_bounds import bounds
+from facegear_tehl.ehl.error_bounds import bounds, feature_nodes
 from facegear_tehl.ehl.richardson import richardson_error
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.parallel import SolveTask
@@ -289,6 +289,68 @@ def test_a_compression_held_dt_max_is_not_refined_for(cooling, refined):
     assert (len(solver.grids) > 1) == refined
     assert verdicts["dT_max"] is (Verdict.MET if refined else Verdict.UNRESOLVED)
     assert verdicts["h_c"] is Verdict.MET
+
+
+@dataclass
+class HotSpotSolver(AnalyticSolver):
+    """The analytic solver with fields: a broad film basin and a Gaussian hot spot at the origin, within 10 % of its
+    peak over 0.65 of its width (exp(-r^2) >= 0.9 for r <= 0.325), so that the error bounds' feature rule
+    (error_bounds.feature_nodes, from these fields) flags dT_max unresolved where the spot spans fewer than
+    TUNING.feature_nodes nodes. `width_y`: the spot's width along y (m); `narrow`: its width along y is `width_y`
+    times the y spacing instead (a spot below the grid spacing, as the outlet spike's)."""
+
+    width_y: float = 0.5
+    narrow: bool = False
+
+    def __call__(self, point, lubricant, settings) -> PointSolution:
+        solution = super().__call__(point, lubricant, settings)
+        x, y = solution.axes["x"].values, solution.axes["y"].values
+        wide = self.width_y * (y[1] - y[0]) if self.narrow else self.width_y
+        xx, yy = np.meshgrid(x, y)
+        rise = solution.scalar("dT_max") * np.exp(-(xx / 0.5) ** 2 - (yy / wide) ** 2)
+        t_in = lubricant.inlet_temperature
+        fields = {"film_thickness": Field(solution.scalar("h_min") * (1.0 + 0.1 * (xx**2 + yy**2)), "m"),
+                  "temperature_mid": Field(t_in + rise, "K")}
+        e_y = {k[len("error_estimate_y_"):]: v[0] for k, v in solution.scalars.items()
+               if k.startswith("error_estimate_y_")}
+        hot = replace(solution, fields=fields)
+        found = bounds(hot, e_y if hot.converged else {}, feature_nodes(hot, t_in))
+        return replace(hot, scalars={**hot.scalars, **found})
+
+
+def test_a_hot_spot_too_narrow_along_y_is_refined_along_y_not_along_the_axis_whose_estimate_dominates():
+    """On 129 x 33 the spot (0.5 wide along y, 0.19 spacing) spans one node along y: dT_max has no bound, and x's
+    estimate dominates (y's is 0), but only y can resolve it: 129 x 65 (three nodes) is solved and bounds it."""
+    solver = HotSpotSolver()
+    (solution,) = solve_to_accuracy([_task()], solver, jobs=1)
+    assert solver.grids == [(129, 33), (129, 65)]
+    verdicts = {f.name: f.verdict for f in solution.accuracy.figures}
+    assert verdicts["dT_max"] is Verdict.MET and solution.accuracy.stop == "every bounded figure within the target"
+
+
+def test_a_hot_spot_that_narrows_with_the_grid_is_reported_unresolved_and_not_refined_for():
+    """The spot 0.8 y-spacings wide spans one node along y on every grid: after 129 x 65 left it on one node as on 129
+    x 33, the point stops there with dT_max unresolved and why, instead of refining on to the largest grid."""
+    solver = HotSpotSolver(width_y=0.8, narrow=True)
+    (solution,) = solve_to_accuracy([_task()], solver, jobs=1)
+    assert solver.grids == [(129, 33), (129, 65)]
+    record = solution.accuracy
+    assert {f.name: f.verdict for f in record.figures}["dT_max"] is Verdict.UNRESOLVED
+    assert record.stop == "every bounded figure within the target; dT_max unresolved, beyond reach"
+    why = next(c.reason for c in record.choices if c.what == "dT_max")
+    assert why == ("the hot spot spans 1 nodes along y on 129 x 65, 1 on the coarser 129 x 33: it narrows with the "
+                   "grid, refining does not resolve it")
+
+
+def test_a_hot_spot_whose_first_resolving_grid_passes_the_time_budget_is_reported_unresolved_at_once():
+    """129 x 65, the first grid on which the spot can span three nodes along y, would pass the budget (5.3 s CPU
+    spent, twice that again): the point stops on its start with dT_max unresolved and why."""
+    solver = HotSpotSolver(seconds_per_node=1e-3)
+    (solution,) = solve_to_accuracy([_task(time_budget=12.0)], solver, jobs=1)
+    assert solver.grids == [(129, 33)]
+    why = next(c.reason for c in solution.accuracy.choices if c.what == "dT_max")
+    assert why == ("the hot spot spans 1 nodes along y on 129 x 33: 129 x 65, the first grid that could resolve it, "
+                   "would pass the time budget 12 s")
 
 
 def test_where_x_alone_cannot_meet_the_target_y_is_refined_with_it():

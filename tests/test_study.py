@@ -35,7 +35,8 @@ LOADS = (4.0, 9.0)
 ROLLING = (0.0, 0.5)  # slide-roll ratios
 # The attributes that may differ between two runs of the same case: when and by which version the file was
 # written, and the solve's wall time.
-VOLATILE = ("created", "tehl_version", "wall_time", "cpu_time", "error_check_time", "error_check_cpu_time", "stage_seconds")
+VOLATILE = ("created", "tehl_version", "wall_time", "cpu_time", "error_check_time", "error_check_cpu_time",
+            "stage_seconds")
 REPOSITORY = Path(__file__).resolve().parents[1]
 
 

@@ -113,37 +113,48 @@ def iteration_error(solution: PointSolution, name: str) -> float:
     return abs(h_c[-1] - h_c[-2]) / abs(h_c[-1]) if len(h_c) >= 2 and h_c[-1] != 0.0 else 0.0
 
 
-def span(field: np.ndarray, inside: np.ndarray) -> int:
-    """Nodes of the shorter of the two runs through the extreme of `field` (its first arg-extreme, `inside` there)
-    along x (axis 1) and y (axis 0) where `inside` holds without a gap."""
+def runs(field: np.ndarray, inside: np.ndarray) -> tuple[int, int]:
+    """Nodes of the runs through the extreme of `field` (its first arg-extreme, `inside` there) along x (axis 1) and
+    along y (axis 0) where `inside` holds without a gap."""
     j, i = np.unravel_index(np.argmax(np.where(inside, field, -np.inf)), field.shape)
-    runs = []
+    out = []
     for line, at in ((inside[j, :], i), (inside[:, i], j)):
         low, high = at, at
         while low > 0 and line[low - 1]:
             low -= 1
         while high < line.size - 1 and line[high + 1]:
             high += 1
-        runs.append(high - low + 1)
-    return min(runs)
+        out.append(high - low + 1)
+    return int(out[0]), int(out[1])
 
 
-def feature_nodes(solution: PointSolution, t_inlet: float) -> dict[str, int]:
-    """Nodes across the feature of each local figure (`span`): the lowest film's basin (film within feature_depth
-    of h_min above it), the hot spot (rise within feature_depth of dT_max) and the cold spot (within feature_depth of
-    dT_min) in the layer field holding the extreme (surface 1, mid-film, surface 2); t_inlet in K."""
+def span(field: np.ndarray, inside: np.ndarray) -> int:
+    """Nodes of the shorter of the two runs through the extreme of `field` (`runs`)."""
+    return min(runs(field, inside))
+
+
+def feature_runs(solution: PointSolution, t_inlet: float) -> dict[str, tuple[int, int]]:
+    """Nodes across the feature of each local figure along x and along y (`runs`): the lowest film's basin (film
+    within feature_depth of h_min above it), the hot spot (rise within feature_depth of dT_max) and the cold spot
+    (within feature_depth of dT_min) in the layer field holding the extreme (surface 1, mid-film, surface 2); t_inlet
+    in K."""
     depth, out = TUNING.feature_depth, {}
     if "film_thickness" in solution.fields:
         film = solution.fields["film_thickness"].values
-        out["h_min"] = span(-film, film <= film.min() + depth * abs(film.min()))
+        out["h_min"] = runs(-film, film <= film.min() + depth * abs(film.min()))
     layers = [solution.fields[k].values for k in ("temperature_surface_1", "temperature_mid", "temperature_surface_2")
               if k in solution.fields]
     if layers:
         hot = max(layers, key=np.max) - t_inlet
-        out["dT_max"] = span(hot, hot >= hot.max() - depth * abs(hot.max()))
+        out["dT_max"] = runs(hot, hot >= hot.max() - depth * abs(hot.max()))
         cold = min(layers, key=np.min) - t_inlet
-        out["dT_min"] = span(-cold, cold <= cold.min() + depth * abs(cold.min()))
+        out["dT_min"] = runs(-cold, cold <= cold.min() + depth * abs(cold.min()))
     return out
+
+
+def feature_nodes(solution: PointSolution, t_inlet: float) -> dict[str, int]:
+    """Nodes across the feature of each local figure (`feature_runs`), the shorter of its runs along x and y."""
+    return {name: min(both) for name, both in feature_runs(solution, t_inlet).items()}
 
 
 def compression_held(solution: PointSolution, cold_unresolved: bool) -> bool:
