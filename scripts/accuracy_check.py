@@ -7,8 +7,8 @@ second twice as fine (both axes); DEFAULT.h5 from `tehl run CASE` on the case's 
 is the Richardson value of FINE and FINER at each figure's order (second for the film and p_max, first for dT_max
 and mu: ehl/error_bounds.py), or FINE alone where FINER is not given or did not converge. Per point and figure it
 prints the target's value, its bound and verdict, the reference and the target's error against it; per point the grid
-chosen, the cheaper models taken, the grids solved, the solves and their wall time, and the reported grid's nodes over
-the default run's with its wall time (each with its error check's time).
+chosen, the cheaper models taken, the grids solved, the solves and their wall and CPU time, and the reported grid's
+nodes over the default run's with its wall and CPU time (each with its error check's time).
 """
 
 from __future__ import annotations
@@ -49,17 +49,20 @@ def figure_rows(target, fine, finer) -> list[list[str]]:
     return rows
 
 
-def _seconds(scalars) -> float:
-    """A solve's wall time with its error check's (s; ehl/error_bounds.py keeps that apart from `wall_time`)."""
-    return scalars["wall_time"] + scalars.get("error_check_time", 0.0)
+def _seconds(scalars) -> tuple[float, float]:
+    """A solve's wall and CPU time with its error check's (s; ehl/error_bounds.py keeps those apart from the solve's;
+    a file without CPU times: the wall times)."""
+    check = scalars.get("error_check_time", 0.0)
+    return (scalars["wall_time"] + check,
+            scalars.get("cpu_time", scalars["wall_time"]) + scalars.get("error_check_cpu_time", check))
 
 
 MODEL_CHOICES = ("thermal", "thermal_layers", "rheology", "model")  # the choices of a cheaper model (the rest: grids)
 
 
 def cost_rows(target, default) -> list[list[str]]:
-    """One row per point: the grid chosen, the cheaper models taken, the grids solved, their wall time, and the
-    reported grid's nodes over the default run's (as solved) with its wall time."""
+    """One row per point: the grid chosen, the cheaper models taken, the grids solved, their wall and CPU time, and
+    the reported grid's nodes over the default run's (as solved) with its wall and CPU time."""
     rows = []
     for point, solved in target.points.items():
         record = solved.accuracy
@@ -71,11 +74,11 @@ def cost_rows(target, default) -> list[list[str]]:
         default_time, default_grid, nodes = "-", "-", "-"
         if default is not None:
             scalars = default.points[point].scalars
-            default_time = f"{_seconds(scalars):.1f}"
+            default_time = "{:.1f} ({:.1f})".format(*_seconds(scalars))
             default_grid = f"{scalars['grid']:.0f} x {scalars['grid_y']:.0f}"
             nodes = f"{record.nodes / (scalars['grid'] * scalars['grid_y']):.2g}"
-        rows.append([point, grid, models, grids, str(len(record.steps)), f"{record.wall_time:.1f}", default_grid,
-                     nodes, default_time, record.stop])
+        rows.append([point, grid, models, grids, str(len(record.steps)),
+                     f"{record.wall_time:.1f} ({record.cpu_time:.1f})", default_grid, nodes, default_time, record.stop])
     return rows
 
 
@@ -93,8 +96,8 @@ def main() -> None:
     print(format_table(["point", "figure", "value (SI)", "bound %", "verdict", "reference", "error %"],
                        figure_rows(target, fine, finer)))
     print()
-    print(format_table(["point", "grid chosen", "models", "grids solved", "solves", "wall s", "default grid",
-                        "nodes / default", "default wall s", "stop"], cost_rows(target, default)))
+    print(format_table(["point", "grid chosen", "models", "grids solved", "solves", "wall (CPU) s", "default grid",
+                        "nodes / default", "default wall (CPU) s", "stop"], cost_rows(target, default)))
 
 
 if __name__ == "__main__":
