@@ -281,12 +281,13 @@ def refined_axis(missing: Mapping[str, Bound]) -> str:
 
 def out_of_reach(point: Progressing, name: str, bound: Bound, spans: Spans) -> str:
     """Why no grid within the caps and the time budget can bound figure `name` ("" where one may): it has no bound
-    because its feature spans fewer than TUNING.feature_nodes nodes along an axis (error_bounds.py), and either a grid
-    finer along that axis than the last converged one left the feature on no more nodes there (it narrows with the
-    grid: a feature below the grid spacing, as the outlet spike, is not resolved by refining), or the fewest doublings
-    that could bring it onto TUNING.feature_nodes nodes pass the largest grid or the time budget (a feature across n
-    nodes is narrower than n + 1 spacings, so after k doublings it spans fewer than (n + 1) 2^k nodes: k >=
-    log2((feature_nodes + 1)/(n + 1)))."""
+    because its feature spans fewer than TUNING.feature_nodes nodes along an axis (error_bounds.py), and either it
+    narrows with the grid, or the fewest doublings that could bring it onto TUNING.feature_nodes nodes pass the largest
+    grid or the time budget. A feature of fixed width across n nodes is at least n - 1 spacings wide and narrower than
+    n + 1: one doubling puts it on at least 2n - 1 nodes, and k doublings on fewer than (n + 1) 2^k, so it needs k >=
+    log2((feature_nodes + 1)/(n + 1)) doublings; one that spanned n >= 2 nodes on the last converged grid coarser along
+    that axis and no more now narrows with the grid (a feature below the spacing, as the outlet spike: refining does
+    not resolve it). A feature on one node gives no such evidence (any width below two spacings)."""
     short = spans.short(name)
     if not math.isinf(bound.bound) or not short or name not in FEATURES:
         return ""
@@ -295,8 +296,9 @@ def out_of_reach(point: Progressing, name: str, bound: Bound, spans: Spans) -> s
         if axis not in short:
             continue
         nodes_along = spans.runs[name][k]
-        if coarser is not None and _finer_along(coarser, spans, k) and coarser.runs.get(name, (0, 0))[k] >= nodes_along:
-            return (f"{feature} spans {nodes_along} nodes along {axis} on {here}, {coarser.runs[name][k]} on the "
+        before = coarser.runs.get(name, (0, 0))[k] if coarser is not None and _finer_along(coarser, spans, k) else 0
+        if before >= max(nodes_along, 2):
+            return (f"{feature} spans {nodes_along} nodes along {axis} on {here}, {before} on the "
                     f"coarser {coarser.grid} x {coarser.grid_y}: it narrows with the grid, refining does not "
                     "resolve it")
         for _ in range(math.ceil(math.log2((TUNING.feature_nodes + 1) / (nodes_along + 1)))):

@@ -297,7 +297,8 @@ class HotSpotSolver(AnalyticSolver):
     peak over 0.65 of its width (exp(-r^2) >= 0.9 for r <= 0.325), so that the error bounds' feature rule
     (error_bounds.feature_nodes, from these fields) flags dT_max unresolved where the spot spans fewer than
     TUNING.feature_nodes nodes. `width_y`: the spot's width along y (m); `narrow`: its width along y is `width_y`
-    times the y spacing instead (a spot below the grid spacing, as the outlet spike's)."""
+    times the y spacing instead, centred between two rows (a spot that narrows with the grid, as the outlet
+    spike's)."""
 
     width_y: float = 0.5
     narrow: bool = False
@@ -305,9 +306,9 @@ class HotSpotSolver(AnalyticSolver):
     def __call__(self, point, lubricant, settings) -> PointSolution:
         solution = super().__call__(point, lubricant, settings)
         x, y = solution.axes["x"].values, solution.axes["y"].values
-        wide = self.width_y * (y[1] - y[0]) if self.narrow else self.width_y
+        wide, centre = (self.width_y * (y[1] - y[0]), 0.5 * (y[1] - y[0])) if self.narrow else (self.width_y, 0.0)
         xx, yy = np.meshgrid(x, y)
-        rise = solution.scalar("dT_max") * np.exp(-(xx / 0.5) ** 2 - (yy / wide) ** 2)
+        rise = solution.scalar("dT_max") * np.exp(-(xx / 0.5) ** 2 - ((yy - centre) / wide) ** 2)
         t_in = lubricant.inlet_temperature
         fields = {"film_thickness": Field(solution.scalar("h_min") * (1.0 + 0.1 * (xx**2 + yy**2)), "m"),
                   "temperature_mid": Field(t_in + rise, "K")}
@@ -329,17 +330,29 @@ def test_a_hot_spot_too_narrow_along_y_is_refined_along_y_not_along_the_axis_who
 
 
 def test_a_hot_spot_that_narrows_with_the_grid_is_reported_unresolved_and_not_refined_for():
-    """The spot 0.8 y-spacings wide spans one node along y on every grid: after 129 x 65 left it on one node as on 129
-    x 33, the point stops there with dT_max unresolved and why, instead of refining on to the largest grid."""
-    solver = HotSpotSolver(width_y=0.8, narrow=True)
+    """The spot two y-spacings wide between two rows spans two nodes along y on every grid (0.5 spacings from its
+    centre within 10 % of its peak, 1.5 beyond): after 129 x 65 left it on two nodes as on 129 x 33 (a spot of fixed
+    width would span three), the point stops there with dT_max unresolved and why, instead of refining on to the
+    largest grid."""
+    solver = HotSpotSolver(width_y=2.0, narrow=True)
     (solution,) = solve_to_accuracy([_task()], solver, jobs=1)
     assert solver.grids == [(129, 33), (129, 65)]
     record = solution.accuracy
     assert {f.name: f.verdict for f in record.figures}["dT_max"] is Verdict.UNRESOLVED
     assert record.stop == "every bounded figure within the target; dT_max unresolved, beyond reach"
     why = next(c.reason for c in record.choices if c.what == "dT_max")
-    assert why == ("the hot spot spans 1 nodes along y on 129 x 65, 1 on the coarser 129 x 33: it narrows with the "
+    assert why == ("the hot spot spans 2 nodes along y on 129 x 65, 2 on the coarser 129 x 33: it narrows with the "
                    "grid, refining does not resolve it")
+
+
+def test_a_hot_spot_on_one_node_is_refined_along_its_axis_until_it_is_resolved():
+    """A spot on one node gives no evidence of its width (any below two spacings): 0.2 wide along y, it spans one node
+    on 129 x 33 (0.19 spacing) and 129 x 65 (0.094), three on 129 x 129 (0.047; 0.065 from its centre within 10 % of
+    its peak): refined along y until it is bounded."""
+    solver = HotSpotSolver(width_y=0.2)
+    (solution,) = solve_to_accuracy([_task()], solver, jobs=1)
+    assert solver.grids == [(129, 33), (129, 65), (129, 129)]
+    assert {f.name: f.verdict for f in solution.accuracy.figures}["dT_max"] is Verdict.MET
 
 
 def test_a_hot_spot_whose_first_resolving_grid_passes_the_time_budget_is_reported_unresolved_at_once():
