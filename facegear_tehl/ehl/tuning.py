@@ -126,6 +126,8 @@ class Tuning:
     # --- error bounds of the reported figures (error_bounds.py)
     bound_safety: float = 3.0  # Roache's GCI factor F_s for a two-grid estimate at an assumed order
     asymptotic_estimate: float = 0.1  # an x or y estimate above this is outside the asymptotic range: unresolved
+    contraction_window: int = 4  # outer changes an outer loop's contraction rate is taken over (its iteration error)
+    max_contraction: float = 0.9  # a contraction rate above this bounds no iteration error: the figures unresolved
     feature_nodes: int = 3  # a minimum, hot or cold spot spanning fewer nodes along x or y is unresolved ...
     feature_depth: float = 0.1  # ... counted where the figure is within this share of its extreme
 
