@@ -6,17 +6,17 @@ A reported error estimate is a promise: the bound of a figure f solved on nx x n
 
 e_x the Richardson estimate of the solve from the grid one coarser along x alone (report.estimate), e_y the Richardson
 estimate along y (`y_estimates`), e_it the error the outer loop left, from its last change and contraction rate
-(`iteration_error`; no bound where its changes do not contract) and F_s = TUNING.bound_safety, the factor of Roache's grid convergence index (Roache 1994, J. Fluids Eng. 116: 405-413;
-Roache 1998, "Verification and Validation in Computational Science and Engineering", ch. 5: F_s = 3 for an estimate
-from two grids at an assumed order). The x-only hierarchy never refines y, so e_y comes from one more solve of the
-same point and model on the solved domain with (ny + 1)/2 nodes along y. Under the additive error model
-f = f* + C_x h_x^p + C_y h_y^p (Roache 1998, ch. 5) the y-error does not depend on h_x, so where the solve has a
-converged coarse stage at (nx + 1)/2 x ny (a thermal full multigrid), the check solves (nx + 1)/2 x (ny + 1)/2 and
-e_y = (f_stage - f_check)/((2^p - 1) f): a quarter of the finest grid's nodes instead of half. Without a coarse stage
-the check solves nx x (ny + 1)/2 against the solution itself. On a square finest grid e_x covers both axes (e_y = 0).
+(`iteration_error`) and F_s = TUNING.bound_safety, the factor of Roache's grid convergence index (Roache 1994, J. Fluids
+Eng. 116: 405-413; Roache 1998, "Verification and Validation in Computational Science and Engineering", ch. 5: F_s = 3
+for an estimate from two grids at an assumed order). The x-only hierarchy never refines y, so e_y comes from one more
+solve of the same point and model on the solved domain with (ny + 1)/2 nodes along y. Under the additive error model f =
+f* + C_x h_x^p + C_y h_y^p (Roache 1998, ch. 5) the y-error does not depend on h_x, so where the solve has a converged
+coarse stage at (nx + 1)/2 x ny (a thermal full multigrid), the check solves (nx + 1)/2 x (ny + 1)/2 and e_y = (f_stage
+- f_check)/((2^p - 1) f): a quarter of the finest grid's nodes instead of half. Without a coarse stage the check solves
+nx x (ny + 1)/2 against the solution itself. On a square finest grid e_x covers both axes (e_y = 0).
 
 A figure is "unresolved" (`unresolved_<name>` = 1 in the file, the word in the tables) where no bound can be given:
-a solve that did not converge; an outer loop whose last changes do not contract (`remaining_error`); no e_x or no e_y (ny is the coarsest grid, or the check did not converge); an e_x
+a solve that did not converge; no e_x or no e_y (ny is the coarsest grid, or the check did not converge); an e_x
 or e_y above TUNING.asymptotic_estimate (outside the asymptotic range); its feature (the lowest film's basin, the hot
 or the cold spot) spanning fewer than TUNING.feature_nodes nodes along x or y (`feature_nodes`); p_max always
 (UNBOUNDED); and dT_max where the film's compression, not its shear, sets its temperatures and the outlet spike's
@@ -103,15 +103,17 @@ def y_estimates(solution: PointSolution, point: ContactPoint, lubricant: Lubrica
 def remaining_error(changes: np.ndarray, floored: bool) -> float:
     """The error a contracting iteration leaves after its last change c_k, c_k rho/(1 - rho) (the a-posteriori
     bound of a contraction with factor rho: Ortega & Rheinboldt 1970, "Iterative Solution of Nonlinear Equations in
-    Several Variables", 12.1.2), rho = (c_k/c_k-n)^(1/n) over the last n <= contraction_window changes; inf where the
-    changes do not contract below max_contraction (no bound). `floored`: the loop ended on its algebraic floor (a
-    period-2 flicker straddling the fixed point), which leaves its last change; no change: 0; one: itself."""
-    if changes.size < 2 or floored:
+    Several Variables", 12.1.2), rho = (c_k/c_k-n)^(1/n) over the last n <= contraction_window changes. Changes that
+    no longer contract (rho above max_contraction, or the loop ended on its algebraic floor `floored`) are a flicker
+    straddling the fixed point: the largest of those n + 1 changes. No change: 0; one: itself."""
+    if changes.size < 2:
         return float(changes[-1]) if changes.size else 0.0
     n = min(TUNING.contraction_window, changes.size - 1)
     first, last = float(changes[-1 - n]), float(changes[-1])
     rho = (last / first) ** (1.0 / n) if first > 0.0 else 0.0
-    return last * rho / (1.0 - rho) if rho < TUNING.max_contraction else math.inf
+    if floored or rho > TUNING.max_contraction:
+        return float(changes[-1 - n:].max())
+    return last * rho / (1.0 - rho)
 
 
 def iteration_error(solution: PointSolution, name: str) -> float:
@@ -135,7 +137,7 @@ def iteration_error(solution: PointSolution, name: str) -> float:
         return 0.0
     last = abs(h_c[-1] - h_c[-2]) / abs(h_c[-1])
     state = remaining_error(changes, floored)
-    return last if state == 0.0 else last * state / float(changes[-1]) if math.isfinite(state) else math.inf
+    return last if state == 0.0 or changes[-1] == 0.0 else last * state / float(changes[-1])
 
 
 def span(field: np.ndarray, inside: np.ndarray) -> int:
@@ -203,10 +205,9 @@ def bounds(solution: PointSolution, e_y: dict[str, float],
         unresolved["dT_max"] = True
     out: dict[str, tuple[float, str]] = {}
     for name, (e_x, along_y) in estimates.items():
-        e_it = iteration_error(solution, name)
-        unresolved[name] = unresolved[name] or not math.isfinite(e_it)
         if not unresolved[name]:
-            out[f"error_bound_{name}"] = (TUNING.bound_safety * (abs(e_x) + abs(along_y)) + e_it, "1")
+            bound = TUNING.bound_safety * (abs(e_x) + abs(along_y)) + iteration_error(solution, name)
+            out[f"error_bound_{name}"] = (bound, "1")
         out[f"unresolved_{name}"] = (float(unresolved[name]), "1")
     return out
 
