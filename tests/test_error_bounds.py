@@ -9,7 +9,15 @@ import pytest
 
 from facegear_tehl.case import SolverSettings
 from facegear_tehl.cli import summary_table
-from facegear_tehl.ehl.error_bounds import CoarseStage, bounds, feature_nodes, span, y_estimates
+from facegear_tehl.ehl.error_bounds import (
+    CoarseStage,
+    bounds,
+    feature_nodes,
+    iteration_error,
+    remaining_error,
+    span,
+    y_estimates,
+)
 from facegear_tehl.ehl.richardson import richardson_error
 from facegear_tehl.ehl.scaling import contact_from_moes
 from facegear_tehl.ehl.staged import solve_point
@@ -170,3 +178,36 @@ def test_tehl_info_words_an_unresolved_figure_and_its_estimates(tmp_path):
     assert rows["unresolved_h_min"] == ["unresolved"] and rows["unresolved_h_c"] == ["bounded"]
     assert rows["error_estimate_h_min"][-1] == "unresolved" and rows["error_estimate_y_h_min"][-1] == "unresolved"
     assert rows["error_estimate_h_c"][-1] == "0.12" and rows["error_bound_h_c"][-1] == "0.36"
+
+
+def _loop_history(rho: float, updates: int = 12, rise: float = 60.0) -> tuple[PointSolution, float, float]:
+    """A thermal solve whose loop contracted by `rho` per update: dT_max after update k is dT* + C rho^k, its change
+    per update |dT_k - dT_k-1| (the loop's record), its central film h* (1 + c rho^k). Returns the solution and the
+    true relative errors of dT_max and h_c it was left with."""
+    k = np.arange(updates + 1)
+    rises, films = rise + 5.0 * rho**k, 2.0e-7 * (1.0 + 0.01 * rho**k)
+    history = {"thermal_change_history": Field(np.abs(np.diff(rises)), "K", ""),
+               "thermal_h_c_history": Field(films[1:], "m", "")}
+    solution = _solution(dT_max=rises[-1], h_c=films[-1], thermal_floor=math.nan)
+    solution = PointSolution(solution.name, solution.outcome, "", solution.scalars, {}, solution.axes, history)
+    return solution, abs(rises[-1] - rise) / rises[-1], abs(films[-1] - 2.0e-7) / films[-1]
+
+
+@pytest.mark.parametrize("rho", [0.3, 0.6, 0.85])
+def test_the_iteration_error_bounds_what_a_contracting_loop_left(rho):
+    """For a loop contracting by rho the error left after the last change c is c rho/(1 - rho) (the geometric tail;
+    Ortega & Rheinboldt 1970, 12.1.2), more than the last change once rho > 1/2: the rate, read from the changes,
+    recovers it exactly on a geometric sequence, for the temperatures and the central film alike."""
+    solution, dt_error, h_c_error = _loop_history(rho)
+    assert iteration_error(solution, "dT_max") == pytest.approx(dt_error, rel=1e-9)
+    assert iteration_error(solution, "h_c") == pytest.approx(h_c_error, rel=1e-6)
+
+
+def test_a_loop_whose_changes_no_longer_contract_leaves_their_largest():
+    """Changes that stopped falling (rate above max_contraction; or the loop's algebraic floor) are a flicker
+    straddling the fixed point: the error left is the largest change of the window, not the last."""
+    flicker = np.array([0.5, 0.02, 0.04, 0.02, 0.03, 0.021])
+    assert remaining_error(flicker, floored=False) == 0.04
+    assert remaining_error(flicker[1:-1], floored=True) == 0.04
+    solution, _, _ = _loop_history(0.3)
+    assert iteration_error(solution, "dT_max") < solution.history["thermal_change_history"].values[-1] / 60.0

@@ -187,11 +187,30 @@ class CoupledLoop:
             ending, status = target.judge(loop, status, rise)
             if ending is not Ending.GOING:
                 return self._end(ending, status, loop)
-            if stalled(loop.changes[window:]):  # a limit cycle above the floor (or h_c unsteady): relax harder
-                relaxation = max(0.5 * relaxation, TUNING.min_relaxation_scale)
+            if stalled(loop.changes[window:]):  # a limit cycle above the floor (or h_c unsteady): which one?
                 window = len(loop.changes)
                 self.accelerator.reset()
+                relaxation, status = self._relieve_stall(relaxation)
+                if status.diverged:
+                    return self._end(Ending.DIVERGED, status, loop)
         return self._end(Ending.EXHAUSTED, Status(Outcome.NOT_CONVERGED), loop)
+
+    def _relieve_stall(self, relaxation: float) -> tuple[float, Status]:
+        """The film-state relaxation after the loop's change stopped falling at `relaxation`, and the status of the
+        pressure cycled to its tolerance on the frozen film state, which shows the iteration that stalls. Pressure
+        V-cycles that do not converge on a frozen film state (their own limit cycle: the film state is then evaluated
+        on a different pressure at every update) have their Gauss-Seidel and Jacobi changes damped by
+        cycle_damping, down to min_under_gs; a pressure that converges leaves a limit cycle of the film state (the
+        hot spot), whose relaxation is halved, down to min_relaxation_scale."""
+        index, pressure = self.target.index, self.pressure
+        status = pressure.cycle(index, pressure.settings.max_cycles)
+        solver = pressure.solver
+        cycles = solver.relaxation
+        if status.converged or status.diverged or cycles.under_gs <= TUNING.min_under_gs:
+            return max(0.5 * relaxation, TUNING.min_relaxation_scale), status
+        damping = TUNING.cycle_damping
+        solver.relaxation = replace(cycles, under_gs=damping * cycles.under_gs, under_jd=damping * cycles.under_jd)
+        return relaxation, status
 
     def _closed_film(self, outer: int) -> Status | None:
         """None while the settled film is open (or opens when its pressure is cycled on the frozen film state to its

@@ -5,15 +5,15 @@ A reported error estimate is a promise: the bound of a figure f solved on nx x n
     B = F_s (|e_x| + |e_y|) + e_it,
 
 e_x the Richardson estimate of the solve from the grid one coarser along x alone (report.estimate), e_y the Richardson
-estimate along y (`y_estimates`), e_it the change the last outer iteration left (`iteration_error`) and F_s =
-TUNING.bound_safety, the factor of Roache's grid convergence index (Roache 1994, J. Fluids Eng. 116: 405-413;
-Roache 1998, "Verification and Validation in Computational Science and Engineering", ch. 5: F_s = 3 for an estimate
-from two grids at an assumed order). The x-only hierarchy never refines y, so e_y comes from one more solve of the
-same point and model on the solved domain with (ny + 1)/2 nodes along y. Under the additive error model
-f = f* + C_x h_x^p + C_y h_y^p (Roache 1998, ch. 5) the y-error does not depend on h_x, so where the solve has a
-converged coarse stage at (nx + 1)/2 x ny (a thermal full multigrid), the check solves (nx + 1)/2 x (ny + 1)/2 and
-e_y = (f_stage - f_check)/((2^p - 1) f): a quarter of the finest grid's nodes instead of half. Without a coarse stage
-the check solves nx x (ny + 1)/2 against the solution itself. On a square finest grid e_x covers both axes (e_y = 0).
+estimate along y (`y_estimates`), e_it the error the outer loop left, from its last change and contraction rate
+(`iteration_error`) and F_s = TUNING.bound_safety, the factor of Roache's grid convergence index (Roache 1994, J. Fluids
+Eng. 116: 405-413; Roache 1998, "Verification and Validation in Computational Science and Engineering", ch. 5: F_s = 3
+for an estimate from two grids at an assumed order). The x-only hierarchy never refines y, so e_y comes from one more
+solve of the same point and model on the solved domain with (ny + 1)/2 nodes along y. Under the additive error model f =
+f* + C_x h_x^p + C_y h_y^p (Roache 1998, ch. 5) the y-error does not depend on h_x, so where the solve has a converged
+coarse stage at (nx + 1)/2 x ny (a thermal full multigrid), the check solves (nx + 1)/2 x (ny + 1)/2 and e_y = (f_stage
+- f_check)/((2^p - 1) f): a quarter of the finest grid's nodes instead of half. Without a coarse stage the check solves
+nx x (ny + 1)/2 against the solution itself. On a square finest grid e_x covers both axes (e_y = 0).
 
 A figure is "unresolved" (`unresolved_<name>` = 1 in the file, the word in the tables) where no bound can be given:
 a solve that did not converge; no e_x or no e_y (ny is the coarsest grid, or the check did not converge); an e_x
@@ -100,17 +100,44 @@ def y_estimates(solution: PointSolution, point: ContactPoint, lubricant: Lubrica
             and solution.scalar(name) != 0.0 else math.nan for name in names}
 
 
+def remaining_error(changes: np.ndarray, floored: bool) -> float:
+    """The error a contracting iteration leaves after its last change c_k, c_k rho/(1 - rho) (the a-posteriori
+    bound of a contraction with factor rho: Ortega & Rheinboldt 1970, "Iterative Solution of Nonlinear Equations in
+    Several Variables", 12.1.2), rho = (c_k/c_k-n)^(1/n) over the last n <= contraction_window changes. Changes that
+    no longer contract (rho above max_contraction, or the loop ended on its algebraic floor `floored`) are a flicker
+    straddling the fixed point: the largest of those n + 1 changes. No change: 0; one: itself."""
+    if changes.size < 2:
+        return float(changes[-1]) if changes.size else 0.0
+    n = min(TUNING.contraction_window, changes.size - 1)
+    first, last = float(changes[-1 - n]), float(changes[-1])
+    rho = (last / first) ** (1.0 / n) if first > 0.0 else 0.0
+    if floored or rho > TUNING.max_contraction:
+        return float(changes[-1 - n:].max())
+    return last * rho / (1.0 - rho)
+
+
 def iteration_error(solution: PointSolution, name: str) -> float:
-    """Relative change the last outer iteration left in a figure: of the largest layer temperature for the
-    temperatures (K over |value|), of ln(eta*/eta) for mu of an isothermal Ree-Eyring film, else of the central
-    film; 0 without an outer loop. The loop stops on these changes, so what it left is of their size."""
+    """Relative error the outer loop left in a figure (remaining_error of its changes): of the largest layer
+    temperature for the temperatures (K over |value|), of ln(eta*/eta) for mu of an isothermal Ree-Eyring film, else
+    of the central film, whose last change contracts as the loop's film state does; 0 without an outer loop."""
     history, value = solution.history, solution.scalar(name)
-    if name in ("dT_max", "dT_min") and "thermal_change_history" in history:
-        return float(history["thermal_change_history"].values[-1]) / abs(value) if value != 0.0 else 0.0
-    if name == "mu" and "viscosity_change_history" in history:
-        return float(history["viscosity_change_history"].values[-1])
+    thermal = "thermal_change_history" in history
+    key, floor = ("thermal_change_history", "thermal_floor") if thermal else ("viscosity_change_history",
+                                                                                "viscosity_floor")
+    if key not in history:
+        return 0.0
+    changes = np.asarray(history[key].values, dtype=float)
+    floored = math.isfinite(solution.scalars.get(floor, (math.nan, "1"))[0])
+    if name in ("dT_max", "dT_min") and thermal:
+        return remaining_error(changes, floored) / abs(value) if value != 0.0 else 0.0
+    if name == "mu" and not thermal:
+        return remaining_error(changes, floored)
     h_c = history["thermal_h_c_history"].values if "thermal_h_c_history" in history else ()
-    return abs(h_c[-1] - h_c[-2]) / abs(h_c[-1]) if len(h_c) >= 2 and h_c[-1] != 0.0 else 0.0
+    if len(h_c) < 2 or h_c[-1] == 0.0:
+        return 0.0
+    last = abs(h_c[-1] - h_c[-2]) / abs(h_c[-1])
+    state = remaining_error(changes, floored)
+    return last if state == 0.0 or changes[-1] == 0.0 else last * state / float(changes[-1])
 
 
 def runs(field: np.ndarray, inside: np.ndarray) -> tuple[int, int]:

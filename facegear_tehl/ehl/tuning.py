@@ -57,6 +57,8 @@ class Tuning:
     thermal_floor_h_c: float = 5e-4  # largest relative spread of h_c at a floor (its grid error: 1e-3 to 6e-3)
     thermal_floor_error_share: float = 0.5  # ... or this share of h_c's own error estimate, if larger
     min_relaxation_scale: float = 0.125  # a loop stalled above its floor halves its relaxation down to this scale
+    cycle_damping: float = 0.5  # a stalled loop whose pressure does not converge on a frozen state damps its V-cycles
+    min_under_gs: float = 0.075  # ... by this factor, while their Gauss-Seidel under-relaxation is above this
     # --- one update of the film state (thermal.py, energy.py, anderson.py, flow.py)
     max_temperature_step: float = 50.0  # K: largest temperature change of one update (a continuation in temperature)
     inner_iterations: int = 1  # surface and film-interior passes per update (the outer loop iterates them anyway)
@@ -124,6 +126,8 @@ class Tuning:
     # --- error bounds of the reported figures (error_bounds.py)
     bound_safety: float = 3.0  # Roache's GCI factor F_s for a two-grid estimate at an assumed order
     asymptotic_estimate: float = 0.1  # an x or y estimate above this is outside the asymptotic range: unresolved
+    contraction_window: int = 4  # outer changes an outer loop's contraction rate is taken over (its iteration error)
+    max_contraction: float = 0.9  # changes contracting slower than this are a flicker: the window's largest change
     feature_nodes: int = 3  # a minimum, hot or cold spot spanning fewer nodes along x or y is unresolved ...
     feature_depth: float = 0.1  # ... counted where the figure is within this share of its extreme
 
