@@ -32,7 +32,6 @@ class Reason(Enum):
     START_RAN_AWAY = "the full-multigrid start ran away"
     SEED_RAN_AWAY = "the seed stage ran away"
     SEED_FILM_CLOSED = "the seed stage's film closed"
-    SEED_NOT_CONVERGED = "the seed stage's isothermal pressure did not converge"
     COARSE_STAGE_RAN_AWAY = "the coarse stage ran away"
     COARSE_STAGE_FILM_CLOSED = "the coarse stage's film closed"
     STAGE_FAILED = "an outlet stage failed"

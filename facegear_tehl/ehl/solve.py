@@ -40,9 +40,6 @@ from facegear_tehl.record import Action, Reason, RetryRecord, SolveRecord, Stage
 from facegear_tehl.settings import SolverSettings, ThermalMode
 from facegear_tehl.solution import CONVERGED, Outcome, PointSolution, Status
 
-# The typed failure of a seed stage by how it ended (any other: it ran away).
-SEED_REASONS = {Outcome.FILM_CLOSED: Reason.SEED_FILM_CLOSED, Outcome.NOT_CONVERGED: Reason.SEED_NOT_CONVERGED}
-
 # A smooth-surface EHL film is open at any load (H_min = 3.63 U^0.68 G^0.49 W^-0.073 (1 - exp(-0.68 k)) > 0,
 # Hamrock & Dowson 1977, J. Lubr. Technol. 99:264-276): an iterate whose film closes is not a solution of the
 # smooth-film equations but of a grid that does not resolve the film, or of an iteration that failed.
@@ -212,15 +209,13 @@ class PointSolve:
         """The coupled problem two grids below the finest to seed_stage_limit of the rise, its solution and film
         state interpolated to the next grid and cycled there; returns the frozen state there and the coarse stage's
         mark, taken before those cycles, or None (the solver begun again from the coarsest grid) when the stage ran
-        away, closed its film or its isothermal pressure did not converge (no film state is evaluated on it)."""
+        away."""
         reached, status = self.start(below_top=2)
         index = len(self.solver.levels) - 3  # (a start that began again from a finer coarsest grid has fewer levels)
         mark = self._mark()
         if status.converged and reached == index:
-            status = self.cycle(index, self.settings.max_cycles)
-            state = None
-            if status.converged:  # a film state is evaluated on a converged pressure only
-                state, status = self.couple(index)
+            self.cycle(index, self.settings.max_cycles)
+            state, status = self.couple(index)
             self._stage_done(Stage.SEED, index, status, mark)
             if state is not None and not status.diverged and status.outcome is not Outcome.FILM_CLOSED:
                 self.summaries[-1] = summarise(self.solver.levels[index])
@@ -228,7 +223,7 @@ class PointSolve:
                 frozen, status = self._interpolated_state(index + 1, state, TUNING.cycles_per_thermal_update)
                 if not status.diverged:
                     return frozen, coarse_mark
-        reason = SEED_REASONS.get(status.outcome, Reason.SEED_RAN_AWAY)
+        reason = Reason.SEED_FILM_CLOSED if status.outcome is Outcome.FILM_CLOSED else Reason.SEED_RAN_AWAY
         self.retries.append(RetryRecord(reason, Action.COARSEST_GRID_AGAIN, self.attempt, status.message))
         self.new_hierarchy(grid.hierarchy_shapes(self.settings.grid, self.settings.nodes_y, self.coarsest))
         return None
