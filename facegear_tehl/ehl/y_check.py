@@ -5,10 +5,10 @@ the same point and model on (nx + 1)/2 x (ny + 1)/2 (error_bounds.py), whose nod
 stage's on the same domain. So instead of the full-multigrid start from the Hertz pressure and a coarse stage of its
 own, the check starts on its grid from the solve's coarse stage injected onto its nodes (pressure, H_0, temperatures
 and eta*/eta per layer), which differs from the check's solution by the y-error alone (a few tenths of a percent at
-the default case's points: docs/accuracy.md), less than a full-multigrid start's interpolation error (Brandt 1977,
-Math. Comp. 31: 333-390; Venner & Lubrecht 2000, ch. 3), and runs the coupled loop on that grid to the finest grid's
-tolerance. Its steady-h_c test (convergence.h_c_steady) reads h_c one grid coarser in x from the solve's seed stage
-on (nx + 3)/4 x ny, the x nodes of the cold check's own coarse stage. A solve without that stage (a seeded point of
+the default case's points: docs/accuracy.md), and runs the coupled loop on that grid to the finest grid's tolerance
+(the converged solution does not depend on the start: tests/test_y_check.py). Its steady-h_c test
+(convergence.h_c_steady) reads h_c one grid coarser in x from the solve's seed stage on (nx + 3)/4 x ny, the x nodes
+of the cold check's own coarse stage. A solve without that stage (a seeded point of
 the cycle: ehl/seeded.py) has its check solved cold. A warm check the retry policy would retry is solved again cold
 (staged.UNBOUNDED).
 """
