@@ -286,8 +286,10 @@ def _stage_task(function: Callable, name: str, *args: object) -> object:
 
 
 def _warm_up(solve: Solver, task: SolveTask) -> None:
-    """Compile or load the solver's Numba kernels here, before forking: solve `task` on its coarsest grid."""
-    settings = replace(task.settings, grid=task.settings.coarsest_grid)
+    """Compile or load the solver's Numba kernels here, before forking: solve `task` on its coarsest grid, square (the
+    same kernels as on the coarsest grid's x nodes with the case's rows, for a sixth of the time: 0.07 against 0.41 s
+    CPU at S1 of the face gear case, whose 17 x 65 also solved its error bound's check)."""
+    settings = replace(task.settings, grid=task.settings.coarsest_grid, grid_y=task.settings.coarsest_grid)
     try:
         solve(task.point, task.lubricant, settings)
     except Exception:  # the task itself will meet and record the same error

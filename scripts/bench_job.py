@@ -27,6 +27,7 @@ from __future__ import annotations
 import argparse
 import collections
 import json
+import math
 from pathlib import Path
 import statistics
 import subprocess
@@ -44,6 +45,7 @@ FACE_GEAR = HERE / "cases" / "facegear_110.yaml"
 REFERENCE_H_C = 0.4318  # H_c of the C reference at 513^2, Roelands + Dowson-Higginson (docs/benchmarks.md)
 REFERENCE_SECONDS = 2.0  # its recorded wall time at 257^2 with 6 V-cycles per level (docs/benchmarks.md)
 FIGURES = ("h_c", "h_min", "dT_max", "mu")
+BOUNDED = ("h_c", "h_min", "p_max", "dT_max", "mu")  # S1-S5 compared in units of the before file's error bounds
 
 CIRCLE_SOLVE = r'''
 import dataclasses, json, sys, time
@@ -86,6 +88,25 @@ def shares(after: Path, before: Path) -> dict[str, list[float]]:
     a, b = point_figures(after), point_figures(before)
     return {k: [abs(a[p][k] - b[p][k]) / abs(b[p][f"err_{k}"] * b[p][k]) for p in b if k in b[p] and k in a[p]]
             for k in FIGURES}
+
+
+def bound_shares(after: Path, before: Path) -> list[str]:
+    """Per point of S1-S5: each figure's |after - before| / (before's error bound x |before|), and both bounds (%);
+    "unresolved" where the before file has no bound."""
+    lines = []
+    with h5py.File(after, "r") as a, h5py.File(before, "r") as b:
+        for name, group in b["points"].items():
+            was, now = group.attrs, a["points"][name].attrs
+            cells = []
+            for k in BOUNDED:
+                if was.get(f"unresolved_{k}", 1.0) or f"error_bound_{k}" not in was:
+                    cells.append(f"{k} unresolved (change {abs(now[k] / was[k] - 1):.2e})")
+                    continue
+                share = abs(now[k] - was[k]) / abs(was[f"error_bound_{k}"] * was[k])
+                after_bound = 100 * now[f"error_bound_{k}"] if f"error_bound_{k}" in now else math.nan
+                cells.append(f"{k} {share:.3f} (bound {100 * was[f'error_bound_{k}']:.2f} -> {after_bound:.2f} %)")
+            lines.append(f"  {name}: " + "; ".join(cells))
+    return lines
 
 
 def reference_seconds(exe: Path | None) -> tuple[float, str]:
@@ -152,6 +173,9 @@ def report(trees: dict[str, Path], samples: dict, args: argparse.Namespace, fold
         solve = medians[this, f"circle 257^2: solve in a warm process, {clock}"]
         print(f"  by {clock} time: whole process {seconds / process:.2f}x faster than the reference (aimed at 2x), "
               f"solve {seconds / solve:.2f}x (aimed at 3x)")
+    if len(labels) == 2:
+        print("S1-S5, |after - before| / before's error bound, per point and figure (the bounds before -> after):")
+        print("\n".join(bound_shares(folder / f"{this}_s1s5.h5", folder / f"{labels[0]}_s1s5.h5")))
     if args.cycle and len(labels) == 2:
         found = shares(folder / f"{this}_cycle.h5", folder / f"{labels[0]}_cycle.h5")
         print("41-point cycle, |after - before| / before's error estimate, per figure (largest, points within 1):")

@@ -13,6 +13,7 @@ from facegear_tehl.ehl.retry import POLICY
 from facegear_tehl.ehl.solve import PointSolve
 from facegear_tehl.ehl.stopwatch import spent_on
 from facegear_tehl.ehl.tuning import TUNING
+from facegear_tehl.ehl.y_check import CoarseStart, WarmCheck
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.record import Action, RetryRecord
 from facegear_tehl.settings import SolverSettings, ThermalMode
@@ -73,22 +74,27 @@ class StagedSolver:
         return self.bound(begun, point, lubricant, settings)
 
     def finish(self, stage: PointSolve) -> PointSolution:
-        """The second stage (PointSolve.finish), with its error bounds (e_y from its coarse stage in a `full` solve:
-        the check of a `reduced` one is reduced too, its finest figures then alike)."""
+        """The second stage (PointSolve.finish), with its error bounds (e_y from its coarse stage in a `full` solve,
+        the check started from that stage: y_check.py; the check of a `reduced` one is reduced too, its finest figures
+        then alike)."""
+        start = CoarseStart.of(stage) if stage.mode is ThermalMode.FULL else None
         with np.errstate(**RUN_AWAY_ARITHMETIC):
             solution = stage.finish()
         coarse = None  # a reduced solve's finest figures are one film-state evaluation, its coarse stage's coupled
         if stage.mode is ThermalMode.FULL and len(stage.summaries) >= 2 and len(stage.solver.levels) >= 2:
             coarse = coarse_stage(stage.summaries[-2], stage.solver.levels[-2].ny, stage.scaling)
-        return self.bound(solution, stage.point, stage.lubricant, stage.asked, coarse)
+        start = start if coarse is not None else None  # the check on nx x (ny + 1)/2 is another grid's: cold
+        return self.bound(solution, stage.point, stage.lubricant, stage.asked, coarse, start)
 
     def bound(self, solution: PointSolution, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
-                 coarse: CoarseStage | None = None) -> PointSolution:
-        """The solution with its error bounds (error_bounds.with_error_bounds), as it is when not `bounded`."""
+              coarse: CoarseStage | None = None, start: CoarseStart | None = None) -> PointSolution:
+        """The solution with its error bounds (error_bounds.with_error_bounds), as it is when not `bounded`; the
+        check started from `start` (WarmChecked) when given."""
         if not self.bounded:
             return solution
+        check = UNBOUNDED if start is None else WarmChecked(start)
         with np.errstate(**RUN_AWAY_ARITHMETIC):
-            return with_error_bounds(solution, point, lubricant, settings, UNBOUNDED, coarse)
+            return with_error_bounds(solution, point, lubricant, settings, check, coarse)
 
     def needs_retry(self, solution: PointSolution) -> bool:
         """The policy has a next attempt for this one (retry.RetryPolicy.next_attempt)."""
@@ -111,6 +117,20 @@ class StagedSolver:
 
 STAGED = StagedSolver()
 UNBOUNDED = StagedSolver(bounded=False)  # the solver of the error bounds' checks
+
+
+@dataclass(frozen=True)
+class WarmChecked:
+    """The error bounds' check solve started from the solved point's coarse stage (y_check.WarmCheck), unbounded; one
+    that the retry policy would retry is solved again cold by UNBOUNDED, with all its retries."""
+
+    start: CoarseStart
+
+    def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
+        with np.errstate(**RUN_AWAY_ARITHMETIC):
+            begun = WarmCheck(point, lubricant, settings, self.start).begin()
+        solution = _completed(UNBOUNDED, begun)
+        return UNBOUNDED(point, lubricant, settings) if UNBOUNDED.needs_retry(solution) else solution
 
 
 def solve_point(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
