@@ -8,7 +8,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from facegear_tehl.contact import ContactPoint
-from facegear_tehl.ehl.error_bounds import CoarseStage, coarse_stage, with_error_bounds
+from facegear_tehl.ehl.error_bounds import CoarseStage, Solve, coarse_stage, with_error_bounds
 from facegear_tehl.ehl.retry import POLICY
 from facegear_tehl.ehl.solve import PointSolve
 from facegear_tehl.ehl.stopwatch import spent_on
@@ -72,23 +72,24 @@ class StagedSolver:
             return begun
         return self.bound(begun, point, lubricant, settings)
 
-    def finish(self, stage: PointSolve) -> PointSolution:
+    def finish(self, stage: PointSolve, check: Solve | None = None) -> PointSolution:
         """The second stage (PointSolve.finish), with its error bounds (e_y from its coarse stage in a `full` solve:
-        the check of a `reduced` one is reduced too, its finest figures then alike)."""
+        the check of a `reduced` one is reduced too, its finest figures then alike); `check`: as in `bound`."""
         with np.errstate(**RUN_AWAY_ARITHMETIC):
             solution = stage.finish()
         coarse = None  # a reduced solve's finest figures are one film-state evaluation, its coarse stage's coupled
         if stage.mode is ThermalMode.FULL and len(stage.summaries) >= 2 and len(stage.solver.levels) >= 2:
             coarse = coarse_stage(stage.summaries[-2], stage.solver.levels[-2].ny, stage.scaling)
-        return self.bound(solution, stage.point, stage.lubricant, stage.asked, coarse)
+        return self.bound(solution, stage.point, stage.lubricant, stage.asked, coarse, check)
 
     def bound(self, solution: PointSolution, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
-                 coarse: CoarseStage | None = None) -> PointSolution:
-        """The solution with its error bounds (error_bounds.with_error_bounds), as it is when not `bounded`."""
+              coarse: CoarseStage | None = None, check: Solve | None = None) -> PointSolution:
+        """The solution with its error bounds (error_bounds.with_error_bounds), as it is when not `bounded`; `check`
+        solves the bounds' check (default: UNBOUNDED, from the cold start; a path's checks: seeded.CheckPath)."""
         if not self.bounded:
             return solution
         with np.errstate(**RUN_AWAY_ARITHMETIC):
-            return with_error_bounds(solution, point, lubricant, settings, UNBOUNDED, coarse)
+            return with_error_bounds(solution, point, lubricant, settings, check or UNBOUNDED, coarse)
 
     def needs_retry(self, solution: PointSolution) -> bool:
         """The policy has a next attempt for this one (retry.RetryPolicy.next_attempt)."""
