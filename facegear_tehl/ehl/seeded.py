@@ -183,7 +183,8 @@ class CheckPath:
 
     def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
         seed = None if self.seed is None else replace(self.seed, correction=None)
-        solution, following = solve_seeded(point, lubricant, settings, seed, solver=UNBOUNDED, attempt=self.following)
+        solution, following = solve_seeded(point, lubricant, settings, seed, solver=UNBOUNDED, attempt=self.following,
+                                           whole_policy=False)
         record = solution.record
         as_led = record is not None and not any(r.reason is Reason.SEEDED_START_FAILED for r in record.retries)
         seeded = as_led and seed is not None and record.stages[:1] != () and record.stages[0].stage is Stage.SEEDED
@@ -196,13 +197,15 @@ class CheckPath:
 
 
 def solve_seeded(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, seed: Seed | None,
-                 check: CheckPath | None = None, solver: StagedSolver = STAGED,
-                 attempt: int = 1) -> tuple[PointSolution, Seed | None]:
+                 check: CheckPath | None = None, solver: StagedSolver = STAGED, attempt: int = 1,
+                 whole_policy: bool = True) -> tuple[PointSolution, Seed | None]:
     """One point of a path from `seed` (None: the cold start) with the relaxation of the retry policy's `attempt`, and
     the seed for the next point (None after a failure); `check`: its error bounds' check solved on the path of checks
     (else cold); `solver`: STAGED, or UNBOUNDED for a check. A solve so led (a seed, or an attempt after the first)
-    that the retry policy would retry is solved again from the cold start (`solver`, with every retry, its check
-    cold), recorded as such; a cold start that fails goes on with the policy's retries."""
+    that the retry policy would retry is solved again from the cold start (`solver`, its check cold), recorded as
+    such: with every attempt of the policy (`whole_policy`), else with those after the one that failed (a check: the
+    attempt it failed on ran away from the neighbour's state, and does so from the cold start where the neighbours'
+    checks needed the next one); a cold start that fails goes on with the policy's retries."""
     solve = SeededSolve(point, lubricant, settings, seed, attempt)
     if check is not None:
         check.source, check.attempt = "", 1  # until this point's check says how it started
@@ -218,11 +221,15 @@ def solve_seeded(point: ContactPoint, lubricant: Lubricant, settings: SolverSett
         return solution, solve.seed_for_next()
     if solve.seed is None and attempt == 1:
         return solver.retried(solution, point, lubricant, settings), None
-    cold = solver(point, lubricant, settings)
+    if whole_policy:
+        cold = solver(point, lubricant, settings)
+        spent = spent_on(solution) + spent_on(cold)
+    else:  # the retries count the failed attempt's time
+        cold = solver.retried(solution, point, lubricant, settings)
+        spent = spent_on(cold)
     led = f"seeded from {solve.seed.source}" if solve.seed is not None else f"begun at attempt {attempt}"
     retry = RetryRecord(Reason.SEEDED_START_FAILED, Action.COLD_START, 1, f"{led}: {solution.message}")
     record = cold.record.with_retry(retry)
-    spent = spent_on(solution) + spent_on(cold)
     return replace(cold, record=record, models={**cold.models, "solver": record.render()},
                    scalars={**cold.scalars, **spent.scalars()}), None
 
