@@ -19,8 +19,16 @@ from facegear_tehl.ehl.snapshot import restore_snapshot, take_snapshot
 from facegear_tehl.ehl.solve import PointSolve
 from facegear_tehl.ehl.start import start
 from facegear_tehl.ehl.tuning import TUNING
-from facegear_tehl.record import (Action, Reason, RetryRecord, SolveRecord, Stage, record_from_dict, record_lines,
-                                  record_to_dict)
+from facegear_tehl.record import (
+    Action,
+    Reason,
+    RetryRecord,
+    SolveRecord,
+    Stage,
+    record_from_dict,
+    record_lines,
+    record_to_dict,
+)
 from facegear_tehl.results import read_result
 from facegear_tehl.settings import SolverSettings, ThermalMode
 from facegear_tehl.solution import Outcome
