@@ -6,7 +6,7 @@ shown by `tehl info`. Human sentences are rendered from it (`render`); no decisi
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from enum import Enum
 
 from facegear_tehl.outcome import Outcome
@@ -91,7 +91,9 @@ class RetryRecord:
 class SolveRecord:
     """The record of a point solve: the planned stages (as `plan.SolvePlan.describe` words), the stages that ran, the
     retries with their reasons, the attempt reported and its relaxation, the outcome of the iteration itself
-    (before a closed film is reported as such), and fixed notes (the domain, the load continuation)."""
+    (before a closed film is reported as such), fixed notes (the domain, the load continuation), and how the error
+    bounds' check began (error_bounds.py; a path's checks, seeded.CheckPath): `check_seed` the point whose check
+    seeded it ('': none did), `check_attempt` the retry policy's attempt whose relaxation it began with."""
 
     plan: tuple[str, ...] = ()
     stages: tuple[StageRecord, ...] = ()
@@ -100,10 +102,11 @@ class SolveRecord:
     relaxation: str = ""
     iteration: Outcome = Outcome.CONVERGED
     notes: tuple[str, ...] = field(default=())
+    check_seed: str = ""
+    check_attempt: int = 1
 
     def with_retry(self, retry: RetryRecord) -> SolveRecord:
-        return SolveRecord(self.plan, self.stages, self.retries + (retry,), self.attempt, self.relaxation,
-                           self.iteration, self.notes)
+        return replace(self, retries=self.retries + (retry,))
 
     def render(self) -> str:
         """The record in words: the method, the notes, then each retry."""
@@ -128,6 +131,8 @@ def record_to_dict(record: SolveRecord) -> dict[str, object]:
         "relaxation": record.relaxation,
         "iteration": record.iteration.value,
         "notes": list(record.notes),
+        "check_seed": record.check_seed,
+        "check_attempt": record.check_attempt,
     }
 
 
@@ -140,7 +145,8 @@ def record_from_dict(data: dict[str, object]) -> SolveRecord:
     retries = tuple(RetryRecord(Reason(r["reason"]), Action(r["action"]), int(r["attempt"]), str(r["detail"]))
                     for r in data["retries"])
     return SolveRecord(tuple(data["plan"]), stages, retries, int(data["attempt"]), str(data["relaxation"]),
-                       Outcome(data["iteration"]), tuple(data["notes"]))
+                       Outcome(data["iteration"]), tuple(data["notes"]), str(data.get("check_seed", "")),
+                       int(data.get("check_attempt", 1)))
 
 
 def record_lines(name: str, record: SolveRecord) -> list[str]:
@@ -153,4 +159,7 @@ def record_lines(name: str, record: SolveRecord) -> list[str]:
     lines += [f"  retry    {r.reason.value}" + (f" ({r.detail})" if r.detail else "") + f": {r.action.value}"
               for r in record.retries]
     lines += [f"  note     {note}" for note in record.notes]
+    if record.check_seed or record.check_attempt > 1:
+        seeded = f"seeded from {record.check_seed}'s check" if record.check_seed else "from its cold start"
+        lines.append(f"  check    the error bounds' check {seeded}, begun with attempt {record.check_attempt}")
     return lines

@@ -6,6 +6,7 @@ worker or two."""
 from __future__ import annotations
 
 from dataclasses import replace
+import time
 
 import numpy as np
 import pytest
@@ -13,8 +14,8 @@ import yaml
 
 from facegear_tehl.case import parse_case
 from facegear_tehl.ehl import flow
-from facegear_tehl.ehl.seeded import SeededSolve, resample, solve_path, solve_seeded
-from facegear_tehl.ehl.staged import solve_point
+from facegear_tehl.ehl.seeded import CheckPath, SeededSolve, resample, solve_path, solve_seeded
+from facegear_tehl.ehl.staged import UNBOUNDED, solve_point
 from facegear_tehl.parallel import PathSolver, SolveTask, solve_all
 from facegear_tehl.points import contact_analysis
 from facegear_tehl.record import Action, Reason, Stage
@@ -115,6 +116,34 @@ def test_seeded_points_lie_within_their_error_estimates_of_the_cold_start():
 @pytest.mark.slow
 def test_seeded_points_on_the_default_grid_lie_within_their_error_estimates_of_the_cold_start():
     _check_neighbours(9, 4, grid=None)  # P10 cold, P11-P13 seeded on 513 x 65 (outlet stages at P10 and P12)
+
+
+@pytest.mark.slow
+def test_the_error_bounds_checks_of_a_path_are_seeded_and_land_within_their_estimates_of_cold_checks():
+    # the checks of P17-P19 as y_estimates solves them for the default 513 x 65 solves: 257 x 33 over the lengthened
+    # domain, no outlet patches. Their first attempt runs away from the cold start (the ellipse-scaled switch): P17's
+    # check is retried, P18's begins cold with the attempt that converged P17's, P19's seeded from P18's with it
+    case = _path_case()
+    points = contact_analysis(case).points[16:19]
+    check = replace(case.solver, grid=257, grid_y=33, domain_x=(-10.5, 1.5), domain_y=(-3.0, 3.0),
+                    outlet_refinement="never")
+    path, seconds, before = CheckPath(), {"path": 0.0, "cold": 0.0}, None
+    for i, point in enumerate(points):
+        clock = time.process_time()
+        led = path(point, case.lubricant, check)
+        seconds["path"] += time.process_time() - clock
+        clock = time.process_time()
+        cold = UNBOUNDED(point, case.lubricant, check)
+        seconds["cold"] += time.process_time() - clock
+        assert led.converged and cold.converged and cold.record.attempt > 1  # the cold start's first ran away
+        source = points[1].name if i == 2 else ""
+        assert (path.source, path.attempt) == (source, 1 if i == 0 else before.record.attempt)
+        assert led.record.stages[0].stage is (Stage.SEEDED if i == 2 else Stage.START)
+        assert (led.record.retries == ()) == (i > 0)
+        shares = _within_estimates(led, cold)
+        assert max(shares.values()) < 1.0, (point.name, shares)
+        before = led
+    print(seconds)  # CPU of the three checks on the path and from the cold start
 
 
 def test_a_seeded_solve_that_fails_is_solved_again_from_the_cold_start():

@@ -19,7 +19,16 @@ from facegear_tehl.ehl.snapshot import restore_snapshot, take_snapshot
 from facegear_tehl.ehl.solve import PointSolve
 from facegear_tehl.ehl.start import start
 from facegear_tehl.ehl.tuning import TUNING
-from facegear_tehl.record import Action, Reason, RetryRecord, SolveRecord, Stage, record_from_dict, record_to_dict
+from facegear_tehl.record import (
+    Action,
+    Reason,
+    RetryRecord,
+    SolveRecord,
+    Stage,
+    record_from_dict,
+    record_lines,
+    record_to_dict,
+)
 from facegear_tehl.results import read_result
 from facegear_tehl.settings import SolverSettings, ThermalMode
 from facegear_tehl.solution import Outcome
@@ -48,9 +57,13 @@ def test_the_plan_follows_the_hierarchy():
 
 def test_the_record_survives_its_plain_data():
     record = SolveRecord(("a", "b"), (), (RetryRecord(Reason.RAN_AWAY, Action.NEXT_RELAXATION, 2, "why"),), 2,
-                         "Venner's switch", Outcome.NOT_CONVERGED, ("note",))
+                         "Venner's switch", Outcome.NOT_CONVERGED, ("note",), check_seed="P11", check_attempt=2)
     assert record_from_dict(json.loads(json.dumps(record_to_dict(record)))) == record
     assert "ran away (why): solved again with the next relaxation" in record.render()
+    assert "  check    the error bounds' check seeded from P11's check, begun with attempt 2" in record_lines("P12",
+                                                                                                            record)
+    older = {k: v for k, v in record_to_dict(record).items() if not k.startswith("check_")}  # a file from before
+    assert (record_from_dict(older).check_seed, record_from_dict(older).check_attempt) == ("", 1)
 
 
 def test_a_run_writes_its_record_and_info_shows_it(facegear_file):

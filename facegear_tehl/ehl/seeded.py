@@ -22,8 +22,9 @@ from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.domain import predicted_central_film
 from facegear_tehl.ehl.plan import PlannedStage, SolvePlan
 from facegear_tehl.ehl.report import summarise
+from facegear_tehl.ehl.retry import POLICY
 from facegear_tehl.ehl.solve import PointSolve
-from facegear_tehl.ehl.staged import RUN_AWAY_ARITHMETIC, STAGED
+from facegear_tehl.ehl.staged import RUN_AWAY_ARITHMETIC, STAGED, UNBOUNDED, StagedSolver
 from facegear_tehl.ehl.stopwatch import spent_on
 from facegear_tehl.ehl.thermal import FilmState
 from facegear_tehl.ehl.tuning import TUNING
@@ -74,8 +75,11 @@ class SeededSolve(PointSolve):
     """A point solve that starts from `seed` (the module docstring) when its plan has a coarse stage, else cold; it
     keeps the level and film state it reports, to seed the next point (`seed_for_next`)."""
 
-    def __init__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, seed: Seed | None):
-        super().__init__(point, lubricant, settings)
+    def __init__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, seed: Seed | None,
+                 attempt: int = 1):
+        """`attempt`: of the retry policy (retry.ATTEMPTS), whose relaxation this solve uses from the start."""
+        super().__init__(point, lubricant, settings, POLICY.attempts[attempt - 1].relaxation, attempt=attempt,
+                         escalate_start=POLICY.escalates_start(attempt))
         self.seed = seed if seed is not None and self.plan.has(Stage.COARSE) else None
         if self.seed is not None:
             self.plan = seeded_plan(self.plan, self.seed.source)
@@ -165,26 +169,67 @@ class SeededSolve(PointSolve):
                     state, correction)
 
 
-def solve_seeded(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
-                 seed: Seed | None) -> tuple[PointSolution, Seed | None]:
-    """One point of a path from `seed` (None: the cold start), and the seed for the next point (None after a
-    failure). A seeded solve the retry policy would retry is solved again from the cold start (STAGED, with every
-    retry), recorded as such; a cold start that fails goes on with the policy's retries."""
-    solve = SeededSolve(point, lubricant, settings, seed)
+class CheckPath:
+    """The error bounds' checks of a path's points (error_bounds.y_estimates: the same point on half the rows), each
+    solved like its point: seeded from the check of the point before (`solve_seeded`, unbounded; the first cold), and
+    with the relaxation of the retry policy's attempt that converged that check (the checks of neighbours run away on
+    the same attempts). `source` and `attempt` say how the last check started ('': with no seed; 1: the first
+    attempt)."""
+
+    def __init__(self) -> None:
+        self.seed: Seed | None = None
+        self.following = 1  # the attempt the next check starts with
+        self.source, self.attempt = "", 1
+
+    def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
+        seed = None if self.seed is None else replace(self.seed, correction=None)
+        solution, following = solve_seeded(point, lubricant, settings, seed, solver=UNBOUNDED, attempt=self.following,
+                                           whole_policy=False)
+        record = solution.record
+        as_led = record is not None and not any(r.reason is Reason.SEEDED_START_FAILED for r in record.retries)
+        seeded = as_led and seed is not None and record.stages[:1] != () and record.stages[0].stage is Stage.SEEDED
+        self.source = self.seed.source if seeded else ""
+        self.attempt = self.following if as_led else 1
+        self.seed = following
+        carried = solution.converged and not POLICY.attempts[record.attempt - 1].load_continuation
+        self.following = record.attempt if carried else 1
+        return solution
+
+
+def solve_seeded(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, seed: Seed | None,
+                 check: CheckPath | None = None, solver: StagedSolver = STAGED, attempt: int = 1,
+                 whole_policy: bool = True) -> tuple[PointSolution, Seed | None]:
+    """One point of a path from `seed` (None: the cold start) with the relaxation of the retry policy's `attempt`, and
+    the seed for the next point (None after a failure); `check`: its error bounds' check solved on the path of checks
+    (else cold); `solver`: STAGED, or UNBOUNDED for a check. A solve so led (a seed, or an attempt after the first)
+    that the retry policy would retry is solved again from the cold start (`solver`, its check cold), recorded as
+    such: with every attempt of the policy (`whole_policy`), else with those after the one that failed (a check: the
+    attempt it failed on ran away from the neighbour's state, and does so from the cold start where the neighbours'
+    checks needed the next one); a cold start that fails goes on with the policy's retries."""
+    solve = SeededSolve(point, lubricant, settings, seed, attempt)
+    if check is not None:
+        check.source, check.attempt = "", 1  # until this point's check says how it started
     with np.errstate(**RUN_AWAY_ARITHMETIC):
         begun = solve.begin()
     # with its error bounds as every solve of the staged solver
-    solution = STAGED.finish(begun) if isinstance(begun, PointSolve) else STAGED.bound(begun, point, lubricant,
-                                                                                       settings)
-    if not STAGED.needs_retry(solution):
+    solution = solver.finish(begun, check) if isinstance(begun, PointSolve) else solver.bound(
+        begun, point, lubricant, settings, check=check)
+    if not solver.needs_retry(solution):
+        if check is not None and solution.record is not None:
+            record = replace(solution.record, check_seed=check.source, check_attempt=check.attempt)
+            solution = replace(solution, record=record)
         return solution, solve.seed_for_next()
-    if solve.seed is None:
-        return STAGED.retried(solution, point, lubricant, settings), None
-    cold = STAGED(point, lubricant, settings)
-    retry = RetryRecord(Reason.SEEDED_START_FAILED, Action.COLD_START, 1,
-                        f"seeded from {solve.seed.source}: {solution.message}")
+    if solve.seed is None and attempt == 1:
+        return solver.retried(solution, point, lubricant, settings), None
+    if whole_policy:
+        cold = solver(point, lubricant, settings)
+        spent = spent_on(solution) + spent_on(cold)
+    else:  # the retries count the failed attempt's time
+        cold = solver.retried(solution, point, lubricant, settings)
+        spent = spent_on(cold)
+    led = f"seeded from {solve.seed.source}" if solve.seed is not None else f"begun at attempt {attempt}"
+    retry = RetryRecord(Reason.SEEDED_START_FAILED, Action.COLD_START, 1, f"{led}: {solution.message}")
     record = cold.record.with_retry(retry)
-    spent = spent_on(solution) + spent_on(cold)
     return replace(cold, record=record, models={**cold.models, "solver": record.render()},
                    scalars={**cold.scalars, **spent.scalars()}), None
 
@@ -192,8 +237,8 @@ def solve_seeded(point: ContactPoint, lubricant: Lubricant, settings: SolverSett
 def solve_path(tasks: Sequence[tuple[ContactPoint, Lubricant, SolverSettings]]) -> list[PointSolution]:
     """Neighbouring points of a path in order, each seeded from the one before it (the first cold; after a failure
     the next cold again)."""
-    solutions, seed = [], None
+    solutions, seed, check = [], None, CheckPath()
     for point, lubricant, settings in tasks:
-        solution, seed = solve_seeded(point, lubricant, settings, seed)
+        solution, seed = solve_seeded(point, lubricant, settings, seed, check)
         solutions.append(solution)
     return solutions

@@ -8,7 +8,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from facegear_tehl.contact import ContactPoint
-from facegear_tehl.ehl.error_bounds import CoarseStage, coarse_stage, with_error_bounds
+from facegear_tehl.ehl.error_bounds import CoarseStage, Solve, coarse_stage, with_error_bounds
 from facegear_tehl.ehl.retry import POLICY
 from facegear_tehl.ehl.solve import PointSolve
 from facegear_tehl.ehl.stopwatch import spent_on
@@ -73,28 +73,29 @@ class StagedSolver:
             return begun
         return self.bound(begun, point, lubricant, settings)
 
-    def finish(self, stage: PointSolve) -> PointSolution:
+    def finish(self, stage: PointSolve, check: Solve | None = None) -> PointSolution:
         """The second stage (PointSolve.finish), with its error bounds (e_y from its coarse stage in a `full` solve,
         the check started from that stage: y_check.py; the check of a `reduced` one is reduced too, its finest figures
-        then alike)."""
+        then alike); `check`, when given, solves the bounds' check instead (as in `bound`)."""
         start = CoarseStart.of(stage) if stage.mode is ThermalMode.FULL else None
         with np.errstate(**RUN_AWAY_ARITHMETIC):
             solution = stage.finish()
         coarse = None  # a reduced solve's finest figures are one film-state evaluation, its coarse stage's coupled
         if stage.mode is ThermalMode.FULL and len(stage.summaries) >= 2 and len(stage.solver.levels) >= 2:
             coarse = coarse_stage(stage.summaries[-2], stage.solver.levels[-2].ny, stage.scaling)
-        start = start if coarse is not None else None  # the check on nx x (ny + 1)/2 is another grid's: cold
-        return self.bound(solution, stage.point, stage.lubricant, stage.asked, coarse, start)
+        if check is None and start is not None and coarse is not None:  # nx x (ny + 1)/2 is another grid's: cold
+            check = WarmChecked(start)
+        return self.bound(solution, stage.point, stage.lubricant, stage.asked, coarse, check)
 
     def bound(self, solution: PointSolution, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
-              coarse: CoarseStage | None = None, start: CoarseStart | None = None) -> PointSolution:
-        """The solution with its error bounds (error_bounds.with_error_bounds), as it is when not `bounded`; the
-        check started from `start` (WarmChecked) when given."""
+              coarse: CoarseStage | None = None, check: Solve | None = None) -> PointSolution:
+        """The solution with its error bounds (error_bounds.with_error_bounds), as it is when not `bounded`; `check`
+        solves the bounds' check (default: UNBOUNDED, from the cold start; from the solve's coarse stage: WarmChecked;
+        a path's checks: seeded.CheckPath)."""
         if not self.bounded:
             return solution
-        check = UNBOUNDED if start is None else WarmChecked(start)
         with np.errstate(**RUN_AWAY_ARITHMETIC):
-            return with_error_bounds(solution, point, lubricant, settings, check, coarse)
+            return with_error_bounds(solution, point, lubricant, settings, check or UNBOUNDED, coarse)
 
     def needs_retry(self, solution: PointSolution) -> bool:
         """The policy has a next attempt for this one (retry.RetryPolicy.next_attempt)."""
