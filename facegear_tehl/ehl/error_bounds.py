@@ -155,11 +155,6 @@ def runs(field: np.ndarray, inside: np.ndarray) -> tuple[int, int]:
     return int(out[0]), int(out[1])
 
 
-def span(field: np.ndarray, inside: np.ndarray) -> int:
-    """Nodes of the shorter of the two runs through the extreme of `field` (`runs`)."""
-    return min(runs(field, inside))
-
-
 def feature_runs(solution: PointSolution, t_inlet: float) -> dict[str, tuple[int, int]]:
     """Nodes across the feature of each local figure along x and along y (`runs`): the lowest film's basin (film
     within feature_depth of h_min above it), the hot spot (rise within feature_depth of dT_max) and the cold spot
