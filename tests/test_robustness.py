@@ -450,6 +450,7 @@ def test_a_coarse_stage_out_of_outer_iterations_before_the_damped_attempt_ends_t
     a film-state rise of tens of kelvin to change by less than 0.2 % of it."""
     from dataclasses import replace
 
+    from facegear_tehl.ehl.coupled import Ending
     from facegear_tehl.ehl.retry import POLICY
     from facegear_tehl.ehl.solve import PointSolve
     from facegear_tehl.record import Stage
@@ -467,6 +468,6 @@ def test_a_coarse_stage_out_of_outer_iterations_before_the_damped_attempt_ends_t
     assert Stage.FINEST not in dict(stages)
     assert POLICY.next_attempt(first) == retry_module.TUNING.damped_attempt
     damped = PointSolve(point, case.lubricant, settings, POLICY.attempts[2].relaxation, attempt=3).begin()
-    assert isinstance(damped, PointSolve) and damped.loop_ending.name == "EXHAUSTED"
+    assert isinstance(damped, PointSolve) and damped.loop_ending is Ending.EXHAUSTED
     finished = damped.finish()
     assert Stage.FINEST in [s.stage for s in finished.record.stages]
