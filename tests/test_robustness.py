@@ -440,3 +440,34 @@ def test_a_coarse_stage_whose_pressure_cannot_hold_stops_once_its_film_state_has
     assert coarse_long > 0, "the film state never settled under the unconverged pressure: the test tests nothing"
     assert coarse_outer == coarse_long < settings.max_thermal_iterations, stages
     assert fine_outer > 0
+
+
+def test_a_coarse_stage_out_of_outer_iterations_before_the_damped_attempt_ends_the_attempt():
+    """A coarse thermal stage that spends max_thermal_iterations short of its tolerance on an attempt before the damped
+    one ends that attempt (not converged, on the coarse grid, no finest-grid stage: retry.RetryPolicy.next_attempt
+    takes the damped attempt after a stall); on the damped attempt the finest grid still follows (the policy's coupled
+    solve on the finest grid from there on). S1 of the default case on 129 x 33 with two outer iterations, too few for
+    a film-state rise of tens of kelvin to change by less than 0.2 % of it."""
+    from dataclasses import replace
+
+    from facegear_tehl.ehl.coupled import Ending
+    from facegear_tehl.ehl.retry import POLICY
+    from facegear_tehl.ehl.solve import PointSolve
+    from facegear_tehl.record import Stage
+    from facegear_tehl.solution import Outcome
+
+    raw = yaml.safe_load((ROOT / "cases" / "facegear_110.yaml").read_text())
+    raw["gear"]["points"] = ["S1"]
+    raw["solver"].update(grid=129, grid_y=33)
+    case = parse_case(yaml.safe_dump(raw))
+    settings = replace(case.solver, max_thermal_iterations=2)
+    point = contact_analysis(case).points[0]
+    first = PointSolve(point, case.lubricant, settings).begin()
+    stages = [(s.stage, s.outer) for s in first.record.stages]
+    assert first.outcome is Outcome.NOT_CONVERGED and stages[-1] == (Stage.COARSE, 2), stages
+    assert Stage.FINEST not in dict(stages)
+    assert POLICY.next_attempt(first) == retry_module.TUNING.damped_attempt
+    damped = PointSolve(point, case.lubricant, settings, POLICY.attempts[2].relaxation, attempt=3).begin()
+    assert isinstance(damped, PointSolve) and damped.loop_ending is Ending.EXHAUSTED
+    finished = damped.finish()
+    assert Stage.FINEST in [s.stage for s in finished.record.stages]

@@ -102,7 +102,7 @@ class SeededSolve(PointSolve):
             mark = self._mark()
             state, status = self.couple(index, frozen)
             self._stage_done(Stage.COARSE, index, status, mark)
-        if state is None or status.diverged:
+        if state is None or status.diverged or self.coarse_stage_stalled():
             return self.report(index, status, state)
         self.coarse_state = state
         self.elapsed = self._clock.spent()  # paused between stages, as PointSolve.begin

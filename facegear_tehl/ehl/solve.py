@@ -102,6 +102,7 @@ class PointSolve:
         self.plan: SolvePlan = plan_for(shapes, self.mode, self.coupled, settings, point.entrainment_angle)
         self.summaries: list[LevelSummary] = []
         self.coarse_state: FilmState | None = None  # the film state of the coarse thermal stage
+        self.loop_ending: Ending | None = None  # how the last coupled loop (`couple`) ended
         self.escalate_start, self.attempt = escalate_start, attempt
         fraction = TUNING.continuation_moes_m / self.scaling.moes_m
         self.start_load_fraction = min(1.0, fraction) if load_continuation else 1.0
@@ -197,13 +198,19 @@ class PointSolve:
                 self.summaries.append(summarise(self.solver.levels[index]))
             self._stage_done(Stage.COARSE, index, status, mark)
             closed = status.outcome is Outcome.FILM_CLOSED
-            if state is not None and not status.diverged and not closed:
+            if state is not None and not status.diverged and not closed and not self.coarse_stage_stalled():
                 self.coarse_state = state
                 self.elapsed = self._clock.spent()
                 return self
             if POLICY.couples_on_finest(self.attempt, closed):
                 return self._couple_on_finest(status)
         return self.report(index, status, state)
+
+    def coarse_stage_stalled(self) -> bool:
+        """The coarse stage's loop spent max_thermal_iterations short of its tolerance on an attempt before the
+        damped one: the attempt stalled (retry.RetryPolicy.next_attempt goes on with the damped one) without the finest
+        grid from that state, whose loop met the same limit cycle on every such attempt measured (docs/tuning.md)."""
+        return self.loop_ending is Ending.EXHAUSTED and not POLICY.couples_on_finest(self.attempt)
 
     def _seed_stage(self) -> tuple[FilmState, StageMark] | None:
         """The coupled problem two grids below the finest to seed_stage_limit of the rise, its solution and film
@@ -290,6 +297,7 @@ class PointSolve:
         target = UniformTarget(self, index, model, initial, coarse_h_c)
         end = CoupledLoop(target, self.pressure, self.history, self.settings.max_thermal_iterations,
                           self.lubricant.inlet_temperature).run(temperature, factor)
+        self.loop_ending = end.ending
         if end.ending in (Ending.TOLERANCE, Ending.FLOOR, Ending.STOPPED):
             if end.ending is not Ending.STOPPED:
                 self.pressure.settle(index)
