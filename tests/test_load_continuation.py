@@ -208,3 +208,35 @@ def test_a_start_short_of_the_load_reports_no_film():
     assert "carries 0.4 of the load: no film is reported" in solution.message
     assert not solution.fields and "h_min" not in solution.scalars and "h_c" not in solution.scalars
     assert "y_film_closed" in solution.scalars and POLICY.unresolved(solution)
+
+
+class _ClosesAbove(_CarriesUpTo):
+    """A stand-in whose iteration stays finite and balanced but whose film closes (h_min <= 0) once the load exceeds
+    `limit` of the full load: what a grid that does not resolve a heavier contact's thinner film does."""
+
+    def update_film(self, level):
+        level.film = np.full((5, 5), -1e-3 if self.fraction() > self.limit * (1 + 1e-12) else 1e-3)
+
+    def cycle(self, index):
+        self.update_film(self.level)
+
+    def restore(self, index, iterate):
+        super().restore(index, iterate)
+        self.update_film(self.level)
+
+
+@pytest.mark.parametrize("limit", [0.3, 0.77])
+def test_a_load_step_whose_film_closes_is_taken_back_and_the_step_shortened(limit):
+    """start._raise_load does not carry a closed film forward (issue 47): the smooth-film equations have an open film
+    at any load (Hamrock & Dowson 1977, H_min > 0), so a step whose film closes is what the grid does not resolve; it
+    is taken back like one that runs away, and the continuation stops within a step of min_load_step of the load
+    where the film closes, the last open iterate restored and the outcome the closed film's."""
+    from facegear_tehl.ehl.start import _raise_load
+
+    problem = problem_for(_point(4e4), OIL, SolverSettings(grid=65, thermal="off"), scaling_for(_point(4e4), OIL))
+    solver = _ClosesAbove(problem, 0.01, limit)
+    reached, status = _raise_load(solver, 0, problem, 0.01)
+    assert status.outcome is Outcome.FILM_CLOSED
+    assert f"the film closes raising the load of the full-multigrid start past {reached:.3g}" in status.message
+    assert limit / TUNING.min_load_step**2 < reached <= limit
+    assert solver.fraction() == pytest.approx(reached, rel=1e-9) and solver.level.film.min() > 0.0
