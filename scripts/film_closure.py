@@ -35,7 +35,7 @@ from facegear_tehl.film_formulas import (
     hamrock_dowson_minimum,
 )
 from facegear_tehl.suites.envelope import EnvelopeCase
-from facegear_tehl.suites.wide_envelope import wide_cases
+from facegear_tehl.suites.wide_envelope import wide_envelope_contact
 
 
 @dataclass(frozen=True)
@@ -92,15 +92,12 @@ def extrapolated(values: Sequence[float]) -> tuple[float, float]:
 
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("case", help="a wide-envelope contact's name or its prefix (w08)")
+    parser.add_argument("case", type=wide_envelope_contact, help="a wide-envelope contact's name or its prefix (w08)")
     parser.add_argument("--grids", default="129,257,513", help="comma-separated nodes per axis, each twice as fine")
     parser.add_argument("--attempt", type=int, default=1, help="the relaxation of this attempt (retry.ATTEMPTS)")
     args = parser.parse_args(argv)
-    cases = [c for c in wide_cases() if c.name.startswith(args.case)]
-    if len(cases) != 1:
-        print(f"case {args.case!r}: expected one wide-envelope contact, found {len(cases)}", file=sys.stderr)
-        return 2
-    case = replace(cases[0], thermal=False)
+    case = args.case
+    case = replace(case, thermal=False)
     films = []
     for nodes in (int(n) for n in args.grids.split(",")):
         film = solved_film(case, nodes, args.attempt)
