@@ -32,7 +32,7 @@ from facegear_tehl.ehl.retry import ATTEMPTS
 from facegear_tehl.ehl.solve import PointSolve
 from facegear_tehl.ehl.start import FILM_LOAD_EXPONENT
 from facegear_tehl.ehl.tuning import TUNING
-from facegear_tehl.suites.wide_envelope import wide_cases
+from facegear_tehl.suites.wide_envelope import wide_envelope_contact
 
 LIMIT_CYCLE_CORRELATION = -0.8  # successive pressure changes this anti-correlated: a period-2 limit cycle
 
@@ -135,7 +135,7 @@ class Continuation:
 
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("case", help="a wide-envelope contact's name or its prefix (w01)")
+    parser.add_argument("case", type=wide_envelope_contact, help="a wide-envelope contact's name or its prefix (w01)")
     parser.add_argument("--grid", type=int, default=257)
     parser.add_argument("--grid-y", type=int, default=65)
     parser.add_argument("--attempt", type=int, default=3, help="the relaxation of this attempt (retry.ATTEMPTS)")
@@ -143,16 +143,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--tolerance", type=float, default=1e-3)
     parser.add_argument("--cycles", type=int, default=12, help="V-cycles per step at most")
     args = parser.parse_args(argv)
-    cases = [c for c in wide_cases() if c.name.startswith(args.case)]
-    if len(cases) != 1:
-        print(f"case {args.case!r}: expected one wide-envelope contact, found {len(cases)}", file=sys.stderr)
-        return 2
-    solve = PointSolve(cases[0].point(), cases[0].lubricant(), cases[0].settings(args.grid, args.grid_y),
+    case = args.case
+    solve = PointSolve(case.point(), case.lubricant(), case.settings(args.grid, args.grid_y),
                        ATTEMPTS[args.attempt - 1].relaxation, attempt=args.attempt)
     run = Continuation(solve, args.tolerance, args.cycles, args.phase_means)
     run.raise_load()
     level = run.level
-    print(f"{cases[0].name} on {level.nx} x {level.ny}: load reached {run.fraction:.3f} (Moes M "
+    print(f"{case.name} on {level.nx} x {level.ny}: load reached {run.fraction:.3f} (Moes M "
           f"{run.fraction * solve.scaling.moes_m:.3g} of {solve.scaling.moes_m:.3g}); {run.limit_cycle()}")
     return 0 if run.fraction == 1.0 else 1
 

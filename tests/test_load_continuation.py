@@ -19,7 +19,7 @@ from facegear_tehl.lubricant import KELVIN, Lubricant
 from facegear_tehl.materials import Solid
 from facegear_tehl.record import SolveRecord
 from facegear_tehl.settings import SolverSettings
-from facegear_tehl.solution import Outcome, PointSolution
+from facegear_tehl.solution import CONVERGED, Outcome, PointSolution
 
 STEEL = Solid(elastic_modulus=210e9, poisson_ratio=0.3, density=7850.0, thermal_conductivity=46.0, specific_heat=470.0)
 # the envelope suite's gear oil (scripts/envelope.py: ISO VG 320 at 80 degC, Roelands + Dowson-Higginson)
@@ -185,7 +185,7 @@ def test_the_step_control_raises_the_load_as_far_as_the_grid_carries_it(limit):
 
     problem = problem_for(_point(4e4), OIL, SolverSettings(grid=65, thermal="off"), scaling_for(_point(4e4), OIL))
     solver = _CarriesUpTo(problem, 0.01, limit)
-    reached, status = _raise_load(solver, 0, problem, 0.01)
+    reached, status = _raise_load(solver, 0, problem, 0.01, open_film=True)
     if limit == 1.0:
         assert status.converged and reached == 1.0
         return
@@ -208,3 +208,38 @@ def test_a_start_short_of_the_load_reports_no_film():
     assert "carries 0.4 of the load: no film is reported" in solution.message
     assert not solution.fields and "h_min" not in solution.scalars and "h_c" not in solution.scalars
     assert "y_film_closed" in solution.scalars and POLICY.unresolved(solution)
+
+
+class _ClosesAbove(_CarriesUpTo):
+    """A stand-in whose iteration stays finite and balanced but whose film closes (h_min <= 0) once the load exceeds
+    `limit` of the full load: what a grid that does not resolve a heavier contact's thinner film does."""
+
+    def update_film(self, level):
+        level.film = np.full((5, 5), -1e-3 if self.fraction() > self.limit * (1 + 1e-12) else 1e-3)
+
+    def cycle(self, index):
+        self.update_film(self.level)
+
+    def restore(self, index, iterate):
+        super().restore(index, iterate)
+        self.update_film(self.level)
+
+
+@pytest.mark.parametrize("limit", [0.3, 0.77])
+def test_a_load_step_whose_film_closes_is_taken_back_and_the_step_shortened(limit):
+    """start._raise_load does not carry a closed film forward (issue 47): the smooth-film equations have an open film
+    at any load (Hamrock & Dowson 1977, H_min > 0), so a step whose film closes is what the grid does not resolve; it
+    is taken back like one that runs away, and the continuation stops within a step of min_load_step of the load
+    where the film closes, the last open iterate restored and the outcome the closed film's."""
+    from facegear_tehl.ehl.start import _raise_load
+
+    problem = problem_for(_point(4e4), OIL, SolverSettings(grid=65, thermal="off"), scaling_for(_point(4e4), OIL))
+    solver = _ClosesAbove(problem, 0.01, limit)
+    reached, status = _raise_load(solver, 0, problem, 0.01, open_film=True)
+    assert status.outcome is Outcome.FILM_CLOSED
+    assert f"the film closes raising the load of the full-multigrid start past {reached:.3g}" in status.message
+    assert limit / TUNING.min_load_step**2 < reached <= limit
+    assert solver.fraction() == pytest.approx(reached, rel=1e-9) and solver.level.film.min() > 0.0
+    # below the finest level of the start a closed film goes on: the finer grids start from it and may resolve it
+    solver = _ClosesAbove(problem, 0.01, limit)
+    assert _raise_load(solver, 0, problem, 0.01, open_film=False) == (1.0, CONVERGED)

@@ -55,3 +55,10 @@ def test_half_thermal_ree_eyring(cases):
     assert len(thermal) == len(cases) // 2
     assert all(c.lubricant().rheology == "ree_eyring" and c.settings().thermal == "full" for c in thermal)
     assert all(c.settings().thermal == "off" for c in cases if not c.thermal)
+
+
+def test_a_contact_is_chosen_by_the_prefix_of_its_name_and_only_one(cases):
+    assert wide_envelope.wide_envelope_contact("w08").name == next(c.name for c in cases if c.name.startswith("w08_"))
+    for prefix, found in (("w0", 9), ("w99", 0)):
+        with pytest.raises(ValueError, match=f"case '{prefix}': expected one wide-envelope contact, found {found}"):
+            wide_envelope.wide_envelope_contact(prefix)

@@ -15,6 +15,7 @@ from typing import Protocol
 
 from facegear_tehl.ehl import grid
 from facegear_tehl.ehl.convergence import finite
+from facegear_tehl.ehl.coupled import film_closed
 from facegear_tehl.ehl.domain import predicted_central_film
 from facegear_tehl.ehl.multigrid import Level, MultigridSolver, Problem, at_load_fraction
 from facegear_tehl.ehl.report import LevelSummary, summarise
@@ -97,7 +98,7 @@ def _continued(solve: Starting, index: int, last: int, problem: Problem, fractio
     `last` at the full load."""
     solver = solve.solver
     while True:
-        fraction, status = _raise_load(solver, index, problem, fraction)
+        fraction, status = _raise_load(solver, index, problem, fraction, open_film=index == last)
         solve.load_reached = fraction
         if status.converged:
             solve.summaries[-1] = summarise(solver.levels[index])
@@ -138,13 +139,17 @@ def _ran_away(solver: MultigridSolver, level: Level) -> bool:
     return not finite(level) or abs(solver.force_error(level)) > bound
 
 
-def _raise_load(solver: MultigridSolver, index: int, problem: Problem, fraction: float) -> tuple[float, Status]:
+def _raise_load(solver: MultigridSolver, index: int, problem: Problem, fraction: float,
+                open_film: bool) -> tuple[float, Status]:
     """Raise the load of level `index` from `fraction` to the full load of `problem` under step control: each step
     multiplies the load by the current factor (load_step at most), moves H_0 by the predicted change of the central
-    film (FILM_LOAD_EXPONENT) and takes cycles_per_load_step V-cycles. A step that runs away (`_ran_away`) is taken
-    back and the logarithm of its factor halved; one that holds doubles it again, up to load_step. Returns the
-    fraction reached and the status: diverged when the factor falls below min_load_step (the grid does not carry a
-    heavier load)."""
+    film (FILM_LOAD_EXPONENT) and takes cycles_per_load_step V-cycles. A step that runs away (`_ran_away`), or with
+    `open_film` (the finest level of the start, whose film is the result's) one whose film closes (h_min <= 0: not a
+    film of the smooth-film equations, which is open at any load), is taken back and the logarithm of its factor
+    halved; one that holds doubles it again, up to load_step. Returns the fraction reached and the status: diverged,
+    or film closed, when the factor falls below min_load_step (the grid does not carry a heavier load, or does not
+    resolve its film). A coarser level's closed film goes on: it is that grid's, and the finer grids, which start
+    from it, may resolve it (docs/envelope.md, ab1_ph2.5_u0.5_eta0.01_iso and w08)."""
     level, step = solver.levels[index], TUNING.load_step
     while fraction < 1.0:
         saved, previous = solver.snapshot(index), fraction
@@ -155,16 +160,29 @@ def _raise_load(solver: MultigridSolver, index: int, problem: Problem, fraction:
         solver.update_film(level)
         for _ in range(TUNING.cycles_per_load_step):
             solver.cycle(index)
-        if not _ran_away(solver, level):
+        failure = _failed_step(solver, level, open_film)
+        if failure is None:
             step = min(step * step, TUNING.load_step)
             continue
         solver.problem = at_load_fraction(problem, previous)
         solver.restore(index, saved)
         fraction, step = previous, math.sqrt(step)
         if step < TUNING.min_load_step:
-            return fraction, Status(Outcome.DIVERGED, f"diverged raising the load of the full-multigrid start past "
-                                                      f"{fraction:.3g} on the {level.nx} x {level.ny} grid")
+            what = "diverged" if failure is Outcome.DIVERGED else "the film closes"
+            return fraction, Status(failure, f"{what} raising the load of the full-multigrid start past "
+                                             f"{fraction:.3g} on the {level.nx} x {level.ny} grid")
     return fraction, CONVERGED
+
+
+def _failed_step(solver: MultigridSolver, level: Level, open_film: bool) -> Outcome | None:
+    """How a load step failed: it ran away (`_ran_away`), or, with `open_film`, its film closed (h_min <= 0, the film
+    of the iterate after its cycles); None when it holds."""
+    if _ran_away(solver, level):
+        return Outcome.DIVERGED
+    if not open_film:
+        return None
+    solver.update_film(level)
+    return Outcome.FILM_CLOSED if film_closed(level.film) else None
 
 
 def _at_load(summary: LevelSummary, fraction: float) -> LevelSummary:

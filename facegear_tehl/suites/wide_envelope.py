@@ -67,3 +67,12 @@ def wide_cases() -> list[EnvelopeCase]:
         if moes_m(case) <= MAX_MOES_M:
             cases.append(case)
     return cases
+
+
+def wide_envelope_contact(prefix: str) -> EnvelopeCase:
+    """The one contact whose name starts with `prefix` (w08); ValueError when not exactly one does (an argparse
+    type: the scripts' bad argument, exit 2)."""
+    cases = [c for c in wide_cases() if c.name.startswith(prefix)]
+    if len(cases) != 1:
+        raise ValueError(f"case {prefix!r}: expected one wide-envelope contact, found {len(cases)}")
+    return cases[0]
