@@ -150,10 +150,10 @@ def test_cells_much_longer_along_y_than_along_x_are_coarsened_along_x_alone():
     aspect = cell_aspect((-4.5, 1.5), (-3.0, 3.0), 41.0, 257, 65)
     assert aspect == pytest.approx(41.0 * 4.0)
     assert hierarchy_shapes(257, 65, 17, aspect) == [(17, 65), (33, 65), (65, 65), (129, 65), (257, 65)]
-    # X alone until the cells are at most twice as long as wide, then both (a/b = 4 on 129^2: 4, 2, 1, ...)
-    assert hierarchy_shapes(129, 129, 17, 4.0) == [(17, 33), (33, 65), (65, 129), (129, 129)]
-    # a circle, or an ellipse of a/b <= 2, on a square grid: both axes together as before
-    assert hierarchy_shapes(129, 129, 17, cell_aspect((-3.0, 3.0), (-3.0, 3.0), 2.0, 129, 129)) == [
+    # X alone until the cells are at most 10 times as long as wide, then both (a/b = 12 on 129^2: 12, 6, 3, ...)
+    assert hierarchy_shapes(129, 129, 17, 12.0) == [(17, 33), (33, 65), (65, 129), (129, 129)]
+    # an ellipse of a/b <= 10 on a square grid: both axes together
+    assert hierarchy_shapes(129, 129, 17, cell_aspect((-3.0, 3.0), (-3.0, 3.0), 10.0, 129, 129)) == [
         (17, 17), (33, 33), (65, 65), (129, 129)]
 
 
