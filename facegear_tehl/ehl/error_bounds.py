@@ -38,6 +38,7 @@ import numpy as np
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import grid
 from facegear_tehl.ehl.report import ORDER_DT_MAX, ORDER_MU, LevelSummary
+from facegear_tehl.ehl.retry import ATTEMPTS
 from facegear_tehl.ehl.richardson import ORDER
 from facegear_tehl.ehl.scaling import Scaling
 from facegear_tehl.ehl.tuning import TUNING
@@ -86,7 +87,7 @@ def y_estimates(solution: PointSolution, point: ContactPoint, lubricant: Lubrica
     x, y = solution.axes["x"].values, solution.axes["y"].values
     nx, ny = x.size, y.size
     names = [name for name in FIGURES if name in solution.scalars]
-    if nx == ny and _halves_rows(x, y, settings.coarsest_grid):
+    if nx == ny and _halves_rows(x, y, settings.coarsest_grid, _semi_coarsened(solution)):
         return dict.fromkeys(names, 0.0)
     if (ny + 1) // 2 < settings.coarsest_grid:
         return dict.fromkeys(names, math.nan)
@@ -104,11 +105,17 @@ def y_estimates(solution: PointSolution, point: ContactPoint, lubricant: Lubrica
             and solution.scalar(name) != 0.0 else math.nan for name in names}
 
 
-def _halves_rows(x: np.ndarray, y: np.ndarray, coarsest: int) -> bool:
+def _semi_coarsened(solution: PointSolution) -> bool:
+    """The solution's attempt coarsens long cells along x alone (retry.ATTEMPTS, Relaxation.semi_coarsening)."""
+    attempt = int(solution.scalars.get("attempts", (1.0, "1"))[0])
+    return 1 <= attempt <= len(ATTEMPTS) and ATTEMPTS[attempt - 1].relaxation.semi_coarsening
+
+
+def _halves_rows(x: np.ndarray, y: np.ndarray, coarsest: int, semi_coarsened: bool) -> bool:
     """The grid one coarser than (x, y) (m) in the solve's hierarchy (grid.hierarchy_shapes, from its cells'
-    physical aspect) has half its rows: e_x, taken against it, then covers both axes. A long ellipse's cells are
-    coarsened along x alone."""
-    aspect = (np.ptp(y) / (y.size - 1)) / (np.ptp(x) / (x.size - 1))
+    physical aspect where the attempt coarsens long cells along x alone) has half its rows: e_x, taken against it,
+    then covers both axes."""
+    aspect = (np.ptp(y) / (y.size - 1)) / (np.ptp(x) / (x.size - 1)) if semi_coarsened else 1.0
     shapes = grid.hierarchy_shapes(x.size, y.size, coarsest, aspect)
     return len(shapes) > 1 and shapes[-2][1] < y.size
 

@@ -32,11 +32,12 @@ def hierarchy_shapes(finest_x: int, finest_y: int, coarsest: int, aspect: float 
     The coarse grids of a grid refined along X are those of the square grid: a coarsest grid with 65 or more
     nodes along X (the rolling direction) runs away from the Hertz start with the default relaxation (so does a
     65^2 coarsest grid; with Venner's switch, the second attempt of solve.ATTEMPTS, about ten heavy contacts of the
-    envelope suite start from 65^2). Cells much longer along Y than along X (a long ellipse, k h_y >> h_x) are not
-    coarsened along Y: the rows there are coupled by the deflection alone (the Poiseuille coefficient along Y is
-    (h_x/(k h_y))^2 times that along X), and a coarse grid with half the rows does not represent the pressure's fall
-    at the ends of the major axis; its correction drove the V-cycles of the heavy ellipses of the wide envelope into
-    a period-2 limit cycle there (docs/tuning.md, "semi_coarsening_aspect"). Coarsening only along the strongly
+    envelope suite start from 65^2). With an `aspect` given (the last attempt, retry.ATTEMPTS), cells much longer
+    along Y than along X (a long ellipse, k h_y >> h_x) are not coarsened along Y: the rows there are coupled by the
+    deflection alone (the Poiseuille coefficient along Y is (h_x/(k h_y))^2 times that along X), and a coarse grid
+    with half the rows does not represent the pressure's fall at the ends of the major axis; its correction drove the
+    V-cycles of the heavy ellipses of the wide envelope into a period-2 limit cycle there (docs/tuning.md,
+    "semi_coarsening_aspect"). Coarsening only along the strongly
     coupled axis is the standard multigrid treatment of anisotropy (Brandt 1977, Math. Comp. 31:333-390, sec. 3.3;
     Trottenberg, Oosterlee & Schueller 2001, Multigrid, sec. 5.1).
     """

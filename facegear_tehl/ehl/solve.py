@@ -96,8 +96,9 @@ class PointSolve:
         self.mode = ThermalMode(mode)
         self.coarsest = settings.coarsest_grid  # nodes of the coarsest grid's shorter side (start.py)
         problem = problem_for(point, lubricant, settings, self.scaling)
+        # k h_y/h_x of the finest grid's cells, where the relaxation coarsens long cells along x alone (else 1)
         self.aspect = grid.cell_aspect(problem.domain_x, problem.domain_y, problem.ellipticity, settings.grid,
-                                       settings.nodes_y)  # k h_y/h_x of the finest grid's cells
+                                       settings.nodes_y) if relaxation.semi_coarsening else 1.0
         shapes = self.shapes(self.coarsest)
         self.pressure = PressureIteration(MultigridSolver(problem, shapes, relaxation), settings,
                                           History(cycles=settings.cycles_per_level))
