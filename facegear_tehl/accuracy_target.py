@@ -39,13 +39,15 @@ from dataclasses import dataclass, field, replace
 import math
 
 from facegear_tehl.accuracy_record import AccuracyRecord, Choice, FigureBound, SolveStep, Verdict
+from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.domain import solution_domain
 from facegear_tehl.ehl.richardson import ORDER
 from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.ehl.stopwatch import Spent, spent_on
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.grid_prediction import Estimate, predicted_grid, reachable
-from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
+from facegear_tehl.lubricant import Lubricant
+from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all, worker_count
 from facegear_tehl.settings import SolverSettings, ThermalMode
 from facegear_tehl.solution import PointSolution
 
@@ -542,16 +544,43 @@ def refined(point: Progressing, task: SolveTask, solution: PointSolution) -> Pro
 def solve_to_accuracy(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
                       checks: Solver | StagedSolver | None = None, jobs: int | None = None,
                       progress: Progress | None = None) -> list[PointSolution]:
-    """Every task solved to its settings' accuracy target (module docstring), the points side by side on `jobs`
-    worker processes; `checks` solves the model checks (None: `solver`; the EHL solver's without error bounds: only
-    their figures are read). Each solution carries its AccuracyRecord and the wall time of all its solves."""
+    """Every task solved to its settings' accuracy target (module docstring); `checks` solves the model checks (None:
+    `solver`; the EHL solver's without error bounds: only their figures are read). Each point is refined within one
+    process, so that a `solver` that keeps a point's converged state seeds its finer grid from it
+    (ehl/seeded.SeededRefinement); the points side by side on `jobs` worker processes (`PointTarget`), else in this
+    one. Each solution carries its AccuracyRecord and the wall time of all its solves."""
+    if len(tasks) > 1 and worker_count(jobs) > 1:
+        return solve_all(tasks, PointTarget(solver, checks), jobs=jobs, progress=progress)[0]
+    return targeted(tasks, solver, checks, progress)
+
+
+@dataclass(frozen=True)
+class PointTarget:
+    """One point solved to its accuracy target in the process that calls it (`targeted`): a worker's unit of
+    `solve_to_accuracy`. The pool warms up (parallel.py) with `warm_up_solver`, the model checks' solver (it keeps no
+    state), not with `solver`, whose kept seeds go to the workers."""
+
+    solver: Solver | StagedSolver
+    checks: Solver | StagedSolver | None
+
+    @property
+    def warm_up_solver(self) -> Solver | StagedSolver:
+        return self.checks or self.solver
+
+    def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
+        return targeted([SolveTask(point, lubricant, settings)], self.solver, self.checks, None)[0]
+
+
+def targeted(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, checks: Solver | StagedSolver | None,
+             progress: Progress | None) -> list[PointSolution]:
+    """Every task solved to its accuracy target in this process, the points' solves round by round."""
     target = float(tasks[0].settings.accuracy)
 
     def solve(batch: Sequence[tuple[SolveTask, str]]) -> list[PointSolution]:
-        return _solved_batch(batch, solver, jobs, progress)
+        return _solved_batch(batch, solver, progress)
 
     def check(batch: Sequence[tuple[SolveTask, str]]) -> list[PointSolution]:
-        return _solved_batch(batch, checks or solver, jobs, progress)
+        return _solved_batch(batch, checks or solver, progress)
 
     points = screened(tasks, solve, check, target)
     while True:
@@ -567,14 +596,14 @@ def solve_to_accuracy(tasks: Sequence[SolveTask], solver: Solver | StagedSolver,
     return [finished(point, task, target) for point, task in zip(points, tasks)]
 
 
-def _solved_batch(batch: Sequence[tuple[SolveTask, str]], solver: Solver | StagedSolver, jobs: int | None,
+def _solved_batch(batch: Sequence[tuple[SolveTask, str]], solver: Solver | StagedSolver,
                   progress: Progress | None) -> list[PointSolution]:
-    """`solve_all` of the tasks, each progress line naming the point with the solve's purpose ("S1 (y-check)");
-    the solutions keep the point's name."""
+    """The tasks solved in this process in order (`solve_all`, one job), each progress line naming the point with the
+    solve's purpose ("S1 (refine)"); the solutions keep the point's name."""
     if not batch:
         return []
     named = [replace(task, point=replace(task.point, name=f"{task.point.name} ({purpose})")) for task, purpose in batch]
-    solved = solve_all(named, solver, jobs=jobs, progress=progress)[0]
+    solved = solve_all(named, solver, jobs=1, progress=progress)[0]
     return [replace(solution, name=task.point.name) for (task, _), solution in zip(batch, solved)]
 
 
