@@ -613,3 +613,36 @@ def test_the_record_is_written_to_the_result_file_and_read_back_by_tehl_info(tmp
     assert result.points["contact"].accuracy == targeted.accuracy
     assert "accuracy of contact: target 1 %, every bounded figure within the target" in info_text(result)
     assert info_json(result)["accuracy"]["contact"]["stop"] == "every bounded figure within the target"
+
+
+def test_a_seeded_refined_grid_gives_the_cold_starts_figures_within_their_error_bounds():
+    """The shipped case's S4 on 129 x 33, then on 257 x 65 seeded from it (ehl/seeded.SeededRefinement, the accuracy
+    target's solver) and from the cold start: the seeded solve starts from the seed (no full-multigrid start, no
+    fallback to the cold start) and lands within the cold solve's own error bound of each bounded figure; both CPU
+    times are printed (measured, not asserted: scripts/ and docs/accuracy.md)."""
+    import time
+
+    from facegear_tehl.ehl.seeded import SeededRefinement
+    from facegear_tehl.ehl.staged import solve_point
+    from facegear_tehl.record import Reason, Stage
+
+    case = load_case(synthetic.CASES / "facegear_110.yaml")
+    point = next(p for p in contact_analysis(case).points if p.name == "S4")
+    refining = SeededRefinement()
+    refining(point, case.lubricant, replace(case.solver, grid=129, grid_y=33))
+    finer = replace(case.solver, grid=257, grid_y=65)
+    clock = time.process_time()
+    seeded = refining(point, case.lubricant, finer)
+    seconds = {"seeded": time.process_time() - clock}
+    clock = time.process_time()
+    cold = solve_point(point, case.lubricant, finer)
+    seconds["cold"] = time.process_time() - clock
+    assert seeded.converged and cold.converged
+    stages = [r.stage for r in seeded.record.stages]
+    assert stages[0] is Stage.SEEDED and Stage.START not in stages
+    assert not any(r.reason is Reason.SEEDED_START_FAILED for r in seeded.record.retries)
+    bounded = [k for k in ("h_c", "h_min", "dT_max", "mu") if f"error_bound_{k}" in cold.scalars]
+    assert {"h_c", "h_min", "mu"} <= set(bounded)
+    for name in bounded:
+        assert abs(seeded.scalar(name) / cold.scalar(name) - 1.0) < cold.scalar(f"error_bound_{name}"), name
+    print(seconds)
