@@ -466,8 +466,9 @@ def measured_orders(coarse: Mapping[str, Bound], fine: Mapping[str, Bound], kx: 
 
 def not_following(point: Progressing, target: float) -> Progressing:
     """The point with the figures above the target whose estimates fell, over the last refinement, at an order below
-    TUNING.accuracy_min_order along every axis it refined set aside: reported "not met" with their measured order, not
-    refined for again (another doubling would not bring them within the target: at that order each halves their
+    TUNING.accuracy_min_order along every axis it refined set aside, with their measured order: not refined for again
+    (their verdict is their bound's on the grid the point ends on: "not met" unless a refinement for the others brings
+    it within the target) (another doubling would not bring them within the target: at that order each halves their
     error at most once in 2^(1/p) doublings)."""
     floor, here = TUNING.accuracy_min_order, grid_words(point.task.settings)
     set_aside = {}
@@ -479,7 +480,7 @@ def not_following(point: Progressing, target: float) -> Progressing:
                                f"{100 * bound.bound:.2g} %): below {floor:g}, it does not converge as planned")
     if not set_aside:
         return point
-    notes = tuple(Choice(name, "not met", why) for name, why in set_aside.items())
+    notes = tuple(Choice(name, "not refined for", why) for name, why in set_aside.items())
     return replace(point, not_following={**point.not_following, **set_aside}, choices=point.choices + notes)
 
 
@@ -526,7 +527,9 @@ def next_step(point: Progressing, target: float) -> tuple[Progressing, SolveTask
     missing = point.missing(target)
     if not missing:
         beyond = f"; {', '.join(point.beyond_reach)} unresolved, beyond reach" if point.beyond_reach else ""
-        beyond += f"; {', '.join(point.not_following)} not met, not converging" if point.not_following else ""
+        bounds = point.bounds()
+        still = [name for name in point.not_following if bounds[name].bound + point.effects.get(name, 0.0) > target]
+        beyond += f"; {', '.join(still)} not met, not converging as planned" if still else ""
         return replace(point, stop=f"every bounded figure within the target{beyond}"), None
     finer, why = planned(point, missing, target)
     above = ", ".join(missing)

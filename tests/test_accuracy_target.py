@@ -474,6 +474,7 @@ def test_a_figure_whose_error_falls_slower_than_the_floor_order_is_set_aside_not
                         "dT_max": Verdict.NOT_MET, "mu": Verdict.MET}
     why = next(c.reason for c in solution.accuracy.choices if c.what == "dT_max")
     assert "order 0.27 along x" in why and "does not converge as planned" in why
+    assert solution.accuracy.stop.endswith("dT_max not met, not converging as planned")
     assert _true_error(solver, solution, "dT_max") > 0.01
     finest = solver.value("dT_max", TUNING.accuracy_max_grid, 33, _task().settings, _task().lubricant)
     assert finest / EXACT["dT_max"] - 1.0 > 0.01
