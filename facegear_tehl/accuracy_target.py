@@ -39,13 +39,15 @@ from dataclasses import dataclass, field, replace
 import math
 
 from facegear_tehl.accuracy_record import AccuracyRecord, Choice, FigureBound, SolveStep, Verdict
+from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.domain import solution_domain
 from facegear_tehl.ehl.richardson import ORDER
 from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.ehl.stopwatch import Spent, spent_on
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.grid_prediction import Estimate, predicted_grid, reachable
-from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all
+from facegear_tehl.lubricant import Lubricant
+from facegear_tehl.parallel import Progress, Solver, SolveTask, StagedSolver, solve_all, worker_count
 from facegear_tehl.settings import SolverSettings, ThermalMode
 from facegear_tehl.solution import PointSolution
 
@@ -238,6 +240,9 @@ class Progressing:
     model_solved: bool = True  # the solution is in the task's model (False: the start's, before a cheaper one)
     coarser: Spans | None = None  # the features' spans on the converged grid before this one (None: none)
     beyond_reach: Mapping[str, str] = field(default_factory=dict)  # the figures left unresolved, each with why
+    orders: Mapping[str, tuple[float, float]] = field(default_factory=dict)  # measured along x, y (`measured_orders`)
+    last_orders: Mapping[str, tuple[float, float]] = field(default_factory=dict)  # ... by the last refinement alone
+    not_following: Mapping[str, str] = field(default_factory=dict)  # the figures set aside "not met", each with why
 
     def bounds(self) -> dict[str, Bound]:
         return {name: figure_bound(self.solution, name) for name in FIGURES if name in self.solution.scalars}
@@ -247,7 +252,7 @@ class Progressing:
         `target`."""
         return {name: bound for name, bound in self.bounds().items()
                 if not never_refined(self.solution, name) and name not in self.beyond_reach
-                and bound.bound + self.effects.get(name, 0.0) > target}
+                and name not in self.not_following and bound.bound + self.effects.get(name, 0.0) > target}
 
     def spans(self) -> Spans:
         """The nodes across each local figure's feature on the solution's grid (none without its fields)."""
@@ -434,10 +439,49 @@ def combined(screens: Sequence[Screened], check: Batch, target: float) -> list[P
 
 
 def estimates(point: Progressing, missing: Mapping[str, Bound]) -> dict[str, Estimate]:
-    """The figures above the target as the grid prediction reads them: bound, estimates, the discretisation's order
-    for every figure (grid_prediction.py: the plan never passes the first grid that can meet the target), model
-    effect."""
-    return {name: Estimate(b.bound, b.e_x, b.e_y, ORDER, point.effects.get(name, 0.0)) for name, b in missing.items()}
+    """The figures above the target as the grid prediction reads them: bound, estimates, the order each estimate was
+    measured to fall at along each axis (`measured_orders`), at most the discretisation's, which it is where not
+    measured (grid_prediction.py: the plan never passes the first grid that can meet the target), model effect."""
+    def planned_order(name: str, k: int) -> float:
+        measured = point.orders.get(name, (math.nan, math.nan))[k]
+        return ORDER if math.isnan(measured) else min(measured, ORDER)
+
+    return {name: Estimate(b.bound, b.e_x, b.e_y, planned_order(name, 0), planned_order(name, 1),
+                           point.effects.get(name, 0.0)) for name, b in missing.items()}
+
+
+def measured_orders(coarse: Mapping[str, Bound], fine: Mapping[str, Bound], kx: int, ky: int
+                    ) -> dict[str, tuple[float, float]]:
+    """The order at which each figure's estimates fell along x and y from the `coarse` solve to the `fine` one, kx and
+    ky doublings finer: p = log2(|e coarse| / |e fine|) / k (an estimate C h^p falls 2^p per doubling), NaN along an
+    axis not refined or where either estimate is not a finite non-zero number."""
+    def order(before: float, after: float, k: int) -> float:
+        if k == 0 or not (math.isfinite(before) and math.isfinite(after)) or before == 0.0 or after == 0.0:
+            return math.nan
+        return math.log2(abs(before) / abs(after)) / k
+
+    return {name: (order(coarse[name].e_x, bound.e_x, kx), order(coarse[name].e_y, bound.e_y, ky))
+            for name, bound in fine.items() if name in coarse}
+
+
+def not_following(point: Progressing, target: float) -> Progressing:
+    """The point with the figures above the target whose estimates fell, over the last refinement, at an order below
+    TUNING.accuracy_min_order along every axis it refined set aside, with their measured order: not refined for again
+    (their verdict is their bound's on the grid the point ends on: "not met" unless a refinement for the others brings
+    it within the target) (another doubling would not bring them within the target: at that order each halves their
+    error at most once in 2^(1/p) doublings)."""
+    floor, here = TUNING.accuracy_min_order, grid_words(point.task.settings)
+    set_aside = {}
+    for name, bound in point.missing(target).items():
+        orders = [(axis, p) for axis, p in zip("xy", point.last_orders.get(name, ())) if not math.isnan(p)]
+        if orders and max(p for _, p in orders) < floor:
+            words = ", ".join(f"{p:.2g} along {axis}" for axis, p in orders)
+            set_aside[name] = (f"its estimates fell at order {words} over the last refinement, to {here} (bound "
+                               f"{100 * bound.bound:.2g} %): below {floor:g}, it does not converge as planned")
+    if not set_aside:
+        return point
+    notes = tuple(Choice(name, "not refined for", why) for name, why in set_aside.items())
+    return replace(point, not_following={**point.not_following, **set_aside}, choices=point.choices + notes)
 
 
 def planned(point: Progressing, missing: Mapping[str, Bound], target: float) -> tuple[SolverSettings | None, str]:
@@ -479,10 +523,13 @@ def next_step(point: Progressing, target: float) -> tuple[Progressing, SolveTask
     """The point's next solve (None: it stops, with the reason): the grid `planned` for the figures above the target,
     its reason recorded, unless the grid cap or the time budget comes first; a predicted grid past one doubling that
     would pass the time budget turns the point to one doubling at a time."""
-    point = reached(point, target)
+    point = not_following(reached(point, target), target)
     missing = point.missing(target)
     if not missing:
         beyond = f"; {', '.join(point.beyond_reach)} unresolved, beyond reach" if point.beyond_reach else ""
+        bounds = point.bounds()
+        still = [name for name in point.not_following if bounds[name].bound + point.effects.get(name, 0.0) > target]
+        beyond += f"; {', '.join(still)} not met, not converging as planned" if still else ""
         return replace(point, stop=f"every bounded figure within the target{beyond}"), None
     finer, why = planned(point, missing, target)
     above = ", ".join(missing)
@@ -535,23 +582,56 @@ def refined(point: Progressing, task: SolveTask, solution: PointSolution) -> Pro
         before = f" (after {point.failed or point.after_jump})" if point.failed or point.after_jump else ""
         return replace(point, steps=steps, stop=f"{ended}{before}; the converged {grid_words(point.task.settings)} "
                                                 "solution kept")
-    return replace(point, task=task, solution=solution, steps=steps, failed="", model_solved=True,
-                   coarser=point.spans() if point.solution.converged else point.coarser)
+    after = replace(point, task=task, solution=solution, steps=steps, failed="", model_solved=True,
+                    coarser=point.spans() if point.solution.converged else point.coarser)
+    if not (point.solution.converged and point.model_solved):  # no converged solve in this model to measure from
+        return replace(after, last_orders={})
+    last = measured_orders(point.bounds(), after.bounds(), kx, ky)
+    orders = {name: tuple(p if not math.isnan(p) else before for p, before in
+                          zip(pair, point.orders.get(name, (math.nan, math.nan)))) for name, pair in last.items()}
+    return replace(after, orders=orders, last_orders=last)
 
 
 def solve_to_accuracy(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, *,
                       checks: Solver | StagedSolver | None = None, jobs: int | None = None,
                       progress: Progress | None = None) -> list[PointSolution]:
-    """Every task solved to its settings' accuracy target (module docstring), the points side by side on `jobs`
-    worker processes; `checks` solves the model checks (None: `solver`; the EHL solver's without error bounds: only
-    their figures are read). Each solution carries its AccuracyRecord and the wall time of all its solves."""
+    """Every task solved to its settings' accuracy target (module docstring); `checks` solves the model checks (None:
+    `solver`; the EHL solver's without error bounds: only their figures are read). Each point is refined within one
+    process, so that a `solver` that keeps a point's converged state seeds its finer grid from it
+    (ehl/seeded.SeededRefinement); the points side by side on `jobs` worker processes (`PointTarget`), else in this
+    one. Each solution carries its AccuracyRecord and the wall time of all its solves."""
+    if len(tasks) > 1 and worker_count(jobs) > 1:
+        return solve_all(tasks, PointTarget(solver, checks), jobs=jobs, progress=progress)[0]
+    return targeted(tasks, solver, checks, progress)
+
+
+@dataclass(frozen=True)
+class PointTarget:
+    """One point solved to its accuracy target in the process that calls it (`targeted`): a worker's unit of
+    `solve_to_accuracy`. The pool warms up (parallel.py) with `warm_up_solver`, the model checks' solver (it keeps no
+    state), not with `solver`, whose kept seeds go to the workers."""
+
+    solver: Solver | StagedSolver
+    checks: Solver | StagedSolver | None
+
+    @property
+    def warm_up_solver(self) -> Solver | StagedSolver:
+        return self.checks or self.solver
+
+    def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
+        return targeted([SolveTask(point, lubricant, settings)], self.solver, self.checks, None)[0]
+
+
+def targeted(tasks: Sequence[SolveTask], solver: Solver | StagedSolver, checks: Solver | StagedSolver | None,
+             progress: Progress | None) -> list[PointSolution]:
+    """Every task solved to its accuracy target in this process, the points' solves round by round."""
     target = float(tasks[0].settings.accuracy)
 
     def solve(batch: Sequence[tuple[SolveTask, str]]) -> list[PointSolution]:
-        return _solved_batch(batch, solver, jobs, progress)
+        return _solved_batch(batch, solver, progress)
 
     def check(batch: Sequence[tuple[SolveTask, str]]) -> list[PointSolution]:
-        return _solved_batch(batch, checks or solver, jobs, progress)
+        return _solved_batch(batch, checks or solver, progress)
 
     points = screened(tasks, solve, check, target)
     while True:
@@ -567,14 +647,14 @@ def solve_to_accuracy(tasks: Sequence[SolveTask], solver: Solver | StagedSolver,
     return [finished(point, task, target) for point, task in zip(points, tasks)]
 
 
-def _solved_batch(batch: Sequence[tuple[SolveTask, str]], solver: Solver | StagedSolver, jobs: int | None,
+def _solved_batch(batch: Sequence[tuple[SolveTask, str]], solver: Solver | StagedSolver,
                   progress: Progress | None) -> list[PointSolution]:
-    """`solve_all` of the tasks, each progress line naming the point with the solve's purpose ("S1 (y-check)");
-    the solutions keep the point's name."""
+    """The tasks solved in this process in order (`solve_all`, one job), each progress line naming the point with the
+    solve's purpose ("S1 (refine)"); the solutions keep the point's name."""
     if not batch:
         return []
     named = [replace(task, point=replace(task.point, name=f"{task.point.name} ({purpose})")) for task, purpose in batch]
-    solved = solve_all(named, solver, jobs=jobs, progress=progress)[0]
+    solved = solve_all(named, solver, jobs=1, progress=progress)[0]
     return [replace(solution, name=task.point.name) for (task, _), solution in zip(batch, solved)]
 
 

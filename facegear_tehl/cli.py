@@ -201,7 +201,8 @@ def _run_banner(case: Case, selected: Sequence[ContactPoint], solver: SolverSett
                 "solved on, with the lengthened inlet)")
     else:
         grid = (f"to {100 * solver.accuracy:g} % accuracy", f" (each point's grid and cheaper models chosen from "
-                f"{TUNING.accuracy_start_grid} nodes along x; a line per solve, with the grid solved on)")
+                f"{TUNING.accuracy_start_grid} nodes along x; a line per solve, with the grid solved on, or with "
+                f"worker processes a line per point as it ends)")
     workers = f", {processes} worker processes" if processes > 1 else ""
     return (f"tehl run: {case.name}: {', '.join(p.name for p in selected)} {grid[0]}, thermal {solver.thermal}"
             f"{workers}{grid[1]}")

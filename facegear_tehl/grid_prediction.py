@@ -7,13 +7,15 @@ Engineering", ch. 5) each estimate falls as h^p, so kx doublings along x and ky 
 
     B(kx, ky) = F_s (|e_x| 2^(-p kx) + |e_y| 2^(-p ky)) + e_it + m,
 
-m the cheaper model's measured effect (it does not fall with the grid). The plan takes p = 2, the order of the
-discretisation (ehl/richardson.ORDER), for every figure, also for dT_max and mu, whose bounds assume the first order
-(ehl/report.py: their observed order is 0.7-1.7): an error that falls no faster than h^2 is not within the target
-before the predicted grid, so the plan never passes the first grid that can meet it, and where the error falls slower
-the next plan starts from the finer solve's own estimates. The predicted grid is the one of fewest nodes within
-TUNING.accuracy_max_grid x accuracy_max_grid_y whose B of every figure is within TUNING.accuracy_jump_margin of the
-target (else within the target); on a square grid (its e_x covers both axes, e_y = 0) both axes are refined together.
+m the cheaper model's measured effect (it does not fall with the grid). p along an axis is the order at which the
+figure's estimate along it was measured to fall over the point's last refinement along that axis
+(accuracy_target.measured_orders), at most 2, the order of the discretisation (ehl/richardson.ORDER); before any
+such refinement it is 2, for every figure, also for dT_max and mu, whose bounds assume the first order (ehl/report.py:
+their observed order is 0.7-1.7): an error that falls no faster than h^2 is not within the target before the
+predicted grid, so the plan never passes the first grid that can meet it. The predicted grid is the one of fewest
+nodes within TUNING.accuracy_max_grid x accuracy_max_grid_y whose B of every figure is within
+TUNING.accuracy_jump_margin of the target (else within the target); on a square grid (its e_x covers both axes,
+e_y = 0) both axes are refined together.
 A figure whose B stays above the target even on the finest grid within the caps is not refined for (`reachable`). A
 prediction is never a verdict: a figure is met only by the bound of its own solve on the grid reached.
 """
@@ -30,20 +32,23 @@ from facegear_tehl.ehl.tuning import TUNING
 
 @dataclass(frozen=True)
 class Estimate:
-    """One figure's bound on the solved grid (relative), its estimates along x and y, its order and the cheaper
-    model's measured effect (relative)."""
+    """One figure's bound on the solved grid (relative), its estimates along x and y, the orders they are planned to
+    fall at along each axis and the cheaper model's measured effect (relative)."""
 
     bound: float
     e_x: float
     e_y: float
-    order: int
+    order_x: float
+    order_y: float
     model: float = 0.0
 
     def predicted(self, kx: int, ky: int) -> float:
-        """B(kx, ky) of the module docstring; e_it is the part of the bound the estimates do not explain."""
+        """B(kx, ky) of the module docstring, each estimate falling at its own axis's order; e_it is the part of the
+        bound the estimates do not explain."""
         safety, e_x, e_y = TUNING.bound_safety, abs(self.e_x), abs(self.e_y)
         iteration = max(self.bound - safety * (e_x + e_y), 0.0)
-        return safety * (e_x * 2.0 ** (-self.order * kx) + e_y * 2.0 ** (-self.order * ky)) + iteration + self.model
+        return (safety * (e_x * 2.0 ** (-self.order_x * kx) + e_y * 2.0 ** (-self.order_y * ky)) + iteration
+                + self.model)
 
     @property
     def predictable(self) -> bool:

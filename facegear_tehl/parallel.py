@@ -172,7 +172,7 @@ def solve_each(tasks: Sequence[SolveTask], solver: Solver | StagedSolver | PathS
     staged = isinstance(solver, StagedSolver)
     context = _context()
     if context.get_start_method() == "fork":
-        _warm_up(solver, tasks[0])
+        _warm_up(getattr(solver, "warm_up_solver", solver), tasks[0])  # a unit that runs another solver: with it
     pool = SupervisedPool(workers, context, _init_worker)  # a lost worker's solves are retried once
     try:
         # per future: (task index, first attempt when this is a retry)

@@ -39,12 +39,21 @@ def ehl_checks() -> StagedSolver:
     return UNBOUNDED
 
 
+def ehl_refining() -> Solver:
+    """The EHL solver of the accuracy target: each finer grid of a point seeded from its coarser converged solve (a
+    new one per run: it keeps the seeds of the points it solved)."""
+    from facegear_tehl.ehl.seeded import SeededRefinement
+
+    return SeededRefinement()
+
+
 def solved_to_accuracy(tasks: Sequence[SolveTask], solver: Solver | StagedSolver | None, jobs: int | None,
                         progress: Progress | None) -> list[PointSolution]:
-    """The tasks solved to their accuracy target; the model checks by the EHL solver without error bounds unless a
-    stand-in `solver` is given (it solves them too)."""
+    """The tasks solved to their accuracy target, by the EHL solver seeding each finer grid from the coarser one
+    (`ehl_refining`) and the model checks by the EHL solver without error bounds, unless a stand-in `solver` is given
+    (it solves them too)."""
     checks = None if solver else ehl_checks()
-    return solve_to_accuracy(tasks, solver or ehl_solver(), checks=checks, jobs=jobs, progress=progress)
+    return solve_to_accuracy(tasks, solver or ehl_refining(), checks=checks, jobs=jobs, progress=progress)
 
 
 def path_solver(case: Case) -> StagedSolver | PathSolver:

@@ -14,6 +14,7 @@ solve that fails is solved again from the cold start, with all of the retry poli
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+import math
 from typing import Sequence
 
 import numpy as np
@@ -24,10 +25,19 @@ from facegear_tehl.ehl.plan import PlannedStage, SolvePlan
 from facegear_tehl.ehl.report import summarise
 from facegear_tehl.ehl.retry import POLICY
 from facegear_tehl.ehl.solve import PointSolve
-from facegear_tehl.ehl.staged import RUN_AWAY_ARITHMETIC, STAGED, UNBOUNDED, StagedSolver
+from facegear_tehl.ehl.staged import (
+    RUN_AWAY_ARITHMETIC,
+    STAGED,
+    UNBOUNDED,
+    StagedSolver,
+    WarmChecked,
+    noted_retry,
+    retry_options,
+)
 from facegear_tehl.ehl.stopwatch import spent_on
 from facegear_tehl.ehl.thermal import FilmState
 from facegear_tehl.ehl.tuning import TUNING
+from facegear_tehl.ehl.y_check import CoarseStart
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.record import Action, Reason, RetryRecord, Stage
 from facegear_tehl.settings import SolverSettings, ThermalMode
@@ -76,10 +86,11 @@ class SeededSolve(PointSolve):
     keeps the level and film state it reports, to seed the next point (`seed_for_next`)."""
 
     def __init__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, seed: Seed | None,
-                 attempt: int = 1):
-        """`attempt`: of the retry policy (retry.ATTEMPTS), whose relaxation this solve uses from the start."""
+                 attempt: int = 1, **options: object):
+        """`attempt`: of the retry policy (retry.ATTEMPTS), whose relaxation this solve uses from the start; `options`:
+        PointSolve's others (a retry's: staged.retry_options)."""
         super().__init__(point, lubricant, settings, POLICY.attempts[attempt - 1].relaxation, attempt=attempt,
-                         escalate_start=POLICY.escalates_start(attempt))
+                         escalate_start=POLICY.escalates_start(attempt), **options)
         self.seed = seed if seed is not None and self.plan.has(Stage.COARSE) else None
         if self.seed is not None:
             self.plan = seeded_plan(self.plan, self.seed.source)
@@ -146,6 +157,17 @@ class SeededSolve(PointSolve):
         frozen = replace(self.coarse_state, temperature=temperature, viscosity_factor=factor)
         return frozen, self.cycle(index, TUNING.cycles_per_thermal_update)
 
+    def warm_check(self) -> WarmChecked | None:
+        """The error bounds' check started from this seeded solve's converged coarse stage (staged.WarmChecked, as a
+        cold start's check starts from its own), None without a seeded `full` coarse stage. Without a seed stage
+        below it, the check's steady-h_c test has no h_c one grid coarser in x: the strict test
+        (convergence.h_c_steady without the error share)."""
+        if self.seed is None or self.coarse_state is None or self.mode is not ThermalMode.FULL:
+            return None
+        level = self.solver.levels[-2]
+        return WarmChecked(CoarseStart(level.x, level.y, level.pressure.copy(), self.solver.h0, self.coarse_state,
+                                       math.nan))
+
     def report(self, index: int, status: Status, state: FilmState | None) -> PointSolution:
         self.reported = (index, state)
         return super().report(index, status, state)
@@ -198,21 +220,23 @@ class CheckPath:
 
 def solve_seeded(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings, seed: Seed | None,
                  check: CheckPath | None = None, solver: StagedSolver = STAGED, attempt: int = 1,
-                 whole_policy: bool = True) -> tuple[PointSolution, Seed | None]:
+                 whole_policy: bool = True, retry_seeds: bool = False) -> tuple[PointSolution, Seed | None]:
     """One point of a path from `seed` (None: the cold start) with the relaxation of the retry policy's `attempt`, and
     the seed for the next point (None after a failure); `check`: its error bounds' check solved on the path of checks
     (else cold); `solver`: STAGED, or UNBOUNDED for a check. A solve so led (a seed, or an attempt after the first)
     that the retry policy would retry is solved again from the cold start (`solver`, its check cold), recorded as
     such: with every attempt of the policy (`whole_policy`), else with those after the one that failed (a check: the
     attempt it failed on ran away from the neighbour's state, and does so from the cold start where the neighbours'
-    checks needed the next one); a cold start that fails goes on with the policy's retries."""
+    checks needed the next one); a cold start that fails goes on with the policy's retries, which give the seed of the
+    attempt reported where `retry_seeds` (a refinement's: SeededRefinement; else None)."""
     solve = SeededSolve(point, lubricant, settings, seed, attempt)
     if check is not None:
         check.source, check.attempt = "", 1  # until this point's check says how it started
     with np.errstate(**RUN_AWAY_ARITHMETIC):
         begun = solve.begin()
-    # with its error bounds as every solve of the staged solver
-    solution = solver.finish(begun, check) if isinstance(begun, PointSolve) else solver.bound(
+    # with its error bounds as every solve of the staged solver; a seeded refinement's check from its coarse stage
+    warm = begun.warm_check() if check is None and isinstance(begun, SeededSolve) else None
+    solution = solver.finish(begun, check or warm) if isinstance(begun, PointSolve) else solver.bound(
         begun, point, lubricant, settings, check=check)
     if not solver.needs_retry(solution):
         if check is not None and solution.record is not None:
@@ -220,9 +244,12 @@ def solve_seeded(point: ContactPoint, lubricant: Lubricant, settings: SolverSett
             solution = replace(solution, record=record)
         return solution, solve.seed_for_next()
     if solve.seed is None and attempt == 1:
+        if retry_seeds:
+            return retried_with_seed(solution, point, lubricant, settings, solver)
         return solver.retried(solution, point, lubricant, settings), None
+    following = None
     if whole_policy:
-        cold = solver(point, lubricant, settings)
+        cold, following = solve_seeded(point, lubricant, settings, None, solver=solver, retry_seeds=retry_seeds)
         spent = spent_on(solution) + spent_on(cold)
     else:  # the retries count the failed attempt's time
         cold = solver.retried(solution, point, lubricant, settings)
@@ -231,7 +258,26 @@ def solve_seeded(point: ContactPoint, lubricant: Lubricant, settings: SolverSett
     retry = RetryRecord(Reason.SEEDED_START_FAILED, Action.COLD_START, 1, f"{led}: {solution.message}")
     record = cold.record.with_retry(retry)
     return replace(cold, record=record, models={**cold.models, "solver": record.render()},
-                   scalars={**cold.scalars, **spent.scalars()}), None
+                   scalars={**cold.scalars, **spent.scalars()}), following if retry_seeds else None
+
+
+def retried_with_seed(first: PointSolution, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
+                      solver: StagedSolver) -> tuple[PointSolution, Seed | None]:
+    """`solver.retried` of the cold start's failed `first` attempt, each retry a SeededSolve from the cold start (the
+    same solve as staged.StagedSolver.begin's), and the seed of the attempt reported where a retry is (None where the
+    first attempt is kept)."""
+    solution, seed = first, None
+    while solver.needs_retry(solution):
+        attempt, options = retry_options(solution)
+        solve = noted_retry(SeededSolve(point, lubricant, settings, None, attempt, **options), solution, attempt)
+        with np.errstate(**RUN_AWAY_ARITHMETIC):
+            begun = solve.begin()
+        solution = solver.finish(begun) if isinstance(begun, PointSolve) else solver.bound(begun, point, lubricant,
+                                                                                             settings)
+        seed = solve.seed_for_next()
+    if solution is first:
+        return first, None
+    return solver.with_retry(first, solution), seed if POLICY.better(first, solution) else None
 
 
 def solve_path(tasks: Sequence[tuple[ContactPoint, Lubricant, SolverSettings]]) -> list[PointSolution]:
@@ -242,3 +288,25 @@ def solve_path(tasks: Sequence[tuple[ContactPoint, Lubricant, SolverSettings]]) 
         solution, seed = solve_seeded(point, lubricant, settings, seed, check)
         solutions.append(solution)
     return solutions
+
+
+class SeededRefinement:
+    """The accuracy target's solver (accuracy_target.py): a point on a finer grid seeded from its own last converged
+    solve in the same model (`solve_seeded`: the seeded start on the finer grid's coarse stage, with the same stages,
+    convergence tests and error bounds as the cold start, and the relaxation of the retry policy's attempt that
+    converged the coarser grid; a seeded solve that fails is solved again from the cold start, with every attempt of
+    the policy). The first grid of a point is solved cold. It keeps the last seed of each point and model in the
+    process that solves them: the target refines a point within one worker."""
+
+    def __init__(self) -> None:
+        self.seeds: dict[tuple, tuple[Seed, int]] = {}  # (point, model) -> the last converged seed and its attempt
+
+    def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
+        key = (point.radius_x, point.radius_y, point.load, point.velocity_1, point.velocity_2,
+               lubricant.rheology, settings.thermal, settings.thermal_layers)
+        seed, attempt = self.seeds.get(key, (None, 1))
+        solution, following = solve_seeded(point, lubricant, settings, seed, attempt=attempt, retry_seeds=True)
+        if solution.converged and following is not None and solution.record is not None:
+            carried = not POLICY.attempts[solution.record.attempt - 1].load_continuation
+            self.seeds[key] = (replace(following, correction=None), solution.record.attempt if carried else 1)
+        return solution

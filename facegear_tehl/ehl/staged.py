@@ -24,6 +24,23 @@ from facegear_tehl.solution import PointSolution
 RUN_AWAY_ARITHMETIC = {"over": "ignore", "invalid": "ignore", "divide": "ignore"}
 
 
+def retry_options(retry_after: PointSolution) -> tuple[int, dict]:
+    """The retry policy's next attempt after the failed `retry_after`, and the options of its PointSolve besides the
+    attempt's relaxation and escalating start: its wall time counts the earlier attempts', a longer inlet, the load
+    continuation where the attempt has it."""
+    attempt = POLICY.next_attempt(retry_after)
+    return attempt, {"elapsed": spent_on(retry_after), "max_doublings": TUNING.retry_inlet_doublings,
+                     "load_continuation": POLICY.attempts[attempt - 1].load_continuation}
+
+
+def noted_retry(solve: PointSolve, retry_after: PointSolution, attempt: int) -> PointSolve:
+    """`solve`, the retry `attempt` after `retry_after`, with the earlier retries and this one in its record."""
+    solve.retries.extend(() if retry_after.record is None else retry_after.record.retries)
+    solve.retries.append(RetryRecord(POLICY.reason(retry_after), Action.NEXT_RELAXATION, attempt,
+                                     f"attempt {attempt - 1}: {retry_after.message}"))
+    return solve
+
+
 def _completed(solver: StagedSolver, begun: PointSolution | PointSolve) -> PointSolution:
     """A begun solve finished in this process."""
     return solver.finish(begun) if isinstance(begun, PointSolve) else begun
@@ -57,16 +74,10 @@ class StagedSolver:
         if retry_after is None:
             solve = PointSolve(point, lubricant, settings)
         else:
-            attempt = POLICY.next_attempt(retry_after)
-            chosen = POLICY.attempts[attempt - 1]
-            solve = PointSolve(point, lubricant, settings, chosen.relaxation,
-                               elapsed=spent_on(retry_after), escalate_start=POLICY.escalates_start(attempt),
-                               attempt=attempt, max_doublings=TUNING.retry_inlet_doublings,
-                               load_continuation=chosen.load_continuation)
-            previous = () if retry_after.record is None else retry_after.record.retries
-            solve.retries.extend(previous)
-            solve.retries.append(RetryRecord(POLICY.reason(retry_after), Action.NEXT_RELAXATION, attempt,
-                                             f"attempt {attempt - 1}: {retry_after.message}"))
+            attempt, options = retry_options(retry_after)
+            solve = noted_retry(PointSolve(point, lubricant, settings, POLICY.attempts[attempt - 1].relaxation,
+                                           escalate_start=POLICY.escalates_start(attempt), attempt=attempt, **options),
+                                retry_after, attempt)
         with np.errstate(**RUN_AWAY_ARITHMETIC):
             begun = solve.begin()
         if isinstance(begun, PointSolve):
