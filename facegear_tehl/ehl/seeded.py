@@ -293,20 +293,19 @@ def solve_path(tasks: Sequence[tuple[ContactPoint, Lubricant, SolverSettings]]) 
 class SeededRefinement:
     """The accuracy target's solver (accuracy_target.py): a point on a finer grid seeded from its own last converged
     solve in the same model (`solve_seeded`: the seeded start on the finer grid's coarse stage, with the same stages,
-    convergence tests and error bounds as the cold start, and the relaxation of the retry policy's attempt that
-    converged the coarser grid; a seeded solve that fails is solved again from the cold start, with every attempt of
+    convergence tests and error bounds as the cold start, and the relaxation of the policy's first attempt, whatever
+    attempt converged the coarser grid: a finer grid's V-cycles converge more easily, and a damped relaxation carried
+    up costs more than it saves; a seeded solve that fails is solved again from the cold start, with every attempt of
     the policy). The first grid of a point is solved cold. It keeps the last seed of each point and model in the
     process that solves them: the target refines a point within one worker."""
 
     def __init__(self) -> None:
-        self.seeds: dict[tuple, tuple[Seed, int]] = {}  # (point, model) -> the last converged seed and its attempt
+        self.seeds: dict[tuple, Seed] = {}  # (point, model) -> the last converged seed
 
     def __call__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> PointSolution:
         key = (point.radius_x, point.radius_y, point.load, point.velocity_1, point.velocity_2,
                lubricant.rheology, settings.thermal, settings.thermal_layers)
-        seed, attempt = self.seeds.get(key, (None, 1))
-        solution, following = solve_seeded(point, lubricant, settings, seed, attempt=attempt, retry_seeds=True)
-        if solution.converged and following is not None and solution.record is not None:
-            carried = not POLICY.attempts[solution.record.attempt - 1].load_continuation
-            self.seeds[key] = (replace(following, correction=None), solution.record.attempt if carried else 1)
+        solution, following = solve_seeded(point, lubricant, settings, self.seeds.get(key), retry_seeds=True)
+        if solution.converged and following is not None:
+            self.seeds[key] = replace(following, correction=None)
         return solution
