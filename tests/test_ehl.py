@@ -143,20 +143,6 @@ def test_hierarchy_shapes_halve_x_alone_down_to_square_then_both_until_the_small
     assert transfer((257, 65), (129, 65)) is SEMI_X and transfer((65, 65), (33, 33)) is STANDARD
 
 
-def test_cells_much_longer_along_y_than_along_x_are_coarsened_along_x_alone():
-    from facegear_tehl.ehl.grid import cell_aspect, hierarchy_shapes
-
-    # a/b = 41 on 257 x 65 over 6 semi-axes each way: cells 164 times longer (physically) along Y than along X
-    aspect = cell_aspect((-4.5, 1.5), (-3.0, 3.0), 41.0, 257, 65)
-    assert aspect == pytest.approx(41.0 * 4.0)
-    assert hierarchy_shapes(257, 65, 17, aspect) == [(17, 65), (33, 65), (65, 65), (129, 65), (257, 65)]
-    # X alone until the cells are at most 10 times as long as wide, then both (a/b = 12 on 129^2: 12, 6, 3, ...)
-    assert hierarchy_shapes(129, 129, 17, 12.0) == [(17, 33), (33, 65), (65, 129), (129, 129)]
-    # an ellipse of a/b <= 10 on a square grid: both axes together
-    assert hierarchy_shapes(129, 129, 17, cell_aspect((-3.0, 3.0), (-3.0, 3.0), 10.0, 129, 129)) == [
-        (17, 17), (33, 33), (65, 65), (129, 129)]
-
-
 def test_x_only_transfers_keep_the_lines():
     from facegear_tehl.ehl.grid import SEMI_X
 

@@ -13,9 +13,7 @@ solve of the same point and model on the solved domain with (ny + 1)/2 nodes alo
 f* + C_x h_x^p + C_y h_y^p (Roache 1998, ch. 5) the y-error does not depend on h_x, so where the solve has a converged
 coarse stage at (nx + 1)/2 x ny (a thermal full multigrid), the check solves (nx + 1)/2 x (ny + 1)/2 and e_y = (f_stage
 - f_check)/((2^p - 1) f): a quarter of the finest grid's nodes instead of half. Without a coarse stage the check solves
-nx x (ny + 1)/2 against the solution itself. On a square finest grid whose grid one coarser has half its rows e_x
-covers both axes (e_y = 0); a long ellipse's is coarsened along x alone (grid.hierarchy_shapes): its e_y comes from
-the check too.
+nx x (ny + 1)/2 against the solution itself. On a square finest grid e_x covers both axes (e_y = 0).
 
 A figure is "unresolved" (`unresolved_<name>` = 1 in the file, the word in the tables) where no bound can be given:
 a solve that did not converge; no e_x or no e_y (ny is the coarsest grid, or the check did not converge); an e_x
@@ -36,9 +34,7 @@ import time
 import numpy as np
 
 from facegear_tehl.contact import ContactPoint
-from facegear_tehl.ehl import grid
 from facegear_tehl.ehl.report import ORDER_DT_MAX, ORDER_MU, LevelSummary
-from facegear_tehl.ehl.retry import ATTEMPTS
 from facegear_tehl.ehl.richardson import ORDER
 from facegear_tehl.ehl.scaling import Scaling
 from facegear_tehl.ehl.tuning import TUNING
@@ -82,12 +78,11 @@ def y_estimates(solution: PointSolution, point: ContactPoint, lubricant: Lubrica
     """e_y of each reported figure (module docstring; p: ORDERS): from the coarse stage and a check on its x nodes
     with (ny + 1)/2 rows where `coarse` is given, else from the solution and a check on its x nodes with (ny + 1)/2
     rows; the check is `solve` (with its retries) of the same point and model on the solution's domain, without
-    outlet patches. 0 on a square grid whose grid one coarser has half its rows, NaN where (ny + 1)/2 is below the
-    coarsest grid or the check failed."""
+    outlet patches. 0 on a square grid, NaN where (ny + 1)/2 is below the coarsest grid or the check failed."""
     x, y = solution.axes["x"].values, solution.axes["y"].values
     nx, ny = x.size, y.size
     names = [name for name in FIGURES if name in solution.scalars]
-    if nx == ny and _halves_rows(x, y, settings.coarsest_grid, _semi_coarsened(solution)):
+    if nx == ny:
         return dict.fromkeys(names, 0.0)
     if (ny + 1) // 2 < settings.coarsest_grid:
         return dict.fromkeys(names, math.nan)
@@ -103,21 +98,6 @@ def y_estimates(solution: PointSolution, point: ContactPoint, lubricant: Lubrica
     return {name: (reference[name] - checked.scalar(name)) / (2.0 ** ORDERS[name] - 1.0) / solution.scalar(name)
             if name in checked.scalars and math.isfinite(reference.get(name, math.nan))
             and solution.scalar(name) != 0.0 else math.nan for name in names}
-
-
-def _semi_coarsened(solution: PointSolution) -> bool:
-    """The solution's attempt coarsens long cells along x alone (retry.ATTEMPTS, Relaxation.semi_coarsening)."""
-    attempt = int(solution.scalars.get("attempts", (1.0, "1"))[0])
-    return 1 <= attempt <= len(ATTEMPTS) and ATTEMPTS[attempt - 1].relaxation.semi_coarsening
-
-
-def _halves_rows(x: np.ndarray, y: np.ndarray, coarsest: int, semi_coarsened: bool) -> bool:
-    """The grid one coarser than (x, y) (m) in the solve's hierarchy (grid.hierarchy_shapes, from its cells'
-    physical aspect where the attempt coarsens long cells along x alone) has half its rows: e_x, taken against it,
-    then covers both axes."""
-    aspect = (np.ptp(y) / (y.size - 1)) / (np.ptp(x) / (x.size - 1)) if semi_coarsened else 1.0
-    shapes = grid.hierarchy_shapes(x.size, y.size, coarsest, aspect)
-    return len(shapes) > 1 and shapes[-2][1] < y.size
 
 
 def remaining_error(changes: np.ndarray, floored: bool) -> float:

@@ -11,8 +11,6 @@ from typing import Callable
 
 import numpy as np
 
-from facegear_tehl.ehl.tuning import TUNING
-
 
 def hierarchy_sizes(finest: int, coarsest: int) -> list[int]:
     """Node counts per side from coarsest to finest, e.g. (257, 17) -> [17, 33, 65, 129, 257]."""
@@ -22,42 +20,23 @@ def hierarchy_sizes(finest: int, coarsest: int) -> list[int]:
     return sizes[::-1]
 
 
-def hierarchy_shapes(finest_x: int, finest_y: int, coarsest: int, aspect: float = 1.0) -> list[tuple[int, int]]:
-    """(nx, ny) per level, coarsest first: nx halves alone while it is larger than ny or while the cells are longer
-    along Y than TUNING.semi_coarsening_aspect times their width along X (semi-coarsening), then both halve together
-    until the smaller reaches `coarsest`, e.g. (257, 65, 17) -> [(17, 17), (33, 33), (65, 65), (129, 65), (257, 65)];
-    (65, 257, 17) -> [(17, 65), (33, 129), (65, 257)]. `aspect`: the cells' physical length along Y over their width
-    along X on the finest grid, k h_y/h_x (`cell_aspect`); halving nx halves it.
+def hierarchy_shapes(finest_x: int, finest_y: int, coarsest: int) -> list[tuple[int, int]]:
+    """(nx, ny) per level, coarsest first: nx halves alone while it is larger than ny (semi-coarsening), then
+    both halve together until the smaller reaches `coarsest`, e.g. (257, 65, 17) -> [(17, 17), (33, 33),
+    (65, 65), (129, 65), (257, 65)]; (65, 257, 17) -> [(17, 65), (33, 129), (65, 257)].
 
     The coarse grids of a grid refined along X are those of the square grid: a coarsest grid with 65 or more
     nodes along X (the rolling direction) runs away from the Hertz start with the default relaxation (so does a
     65^2 coarsest grid; with Venner's switch, the second attempt of solve.ATTEMPTS, about ten heavy contacts of the
-    envelope suite start from 65^2). With an `aspect` given (the last attempt, retry.ATTEMPTS), cells much longer
-    along Y than along X (a long ellipse, k h_y >> h_x) are not coarsened along Y: the rows there are coupled by the
-    deflection alone (the Poiseuille coefficient along Y is (h_x/(k h_y))^2 times that along X), and a coarse grid
-    with half the rows does not represent the pressure's fall at the ends of the major axis; its correction drove the
-    V-cycles of the heavy ellipses of the wide envelope into a period-2 limit cycle there (docs/tuning.md,
-    "semi_coarsening_aspect"). Coarsening only along the strongly
-    coupled axis is the standard multigrid treatment of anisotropy (Brandt 1977, Math. Comp. 31:333-390, sec. 3.3;
-    Trottenberg, Oosterlee & Schueller 2001, Multigrid, sec. 5.1).
+    envelope suite start from 65^2).
     """
     x_only = []
-    while finest_x > finest_y or (aspect > TUNING.semi_coarsening_aspect and finest_x > coarsest):
+    while finest_x > finest_y:
         x_only.insert(0, (finest_x, finest_y))
         finest_x = (finest_x - 1) // 2 + 1
-        aspect /= 2.0
     xs, ys = hierarchy_sizes(finest_x, coarsest), hierarchy_sizes(finest_y, coarsest)
     levels = min(len(xs), len(ys))
     return list(zip(xs[-levels:], ys[-levels:])) + x_only
-
-
-def cell_aspect(domain_x: tuple[float, float], domain_y: tuple[float, float], ellipticity: float, nx: int,
-                ny: int) -> float:
-    """k h_y/h_x: the physical length along Y over the width along X of the cells of an (nx, ny) grid on the domain
-    (X in semi-axes b, Y in semi-axes a = k b)."""
-    h_x = (domain_x[1] - domain_x[0]) / (nx - 1)
-    h_y = (domain_y[1] - domain_y[0]) / (ny - 1)
-    return ellipticity * h_y / h_x
 
 
 def restrict_full_weighting(fine: np.ndarray) -> np.ndarray:

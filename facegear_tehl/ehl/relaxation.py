@@ -22,4 +22,3 @@ class Relaxation:
     force_damping: float = 1.0  # fraction of the secant step taken
     alternate_above: float = 0.25  # add Y-line sweeps when |c_y| > this * |c_x| (entrainment skewed > 14 deg)
     scale_switch: bool = True  # scale xi_switch for long ellipses (see Level); False: Venner's value as is
-    semi_coarsening: bool = False  # coarsen along x alone where the cells are long (grid.hierarchy_shapes)

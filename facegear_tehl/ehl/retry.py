@@ -46,9 +46,7 @@ ATTEMPTS = (
     Attempt("the ellipse-scaled switch", Relaxation()),
     Attempt("Venner's switch", Relaxation(scale_switch=False)),
     Attempt("Venner's switch, damped", DAMPED),
-    # long cells coarsened along x alone (grid.hierarchy_shapes): the converged V-cycles of the heavy long ellipses
-    Attempt("Venner's switch, damped, from a fraction of the load, rows kept on coarse grids",
-            replace(DAMPED, semi_coarsening=True), load_continuation=True),
+    Attempt("Venner's switch, damped, from a fraction of the load", DAMPED, load_continuation=True),
 )
 
 

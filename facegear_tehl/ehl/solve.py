@@ -95,13 +95,10 @@ class PointSolve:
         mode, self.reason = thermal_choice(settings.thermal, point, lubricant)
         self.mode = ThermalMode(mode)
         self.coarsest = settings.coarsest_grid  # nodes of the coarsest grid's shorter side (start.py)
-        problem = problem_for(point, lubricant, settings, self.scaling)
-        # k h_y/h_x of the finest grid's cells, where the relaxation coarsens long cells along x alone (else 1)
-        self.aspect = grid.cell_aspect(problem.domain_x, problem.domain_y, problem.ellipticity, settings.grid,
-                                       settings.nodes_y) if relaxation.semi_coarsening else 1.0
-        shapes = self.shapes(self.coarsest)
-        self.pressure = PressureIteration(MultigridSolver(problem, shapes, relaxation), settings,
-                                          History(cycles=settings.cycles_per_level))
+        shapes = grid.hierarchy_shapes(settings.grid, settings.nodes_y, self.coarsest)
+        self.pressure = PressureIteration(
+            MultigridSolver(problem_for(point, lubricant, settings, self.scaling), shapes, relaxation), settings,
+            History(cycles=settings.cycles_per_level))
         self.plan: SolvePlan = plan_for(shapes, self.mode, self.coupled, settings, point.entrainment_angle)
         self.summaries: list[LevelSummary] = []
         self.coarse_state: FilmState | None = None  # the film state of the coarse thermal stage
@@ -235,7 +232,7 @@ class PointSolve:
                     return frozen, coarse_mark
         reason = Reason.SEED_FILM_CLOSED if status.outcome is Outcome.FILM_CLOSED else Reason.SEED_RAN_AWAY
         self.retries.append(RetryRecord(reason, Action.COARSEST_GRID_AGAIN, self.attempt, status.message))
-        self.new_hierarchy(self.shapes(self.coarsest))
+        self.new_hierarchy(grid.hierarchy_shapes(self.settings.grid, self.settings.nodes_y, self.coarsest))
         return None
 
     def _couple_on_finest(self, status: Status) -> PointSolution:
@@ -247,7 +244,7 @@ class PointSolve:
                   else Reason.COARSE_STAGE_RAN_AWAY)
         self.retries.append(RetryRecord(reason, Action.COUPLED_ON_FINEST, self.attempt,
                                         f"{level.nx} x {level.ny}: {status.message}"))
-        self.new_hierarchy(self.shapes(self.coarsest))
+        self.new_hierarchy(grid.hierarchy_shapes(self.settings.grid, self.settings.nodes_y, self.coarsest))
         return self._solve_finest()
 
     def _solve_finest(self) -> PointSolution:
@@ -275,11 +272,6 @@ class PointSolve:
         index, status = start(self, below_top)
         self._stage_done(Stage.START, index, status, mark)
         return index, status
-
-    def shapes(self, coarsest: int) -> list[tuple[int, int]]:
-        """The multigrid hierarchy (nx, ny) of the point's grid from a coarsest grid of `coarsest` nodes along its
-        shorter side (grid.hierarchy_shapes), coarsest first."""
-        return grid.hierarchy_shapes(self.settings.grid, self.settings.nodes_y, coarsest, self.aspect)
 
     def new_hierarchy(self, shapes: list[tuple[int, int]]) -> None:
         """A new multigrid solver on `shapes` (coarsest first), summaries and history begun again; the work done so

@@ -13,6 +13,7 @@ from dataclasses import replace
 import math
 from typing import Protocol
 
+from facegear_tehl.ehl import grid
 from facegear_tehl.ehl.convergence import finite
 from facegear_tehl.ehl.coupled import film_closed
 from facegear_tehl.ehl.domain import predicted_central_film
@@ -45,8 +46,6 @@ class Starting(Protocol):
     attempt: int
     retries: list[RetryRecord]
 
-    def shapes(self, coarsest: int) -> list[tuple[int, int]]: ...
-
     def new_hierarchy(self, shapes: list[tuple[int, int]]) -> None: ...
 
 
@@ -59,7 +58,7 @@ def start(solve: Starting, below_top: int) -> tuple[int, Status]:
     while True:
         index, status = _full_multigrid(solve, len(solve.solver.levels) - 1 - below_top)
         finer = 2 * solve.coarsest - 1
-        shapes = solve.shapes(finer)
+        shapes = grid.hierarchy_shapes(settings.grid, settings.nodes_y, finer)
         if (not (status.diverged and solve.escalate_start) or finer > min(settings.grid, settings.nodes_y)
                 or len(shapes) <= below_top):
             return index, status

@@ -22,8 +22,6 @@ class Tuning:
     max_inlet_doublings: int = 2  # doublings of the inlet at most (a light load needs two)
     retry_inlet_doublings: int = 1  # ... on a retry after a solve ran away (a long inlet can be the cause)
     max_lengthened_nodes: int = 2049  # nodes of a lengthened axis at most (its length then never depends on the grid)
-    # --- the multigrid hierarchy (grid.hierarchy_shapes)
-    semi_coarsening_aspect: float = 10.0  # last attempt: cells longer along Y than 10x their width: X alone
     # --- full-multigrid start and load continuation
     diverged_load_error: float = 0.5  # |load error| after a full cycle beyond which the iteration is running away
     eyring_start_cycles: int = 1  # V-cycles of an isothermal Ree-Eyring film's finest start grid: its loop follows
