@@ -8,6 +8,7 @@ constant central film; both are exact functions of (x, y), so a round trip can b
 from __future__ import annotations
 
 from pathlib import Path
+import signal
 import subprocess
 import sys
 import textwrap
@@ -96,6 +97,13 @@ _STALLING_WRITER = textwrap.dedent(
     results._write_point = write_and_stall
     """
 )
+
+
+def sigint_as_in_a_terminal() -> None:
+    """`preexec_fn` of a child that is sent Ctrl-C: SIGINT back to its default action. A process started in the
+    background of a shell without job control (as some CI runners start the test command) inherits SIGINT
+    ignored, and Python then leaves it ignored: the child would never see the interrupt the test sends."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
 def interrupt_while_writing(code: str, args: list[str], folder: Path, signum: int) -> tuple[int, str]:

@@ -267,7 +267,8 @@ def test_stopped_workers_leave_no_open_wakeup_pipe_to_the_exit_hook():
 def test_interrupted_parallel_run_stops_its_workers(tmp_path, signum):
     script = _STALLING_RUN.format(tests=str(Path(__file__).parent), folder=str(tmp_path))
     command = [sys.executable, "-c", script, "run", str(FACE_GEAR), "--jobs", "2", "-o", str(tmp_path / "r.h5")]
-    with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) as process:
+    with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                          preexec_fn=synthetic.sigint_as_in_a_terminal) as process:
         deadline = time.monotonic() + 60
         while len(list(tmp_path.glob("worker-*"))) < 2:
             assert time.monotonic() < deadline and process.poll() is None, process.stderr.read()

@@ -193,7 +193,8 @@ def test_an_interrupted_study_completes_on_the_next_run_without_recomputing_fini
     out = tmp_path / "out"
     env = {**os.environ, "PYTHONPATH": str(REPOSITORY)}
     process = subprocess.Popen([sys.executable, "-m", "facegear_tehl", "study", str(path), "-o", str(out),
-                                "--workers", "1"], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                                "--workers", "1"], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                               preexec_fn=synthetic.sigint_as_in_a_terminal)
     deadline = time.monotonic() + 120.0
     while not list(out.glob("*.h5")) and time.monotonic() < deadline and process.poll() is None:
         time.sleep(0.02)
