@@ -211,3 +211,54 @@ def test_a_loop_whose_changes_no_longer_contract_leaves_their_largest():
     assert remaining_error(flicker[1:-1], floored=True) == 0.04
     solution, _, _ = _loop_history(0.3)
     assert iteration_error(solution, "dT_max") < solution.history["thermal_change_history"].values[-1] / 60.0
+
+
+def _cycled(films: np.ndarray, floor: float = math.nan, nodes: np.ndarray | None = None) -> PointSolution:
+    """An isothermal Newtonian solve (no outer loop) whose pressure cycles left the central and the minimum film
+    `films` (m) after each cycle, on levels of `nodes` nodes along x (default: all on the reported 257)."""
+    nodes = np.full(films.size, 257.0) if nodes is None else nodes
+    history = {"cycle_h_c_history": Field(films, "m", ""), "cycle_h_min_history": Field(0.8 * films, "m", ""),
+               "cycle_nodes_history": Field(nodes, "1", "")}
+    solution = _solution(h_c=films[-1], h_min=0.8 * films[-1], error_estimate_h_c=0.001, error_estimate_h_min=0.001,
+                         algebraic_floor=floor)
+    return PointSolution(solution.name, solution.outcome, "", solution.scalars, {}, solution.axes, history)
+
+
+@pytest.mark.parametrize("rho", [0.3, 0.6, 0.85])
+def test_the_pressure_cycles_slow_contraction_enters_the_film_bound(rho):
+    """Without an outer loop the film's own change per pressure cycle is the iteration's record: a film contracting
+    by rho per cycle towards h* (h_k = h* (1 + 0.05 rho^k)) was left c rho/(1 - rho) off after its last change c (the
+    geometric tail; Ortega & Rheinboldt 1970, 12.1.2). The bound adds exactly that to F_s |e_x|, and covers the true
+    error, which at rho = 0.85 is 5.7 times the last change."""
+    exact, k = 2.0e-7, np.arange(12)
+    films = exact * (1.0 + 0.05 * rho**k)
+    solution = _cycled(films)
+    true = abs(films[-1] - exact) / films[-1]
+    assert iteration_error(solution, "h_c") == pytest.approx(true, rel=1e-9)
+    assert iteration_error(solution, "h_min") == pytest.approx(true, rel=1e-9)
+    bounded = bounds(solution, {"h_c": 0.0, "h_min": 0.0}, {"h_min": 9})
+    assert bounded["unresolved_h_c"][0] == 0.0
+    assert bounded["error_bound_h_c"][0] == pytest.approx(TUNING.bound_safety * 0.001 + true, rel=1e-9)
+    assert bounded["error_bound_h_c"][0] >= true
+
+
+def test_a_film_the_pressure_cycles_leave_drifting_is_unresolved_never_small():
+    """A film still moving one way by nearly the same step each cycle (contraction 0.97: the geometric tail is 32
+    last changes, and the rate read from a few cycles cannot be trusted that close to 1) has no bound: unresolved,
+    even where the pressure change was accepted as its algebraic floor."""
+    films = 2.0e-7 * (1.0 + 0.3 * 0.97 ** np.arange(14))
+    for floor in (math.nan, 1.5e-4):
+        bounded = bounds(_cycled(films, floor), {"h_c": 0.0, "h_min": 0.0}, {"h_min": 9})
+        assert bounded["unresolved_h_c"][0] == 1.0 and "error_bound_h_c" not in bounded
+        assert bounded["unresolved_h_min"][0] == 1.0
+
+
+def test_a_film_flickering_about_its_fixed_point_leaves_its_largest_change_and_only_the_last_level_counts():
+    """Changes alternating in sign straddle the fixed point (the algebraic floor): the error left is the window's
+    largest change. Cycles on a coarser level before the last (the start's, another grid) are not the reported
+    film's iteration and do not enter."""
+    flicker = 2.0e-7 * (1.0 + np.array([0.0, 4e-4, -3e-4, 3.5e-4, -3e-4, 3.2e-4, -3e-4]))
+    nodes = np.array([129.0] * 3 + [257.0] * 7)
+    films = np.concatenate([[1.0e-7, 1.5e-7, 1.9e-7], flicker])
+    left = iteration_error(_cycled(films, floor=2e-5, nodes=nodes), "h_c")
+    assert left == pytest.approx(np.abs(np.diff(flicker[-6:])).max() / flicker[-1], rel=1e-9)

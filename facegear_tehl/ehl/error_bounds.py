@@ -116,16 +116,53 @@ def remaining_error(changes: np.ndarray, floored: bool) -> float:
     return last * rho / (1.0 - rho)
 
 
+def cycle_changes(solution: PointSolution, name: str) -> np.ndarray:
+    """Change of a film figure (h_c, h_min) per pressure cycle relative to its last value, signed, over the cycles on
+    the level the pressure iteration ended on (the first of them, its entry iterate, as the history records it);
+    empty without the per-cycle record of the figure."""
+    key = f"cycle_{name}_history"
+    if key not in solution.history or "cycle_nodes_history" not in solution.history:
+        return np.empty(0)
+    values = np.asarray(solution.history[key].values, dtype=float)
+    nodes = np.asarray(solution.history["cycle_nodes_history"].values, dtype=float)
+    other = np.flatnonzero(nodes != nodes[-1]) if nodes.size else np.empty(0, dtype=int)
+    tail = values[other[-1] + 1:] if other.size else values
+    return np.diff(tail) / abs(tail[-1]) if tail.size > 1 and tail[-1] != 0.0 else np.empty(0)
+
+
+def drifting(changes: np.ndarray) -> bool:
+    """The last contraction_window + 1 changes keep one sign and do not contract (rate above max_contraction): the
+    iterate still moves one way, which no contraction rate read from it bounds (not a flicker straddling the fixed
+    point, whose changes alternate in sign)."""
+    n = TUNING.contraction_window + 1
+    window = changes[-n:]
+    if window.size < n or not (np.all(window > 0.0) or np.all(window < 0.0)):
+        return False
+    return abs(window[-1] / window[0]) ** (1.0 / (n - 1)) > TUNING.max_contraction
+
+
+def cycle_error(solution: PointSolution, name: str) -> float:
+    """Relative error the finest grid's pressure cycles left in a film figure: remaining_error of its change per
+    cycle (`cycle_changes`; the flicker's largest change where the iteration ended on its algebraic floor), inf where
+    the figure is `drifting` (no bound: unresolved); 0 without a per-cycle record."""
+    changes = cycle_changes(solution, name)
+    if drifting(changes):
+        return math.inf
+    return remaining_error(np.abs(changes), math.isfinite(solution.scalars.get("algebraic_floor", (math.nan, "1"))[0]))
+
+
 def iteration_error(solution: PointSolution, name: str) -> float:
-    """Relative error the outer loop left in a figure (remaining_error of its changes): of the largest layer
-    temperature for the temperatures (K over |value|), of ln(eta*/eta) for mu of an isothermal Ree-Eyring film, else
-    of the central film, whose last change contracts as the loop's film state does; 0 without an outer loop."""
+    """Relative error the iteration left in a figure (remaining_error of its changes): of the outer loop where the
+    solve has one, of the largest layer temperature for the temperatures (K over |value|), of ln(eta*/eta) for mu of
+    an isothermal Ree-Eyring film, else of the central film, whose last change contracts as the loop's film state does;
+    without an outer loop, of the pressure cycles for the film figures (`cycle_error`, inf where it cannot bound), else
+    0."""
     history, value = solution.history, solution.scalar(name)
     thermal = "thermal_change_history" in history
     key, floor = ("thermal_change_history", "thermal_floor") if thermal else ("viscosity_change_history",
                                                                                 "viscosity_floor")
     if key not in history:
-        return 0.0
+        return cycle_error(solution, name) if name in ("h_c", "h_min") else 0.0
     changes = np.asarray(history[key].values, dtype=float)
     floored = math.isfinite(solution.scalars.get(floor, (math.nan, "1"))[0])
     if name in ("dT_max", "dT_min") and thermal:
@@ -211,10 +248,11 @@ def bounds(solution: PointSolution, e_y: dict[str, float],
         unresolved["dT_max"] = True
     out: dict[str, tuple[float, str]] = {}
     for name, (e_x, along_y) in estimates.items():
-        if not unresolved[name]:
-            bound = TUNING.bound_safety * (abs(e_x) + abs(along_y)) + iteration_error(solution, name)
+        bound = math.inf if unresolved[name] else (TUNING.bound_safety * (abs(e_x) + abs(along_y))
+                                                   + iteration_error(solution, name))
+        if math.isfinite(bound):
             out[f"error_bound_{name}"] = (bound, "1")
-        out[f"unresolved_{name}"] = (float(unresolved[name]), "1")
+        out[f"unresolved_{name}"] = (float(not math.isfinite(bound)), "1")
     return out
 
 
