@@ -116,39 +116,53 @@ def remaining_error(changes: np.ndarray, floored: bool) -> float:
     return last * rho / (1.0 - rho)
 
 
-def cycle_changes(solution: PointSolution, name: str) -> np.ndarray:
-    """Change of a film figure (h_c, h_min) per pressure cycle relative to its last value, signed, over the cycles on
-    the level the pressure iteration ended on (the first of them, its entry iterate, as the history records it);
-    empty without the per-cycle record of the figure."""
-    key = f"cycle_{name}_history"
-    if key not in solution.history or "cycle_nodes_history" not in solution.history:
-        return np.empty(0)
-    values = np.asarray(solution.history[key].values, dtype=float)
-    nodes = np.asarray(solution.history["cycle_nodes_history"].values, dtype=float)
-    other = np.flatnonzero(nodes != nodes[-1]) if nodes.size else np.empty(0, dtype=int)
-    tail = values[other[-1] + 1:] if other.size else values
-    return np.diff(tail) / abs(tail[-1]) if tail.size > 1 and tail[-1] != 0.0 else np.empty(0)
+def cycle_changes(solution: PointSolution, name: str) -> tuple[np.ndarray, np.ndarray]:
+    """Change of a film figure (h_c, h_min) per pressure cycle relative to its last value, signed, and the pressure's
+    relative change in the same cycles, over the cycles on the level the pressure iteration ended on (after the first of
+    them, its entry iterate); empty without the per-cycle record of the figure."""
+    history, key = solution.history, f"cycle_{name}_history"
+    if key not in history or "cycle_nodes_history" not in history or "pressure_change_history" not in history:
+        return np.empty(0), np.empty(0)
+    values = np.asarray(history[key].values, dtype=float)
+    nodes = np.asarray(history["cycle_nodes_history"].values, dtype=float)
+    pressure = np.asarray(history["pressure_change_history"].values, dtype=float)
+    first = int(np.flatnonzero(nodes != nodes[-1])[-1]) + 1 if np.any(nodes != nodes[-1]) else 0
+    if values.size - first < 2 or values[-1] == 0.0:
+        return np.empty(0), np.empty(0)
+    return np.diff(values[first:]) / abs(values[-1]), pressure[first + 1:]
 
 
 def drifting(changes: np.ndarray) -> bool:
-    """The last contraction_window + 1 changes keep one sign and do not contract (rate above max_contraction): the
-    iterate still moves one way, which no contraction rate read from it bounds (not a flicker straddling the fixed
-    point, whose changes alternate in sign)."""
-    n = TUNING.contraction_window + 1
-    window = changes[-n:]
-    if window.size < n or not (np.all(window > 0.0) or np.all(window < 0.0)):
+    """Over its last contraction_window + 1 changes the figure moves one way (their sum is more than half their
+    absolute sum, which averages drift_floor or more per change) and the changes do not contract (rate above
+    max_contraction): no rate read from them bounds where it goes (a flicker straddling the fixed point alternates in
+    sign instead; below drift_floor the film is at its algebraic floor)."""
+    window = changes[-(TUNING.contraction_window + 1):]
+    if window.size <= TUNING.contraction_window or window[0] == 0.0:
         return False
-    return abs(window[-1] / window[0]) ** (1.0 / (n - 1)) > TUNING.max_contraction
+    one_way = abs(window.sum()) > 0.5 * np.abs(window).sum() and np.abs(window).mean() > TUNING.drift_floor
+    return bool(one_way and abs(window[-1] / window[0]) ** (1.0 / (window.size - 1)) > TUNING.max_contraction)
 
 
 def cycle_error(solution: PointSolution, name: str) -> float:
-    """Relative error the finest grid's pressure cycles left in a film figure: remaining_error of its change per
-    cycle (`cycle_changes`; the flicker's largest change where the iteration ended on its algebraic floor), inf where
-    the figure is `drifting` (no bound: unresolved); 0 without a per-cycle record."""
-    changes = cycle_changes(solution, name)
+    """Relative error the finest grid's pressure cycles left in a film figure, the larger of two readings of the
+    contraction (Ortega & Rheinboldt 1970, 12.1.2): remaining_error of the figure's own change per cycle, and that of
+    the pressure's change per cycle scaled to the figure by the largest ratio of their changes over the window (the
+    figure's sensitivity to the iterate; a figure's change can pass through zero while the iterate still moves).
+    Changes that stopped contracting at the algebraic floor are a flicker (the largest of the window); inf where the
+    figure is `drifting` (no bound: unresolved); 0 without a per-cycle record."""
+    changes, pressure = cycle_changes(solution, name)
+    if changes.size == 0:
+        return 0.0
     if drifting(changes):
         return math.inf
-    return remaining_error(np.abs(changes), math.isfinite(solution.scalars.get("algebraic_floor", (math.nan, "1"))[0]))
+    floored = math.isfinite(solution.scalars.get("algebraic_floor", (math.nan, "1"))[0])
+    own = remaining_error(np.abs(changes), floored)
+    n = min(TUNING.contraction_window + 1, changes.size)
+    if not np.all(pressure[-n:] > 0.0):
+        return own
+    sensitivity = float(np.max(np.abs(changes[-n:]) / pressure[-n:]))
+    return max(own, sensitivity * remaining_error(pressure, floored))
 
 
 def iteration_error(solution: PointSolution, name: str) -> float:
