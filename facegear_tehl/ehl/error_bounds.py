@@ -5,23 +5,25 @@ A reported error estimate is a promise: the bound of a figure f solved on nx x n
     B = F_s (|e_x| + |e_y|) + e_it,
 
 e_x the Richardson estimate of the solve from the grid one coarser along x alone (report.estimate), e_y the Richardson
-estimate along y (`y_estimates`), e_it the error the outer loop left, from its last change and contraction rate
-(`iteration_error`) and F_s = TUNING.bound_safety, the factor of Roache's grid convergence index (Roache 1994, J. Fluids
-Eng. 116: 405-413; Roache 1998, "Verification and Validation in Computational Science and Engineering", ch. 5: F_s = 3
-for an estimate from two grids at an assumed order). The x-only hierarchy never refines y, so e_y comes from one more
-solve of the same point and model on the solved domain with (ny + 1)/2 nodes along y. Under the additive error model f =
-f* + C_x h_x^p + C_y h_y^p (Roache 1998, ch. 5) the y-error does not depend on h_x, so where the solve has a converged
-coarse stage at (nx + 1)/2 x ny (a thermal full multigrid), the check solves (nx + 1)/2 x (ny + 1)/2 and e_y = (f_stage
-- f_check)/((2^p - 1) f): a quarter of the finest grid's nodes instead of half. Without a coarse stage the check solves
-nx x (ny + 1)/2 against the solution itself. On a square finest grid e_x covers both axes (e_y = 0).
+estimate along y (`y_estimates`), e_it the error the iteration left, from its last changes and contraction rate
+(`iteration_error`: the outer loop's where the solve has one, else the finest grid's pressure cycles') and F_s =
+TUNING.bound_safety, the factor of Roache's grid convergence index (Roache 1994, J. Fluids Eng. 116: 405-413; Roache
+1998, "Verification and Validation in Computational Science and Engineering", ch. 5: F_s = 3 for an estimate from two
+grids at an assumed order). The x-only hierarchy never refines y, so e_y comes from one more solve of the same point and
+model on the solved domain with (ny + 1)/2 nodes along y. Under the additive error model f = f* + C_x h_x^p + C_y h_y^p
+(Roache 1998, ch. 5) the y-error does not depend on h_x, so where the solve has a converged coarse stage at (nx + 1)/2 x
+ny (a thermal full multigrid), the check solves (nx + 1)/2 x (ny + 1)/2 and e_y = (f_stage - f_check)/((2^p - 1) f): a
+quarter of the finest grid's nodes instead of half. Without a coarse stage the check solves nx x (ny + 1)/2 against the
+solution itself. On a square finest grid e_x covers both axes (e_y = 0).
 
-A figure is "unresolved" (`unresolved_<name>` = 1 in the file, the word in the tables) where no bound can be given:
-a solve that did not converge; no e_x or no e_y (ny is the coarsest grid, or the check did not converge); an e_x
-or e_y above TUNING.asymptotic_estimate (outside the asymptotic range); its feature (the lowest film's basin, the hot
-or the cold spot) spanning fewer than TUNING.feature_nodes nodes along x or y (`feature_nodes`); p_max always
-(UNBOUNDED); and dT_max where the film's compression, not its shear, sets its temperatures and the outlet spike's
-expansion cooling is unresolved (`compression_held`). docs/accuracy.md (error bounds) holds the calibration that chose
-these rules.
+A figure is "unresolved" (`unresolved_<name>` = 1 in the file, the word in the tables) where no bound can be given: a
+solve that did not converge; no e_x or no e_y (ny is the coarsest grid, or the check did not converge); an e_x or e_y
+above TUNING.asymptotic_estimate (outside the asymptotic range); its feature (the lowest film's basin, the hot or the
+cold spot) spanning fewer than TUNING.feature_nodes nodes along x or y (`feature_nodes`); p_max always (UNBOUNDED); h_c
+and h_min of a solve without an outer loop whose pressure cycles left the film `drifting` one way without contracting
+(its iteration error has no bound); and dT_max where the film's compression, not its shear, sets its temperatures and
+the outlet spike's expansion cooling is unresolved (`compression_held`). docs/accuracy.md (error bounds) holds the
+calibration that chose these rules.
 """
 
 from __future__ import annotations
