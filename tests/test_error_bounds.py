@@ -257,6 +257,16 @@ def test_a_film_the_pressure_cycles_leave_drifting_is_unresolved_never_small():
         assert bounded["unresolved_h_min"][0] == 1.0
 
 
+def test_a_film_wandering_below_the_drift_floor_keeps_a_bound_of_its_largest_change():
+    """A run of one sign at 5e-5 of the film per cycle, not contracting, is the wander of the iteration's floor
+    (below drift_floor): bounded by the window's largest change, not unresolved."""
+    steps = np.array([0.0, -1.2e-5, -2.4e-5, -7.8e-5, -1.1e-4, -3.3e-5])
+    films = 2.0e-7 * (1.0 + np.cumsum(steps))
+    bounded = bounds(_cycled(films, 1e-4), {"h_c": 0.0, "h_min": 0.0}, {"h_min": 9})
+    assert bounded["unresolved_h_c"][0] == 0.0
+    assert iteration_error(_cycled(films, 1e-4), "h_c") == pytest.approx(1.1e-4 * 2.0e-7 / films[-1], rel=1e-6)
+
+
 def test_a_film_flickering_about_its_fixed_point_leaves_its_largest_change_and_only_the_last_level_counts():
     """Changes alternating in sign straddle the fixed point (the algebraic floor): the error left is the window's
     largest change. Cycles on a coarser level before the last (the start's, another grid) are not the reported

@@ -138,7 +138,7 @@ def drifting(changes: np.ndarray) -> bool:
     """Over its last contraction_window + 1 changes the figure moves one way (their sum is more than half their
     absolute sum, which averages drift_floor or more per change) and the changes do not contract (rate above
     max_contraction): no rate read from them bounds where it goes (a flicker straddling the fixed point alternates in
-    sign instead; below drift_floor the film is at its algebraic floor)."""
+    sign instead; below drift_floor the film wanders at the iteration's floor)."""
     window = changes[-(TUNING.contraction_window + 1):]
     if window.size <= TUNING.contraction_window or window[0] == 0.0:
         return False
