@@ -21,6 +21,7 @@ import math
 
 import numpy as np
 
+from facegear_tehl.ehl import grid
 from facegear_tehl.ehl.convergence import (
     History,
     at_algebraic_floor,
@@ -109,6 +110,8 @@ class PressureIteration:
             history.changes.append(change if extra > 0 else math.nan)
             history.residuals.append(float(np.abs(residual[positive]).mean()) if positive.any() else 0.0)
             history.loads.append(load_error)
+            history.films.append((float(level.nx), grid.bilinear_at(level.film, level.x, level.y, 0.0, 0.0),
+                                  float(level.film.min())))
         return change, load_error
 
     def _keep_best(self, best: Best, index: int, change: float, load_error: float) -> None:
