@@ -15,7 +15,9 @@ In the order a failing solve meets them:
    (`next_attempt`): the ellipse-scaled Gauss-Seidel / Jacobi switch, Venner's switch, that damped, and for a
    heavily loaded point that damped from a start at a fraction of its load (load continuation);
 6. the grid does not resolve the film (it closes, or an estimate exceeds its bound): the point is solved again on
-   a finer grid, up to a cap (`finer_settings`, run.py).
+   a finer grid, up to a cap (`finer_settings`, run.py), twice the rows alone where the film closes in a side lobe;
+   of a point whose attempts all failed, where it closes is read on the finest grid an attempt was reported on
+   (`closure_place`), not on a runaway start's coarse level.
 The measurements behind each choice are in docs/tuning.md.
 """
 
@@ -29,6 +31,8 @@ from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.record import Reason
 from facegear_tehl.settings import SolverSettings, ThermalMode
 from facegear_tehl.solution import Outcome, PointSolution
+
+CLOSURE_PLACE = ("x_film_closed", "y_film_closed")  # where a reported iterate's film is lowest (report.py)
 
 
 @dataclass(frozen=True)
@@ -97,6 +101,18 @@ class RetryPolicy:
             solution.outcome, Reason.FILM_CLOSED)
 
     @staticmethod
+    def closure_place(first: PointSolution, retry: PointSolution) -> dict[str, tuple[float, str]]:
+        """Where the film of a point whose attempts failed closed, for the way a finer grid must resolve it
+        (`finer_settings`): the place on the finer of the grids the first attempt and the last retry are reported on.
+        A first attempt whose start ran away is reported on the start's coarse level, where the film closes wherever
+        that grid fails to carry the load; an attempt that reached the finest grid shows where the film of the grid
+        asked for closes. Empty when the retry's grid is not finer or it did not close its film, or the first attempt
+        has a film (kept as it is)."""
+        if "h_min" in first.scalars or reported_nodes(retry) <= reported_nodes(first):
+            return {}
+        return {key: retry.scalars[key] for key in CLOSURE_PLACE if key in retry.scalars}
+
+    @staticmethod
     def better(first: PointSolution, retry: PointSolution) -> bool:
         """The retry did better than the first attempt: converged after a stall, or anything but running away."""
         if first.outcome is Outcome.NOT_CONVERGED:
@@ -139,6 +155,12 @@ class RetryPolicy:
 def estimates(solution: PointSolution) -> tuple[float, float]:
     """The solve's own relative error estimates of h_c and h_min (0 where it has none)."""
     return tuple(solution.scalars.get(f"error_estimate_{key}", (0.0, "1"))[0] for key in ("h_c", "h_min"))
+
+
+def reported_nodes(solution: PointSolution) -> int:
+    """Nodes of the grid `solution` is reported on (0 without its axes)."""
+    axes = solution.axes
+    return len(axes["x"].values) * len(axes["y"].values) if "x" in axes and "y" in axes else 0
 
 
 def _in_side_lobe(solution: PointSolution) -> bool:

@@ -114,7 +114,8 @@ class StagedSolver:
 
     def with_retry(self, first: PointSolution, retry: PointSolution) -> PointSolution:
         """The last retry's solution if it did better than the first attempt (RetryPolicy.better); else the first
-        attempt's, with the time and count of all attempts and what the retries did in its record."""
+        attempt's, with the time and count of all attempts, what the retries did in its record and where its film
+        closed on the finest grid an attempt reached (RetryPolicy.closure_place)."""
         if POLICY.better(first, retry):
             return retry
         last = RetryRecord(POLICY.reason(retry), Action.FIRST_KEPT, int(retry.scalar("attempts")),
@@ -122,8 +123,8 @@ class StagedSolver:
         record = replace(retry.record, stages=first.record.stages, attempt=first.record.attempt,
                          relaxation=first.record.relaxation, iteration=first.record.iteration,
                          notes=first.record.notes).with_retry(last)
-        return replace(first, scalars={**first.scalars, **spent_on(retry).scalars(),
-                                       "attempts": retry.scalars["attempts"]},
+        return replace(first, scalars={**first.scalars, **POLICY.closure_place(first, retry),
+                                       **spent_on(retry).scalars(), "attempts": retry.scalars["attempts"]},
                        models={**first.models, "solver": record.render()}, record=record)
 
 
