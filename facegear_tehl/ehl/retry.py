@@ -13,7 +13,9 @@ In the order a failing solve meets them:
    convergence; a stage that fails for good is dropped and the solution below it reported (outlet.py);
 5. the whole attempt runs away, stalls short of its tolerances or closes its film: the next of ATTEMPTS
    (`next_attempt`): the ellipse-scaled Gauss-Seidel / Jacobi switch, Venner's switch, that damped, and for a
-   heavily loaded point that damped from a start at a fraction of its load (load continuation);
+   heavily loaded point that damped from a start at a fraction of its load (load continuation); an attempt whose
+   coarse stage converged and whose finest grid failed has that grid solved again from its coarse stage with the next
+   attempt's relaxation first (`finest_again`);
 6. the grid does not resolve the film (it closes, or an estimate exceeds its bound): the point is solved again on
    a finer grid, up to a cap (`finer_settings`, run.py), twice the rows alone where the film closes in a side lobe;
    of a point whose attempts all failed, where it closes is read on the finest grid an attempt was reported on
@@ -28,7 +30,7 @@ import math
 
 from facegear_tehl.ehl.relaxation import Relaxation
 from facegear_tehl.ehl.tuning import TUNING
-from facegear_tehl.record import Reason
+from facegear_tehl.record import Reason, Stage
 from facegear_tehl.settings import SolverSettings, ThermalMode
 from facegear_tehl.solution import Outcome, PointSolution
 
@@ -93,6 +95,22 @@ class RetryPolicy:
             return None
         heavy = solution.scalar("moes_m") > TUNING.continuation_moes_m
         return following if heavy or not self.attempts[following - 1].load_continuation else None
+
+    def finest_again(self, solution: PointSolution) -> int | None:
+        """The attempt (1-based) whose relaxation solves the finest grid again from the converged coarse stage of
+        `solution`, whose finest grid failed (ran away, stalled or closed its film): the next attempt, where the
+        policy has one (`next_attempt`) and its relaxation differs; else None. The coarse stage's solution and film
+        state are sound, the failure is the finest grid's iteration: a whole new attempt would begin again from the
+        coarsest grid, whose start and seed stage the point already got through once."""
+        following = self.next_attempt(solution)
+        if following is None or solution.record is None:
+            return None
+        stages = {s.stage: s.outcome for s in solution.record.stages}
+        if stages.get(Stage.COARSE) is not Outcome.CONVERGED or stages.get(Stage.FINEST) is Outcome.CONVERGED:
+            return None
+        if self.attempts[following - 1].relaxation == self.attempts[int(solution.scalar("attempts")) - 1].relaxation:
+            return None
+        return following
 
     @staticmethod
     def reason(solution: PointSolution) -> Reason:
