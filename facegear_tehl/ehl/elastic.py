@@ -87,9 +87,9 @@ class DeflectionOperator:
         every column; back along Y every column, along X the ny rows kept, the normalisation 1/(m_y m_x) applied once
         at the end as the two-dimensional inverse applies it (a heavy hard case's 513^2 solve, M = 5000, closed its
         film with the normalisation applied per axis). The rows are padded in a work array kept with the operator (a
-padding by `rfft(n=...)` cost up to 3x the transform of 1025 x 129 pressures on 2048 nodes). 1.05 -> 0.90 ms on
-513 x 65 (transforms of 1080 x 135 -> 1024 x 128 nodes), 5.3 -> 4.3 ms on 1025 x 129, 65 -> 54 ms on 1025^2
-(`python scripts/bench_deflection.py --before DIR`, medians of 5, one machine)."""
+        padding by `rfft(n=...)` cost up to 3x the transform of 1025 x 129 pressures on 2048 nodes). 1.05 -> 0.90 ms on
+        513 x 65 (transforms of 1080 x 135 -> 1024 x 128 nodes), 5.3 -> 4.3 ms on 1025 x 129, 65 -> 54 ms on 1025^2
+        (`python scripts/bench_deflection.py --before DIR`, medians of 5, one machine)."""
         if self._matrix is not None:
             return (self._matrix @ pressure.ravel()).reshape(self.ny, self.nx)
         self._padded[:, : self.nx] = pressure
