@@ -1,4 +1,4 @@
-"""The isothermal Ree-Eyring outer loop (ehl/solve.py): the Newtonian columns of its film state."""
+"""The Ree-Eyring film state of the outer loops (ehl/solve.py): its Newtonian columns, isothermal and thermal."""
 
 from dataclasses import replace
 import math
@@ -60,3 +60,29 @@ def test_log_factor_change_is_the_logarithms_and_skips_newtonian_entries():
     assert np.allclose(change, expected, rtol=1e-14, atol=1e-15)
     assert not log_factor[:, newtonian].any() and not change[:, newtonian].any()
     assert largest == pytest.approx(float(np.abs(expected).max()), rel=1e-15)
+
+
+def test_newtonian_columns_of_a_thermal_film(monkeypatch):
+    # The same contact's thermal film model takes the same Newtonian bound: one update of its layered state from the
+    # inlet temperature, with and without the bound, differs in ln(eta*/eta) by no more than r_N^2/6, and the
+    # temperatures the energy equation gives for the two by a small share of the rise.
+    point = ContactPoint.from_rolling_sliding("ball", 0.01, 0.01, 100.0, 5.0, 0.5, 0.0, STEEL, STEEL)
+    solver = solve.PointSolve(point, OIL, SolverSettings(grid=65, thermal="off"))
+    assert solver.begin().converged
+    level = solver.solver.levels[-1]
+    pressure, film = level.pressure * solver.scaling.p_h, level.film * solver.scaling.film_scale
+    solver.mode = solve.ThermalMode.FULL
+    bounded = solver._film_model(level)
+    bound = math.sqrt(6.0 * TUNING.eyring_newtonian_share * solver.settings.eyring_tolerance)
+    assert bounded.solve_energy and bounded.newtonian_below == pytest.approx(bound, rel=1e-12)
+    monkeypatch.setattr(solve, "TUNING", replace(TUNING, eyring_newtonian_share=0.0))
+    full = solver._film_model(level)
+    temperature = full.initial_temperature()
+    states = [model.update(pressure, film, temperature) for model in (bounded, full)]
+    newtonian = np.all(states[0].viscosity_factor == 1.0, axis=0)
+    assert 0.1 < newtonian.mean() < 1.0 and not np.any(np.all(states[1].viscosity_factor == 1.0, axis=0))
+    difference = np.abs(np.log(states[0].viscosity_factor) - np.log(states[1].viscosity_factor))
+    assert 0.0 < difference.max() <= bound * bound / 6.0
+    rise = float(states[1].temperature.max()) - OIL.inlet_temperature
+    assert rise > 1.0
+    assert np.abs(states[0].temperature - states[1].temperature).max() < 1e-3 * rise
