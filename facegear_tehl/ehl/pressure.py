@@ -21,7 +21,6 @@ import math
 
 import numpy as np
 
-from facegear_tehl.ehl import grid
 from facegear_tehl.ehl.convergence import (
     History,
     at_algebraic_floor,
@@ -110,7 +109,7 @@ class PressureIteration:
             history.changes.append(change if extra > 0 else math.nan)
             history.residuals.append(float(np.abs(residual[positive]).mean()) if positive.any() else 0.0)
             history.loads.append(load_error)
-            history.films.append((float(level.nx), grid.bilinear_at(level.film, level.x, level.y, 0.0, 0.0),
+            history.films.append((float(level.nx), solver.central_film(level),
                                   float(level.film.min())))
         return change, load_error
 
