@@ -542,7 +542,7 @@ def next_step(point: Progressing, target: float) -> tuple[Progressing, SolveTask
         still = [name for name in point.not_following if bounds[name].bound + point.effects.get(name, 0.0) > target]
         beyond += f"; {', '.join(still)} not met, not converging as planned" if still else ""
         return replace(point, stop=f"every bounded figure within the target{beyond}"), None
-    finer, why = stepped(point.task.settings, *planned(point, missing, target))
+    finer, why = planned(point, missing, target)
     above = ", ".join(missing)
     if finer is not None and over_budget(point, finer) and max(doublings_to(point.task.settings, finer)) > 1:
         point = replace(point, after_jump=f"{grid_words(finer)} would pass the time budget")  # one doubling on
@@ -555,23 +555,6 @@ def next_step(point: Progressing, target: float) -> tuple[Progressing, SolveTask
     choice = Choice("refine", grid_words(finer), f"{above} above the target on {grid_words(point.task.settings)}: "
                                                  f"{why}")
     return replace(point, choices=point.choices + (choice,)), replace(point.task, settings=finer)
-
-
-def stepped(settings: SolverSettings, finer: SolverSettings | None, why: str) -> tuple[SolverSettings | None, str]:
-    """The planned grid `finer` of a thermal point (thermal full or reduced) at most TUNING.accuracy_thermal_step
-    doublings finer than `settings` along each axis, and why: a thermal point's jump of two or more doublings along x
-    diverged in 3 of 8 measured jumps, each costing every attempt of the retry policy before the point went on one
-    doubling at a time, and a jump aimed within TUNING.accuracy_jump_margin of the target can pass the first grid that
-    meets it (docs/tuning.md); from each solve the plan is made again at the orders measured over it."""
-    if finer is None or settings.thermal not in (ThermalMode.FULL, ThermalMode.REDUCED):
-        return finer, why
-    step = TUNING.accuracy_thermal_step
-    kx, ky = doublings_to(settings, finer)
-    if max(kx, ky) <= step:
-        return finer, why
-    towards = replace(finer, grid=(settings.grid - 1) * 2 ** min(kx, step) + 1,
-                      grid_y=(settings.nodes_y - 1) * 2 ** min(ky, step) + 1)
-    return towards, f"towards {why}: at most {step} doubling along each axis at a time for a thermal point"
 
 
 def reached(point: Progressing, target: float) -> Progressing:

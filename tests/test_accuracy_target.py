@@ -145,27 +145,6 @@ def test_the_target_jumps_to_the_first_grid_the_error_model_predicts_within_the_
     assert record.wall_time == pytest.approx(sum(solver.seconds))
 
 
-@pytest.mark.parametrize("c_x, c_y, axis", [(200.0, 0.0, 0), (0.01, 20.0, 1)])
-def test_a_thermal_point_goes_one_doubling_per_axis_at_a_time_and_ends_on_the_first_grid_that_meets_the_target(
-        c_x, c_y, axis):
-    """The jumps of the tests above (along x; along y from the y-check's estimate), for a thermal point: every solve at
-    most TUNING.accuracy_thermal_step doublings finer along each axis than the one before (a jump of two or more along
-    x diverged on the 90 deg gear), each planned again from the finer solve's estimates; it ends on the first grid
-    whose bound meets the target (no finer than the isothermal point's jump, which aims within the margin), with its
-    true error within the target."""
-    solver = AnalyticSolver(c_x=c_x, c_y=c_y)
-    (solution,) = solve_to_accuracy([_task(ThermalMode.REDUCED)], solver, jobs=1)
-    start = (TUNING.accuracy_start_grid, 33)
-    first, jump = (_smallest_grid(max(c_x, c_y), within, start=start[axis]) for within in (0.01, MARGIN * 0.01))
-    steps = [math.log2((fine[axis] - 1) / (coarse[axis] - 1)) for coarse, fine in zip(solver.grids, solver.grids[1:])]
-    assert solver.grids[0] == start and solver.grids[-1][axis] == first <= jump
-    assert steps and max(steps) <= TUNING.accuracy_thermal_step == 1
-    assert {f.name: f.verdict for f in solution.accuracy.figures}["h_c"] is Verdict.MET
-    assert _true_error(solver, solution, "h_c") <= 0.01
-    reasons = [c.reason for c in solution.accuracy.choices if c.what == "refine"]
-    assert any(r.endswith("at most 1 doubling along each axis at a time for a thermal point") for r in reasons)
-
-
 def test_a_first_order_figure_is_planned_at_the_second_order_and_never_past_the_first_grid_that_meets_it():
     """dT_max and mu with a first-order error (c = 2): the plan from each solve assumes h^2, so it stops short of a
     first-order error's grid and plans again from the finer solve; it never solves past the first x grid whose bound

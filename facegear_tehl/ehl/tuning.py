@@ -121,7 +121,6 @@ class Tuning:
     accuracy_fewer_layers: int = 7  # the cheaper layer count across the film it tries for thermal full (default 9)
     accuracy_jump_margin: float = 0.9  # share of the target the grid it jumps to is predicted to bound (e ~ h^p)
     accuracy_min_order: float = 0.5  # measured order below which a figure's refinement stops, "not met"
-    accuracy_thermal_step: int = 1  # doublings along each axis a thermal point's planned grid goes at most per solve
     accuracy_saving_reduced: float = 0.17  # share of a thermal full solve's CPU that thermal reduced saves (median)
     accuracy_saving_layers: float = -0.1  # ... that 7 layers instead of 9 save (negative: they cost more)
     accuracy_saving_newtonian: float = -0.35  # ... that a Newtonian fluid instead of Ree-Eyring saves (ditto)
