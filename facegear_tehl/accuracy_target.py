@@ -19,8 +19,9 @@ Per point, on a start grid of TUNING.accuracy_start_grid nodes along x (the case
    the other), or along the axes on which its feature spans fewer than TUNING.feature_nodes nodes (the error bounds'
    feature rule), along both where a figure's estimate along the other axis alone keeps its bound above the target;
    such a figure is set aside, unresolved with why, where no grid within reach can bound it (`out_of_reach`: its
-   feature narrows with the grid, or the first grid that could resolve it passes the caps or the time budget). A finer grid along one axis that does not converge is followed by one along both; where that fails
-   too the converged coarser solution is kept.
+   feature narrows with the grid, or the first grid that could resolve it passes the caps or the time budget). A finer
+   grid along one axis that does not converge is followed by one along both; where that fails too the converged
+   coarser solution is kept.
 
 A figure's bound (`figure_bound`) is the solve's own `error_bound_<name>` (ehl/error_bounds.py: every converged solve
 with a film reports it, with its y-check, or `unresolved_<name>`); a figure the solve reports unresolved, or without
