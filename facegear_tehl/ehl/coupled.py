@@ -117,17 +117,18 @@ def energy_forcing(changes: list[float]) -> float:
 def next_film_state(accelerator: Anderson, temperature: np.ndarray, factor: np.ndarray, update: FilmState,
                     scale: float, rise: float | None) -> tuple[np.ndarray, np.ndarray, float, float]:
     """The next layer temperatures (K) and eta*/eta from the current ones and the film state `update` evaluated at
-    them, and the largest changes of the plain step (K; of ln(eta*/eta)). The plain step is under-relaxed
-    (thermal_relaxation and viscosity_relaxation times `scale`; eyring_relaxation without the energy equation;
-    eta*/eta in log space) and Anderson-accelerated, the temperatures weighted by 1/rise (K) against ln(eta*/eta);
-    the accelerated temperatures move by at most max_temperature_step, as a plain update does. rise None: no energy
-    equation (the temperatures stay)."""
+    them, and the largest changes of the plain step at the full relaxation (K; of ln(eta*/eta)). The plain step is
+    under-relaxed (thermal_relaxation and viscosity_relaxation times `scale`; eyring_relaxation without the energy
+    equation; eta*/eta in log space) and Anderson-accelerated, the temperatures weighted by 1/rise (K) against
+    ln(eta*/eta); the accelerated temperatures move by at most max_temperature_step, as a plain update does. The
+    changes returned are those of `scale` 1 (the step over `scale`): a loop whose relaxation a stall halved is judged,
+    and its iteration error estimated, by the same measure as before, not by a change the halving alone shrank.
+    rise None: no energy equation (the temperatures stay)."""
     if rise is None:  # the change judged stays viscosity_relaxation times the residual: the tolerance keeps its meaning
         log_factor, residual = np.empty(factor.shape), np.empty(factor.shape)
         largest = rheology.log_factor_change(factor, update.viscosity_factor, log_factor, residual)
         step_f = residual * (scale * TUNING.eyring_relaxation)
-        return (temperature, np.exp(accelerator.step(log_factor, step_f)), 0.0,
-                scale * TUNING.viscosity_relaxation * largest)
+        return (temperature, np.exp(accelerator.step(log_factor, step_f)), 0.0, TUNING.viscosity_relaxation * largest)
     size = temperature.size
     x, f = np.empty(2 * size), np.empty(2 * size)
     np.log(factor.ravel(), out=x[size:])
@@ -138,7 +139,7 @@ def next_film_state(accelerator: Anderson, temperature: np.ndarray, factor: np.n
     accelerated = x[:size].reshape(temperature.shape)
     step = TUNING.max_temperature_step
     np.clip(accelerated, temperature - step, temperature + step, out=accelerated)
-    return accelerated, np.exp(x[size:]).reshape(temperature.shape), thermal_change, viscosity_change
+    return accelerated, np.exp(x[size:]).reshape(temperature.shape), thermal_change / scale, viscosity_change / scale
 
 
 class CoupledLoop:
