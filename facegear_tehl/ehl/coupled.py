@@ -35,7 +35,7 @@ from facegear_tehl.ehl.convergence import History, stalled
 from facegear_tehl.ehl.pressure import PressureIteration
 from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel, relaxed_steps
 from facegear_tehl.ehl.tuning import TUNING
-from facegear_tehl.solution import Outcome, Status
+from facegear_tehl.solution import CONVERGED, Outcome, Status
 
 
 class Ending(Enum):
@@ -191,27 +191,43 @@ class CoupledLoop:
             if stalled(loop.changes[window:]):  # a limit cycle above the floor (or h_c unsteady): which one?
                 window = len(loop.changes)
                 self.accelerator.reset()
-                relaxation, status = self._relieve_stall(relaxation)
+                relieved, status = self._relieve_stall(relaxation)
                 if status.diverged:
                     return self._end(Ending.DIVERGED, status, loop)
+                if relieved is None:  # nothing left to relieve: the loop is at its floor
+                    self._record_floor(loop.changes)
+                    return self._end(Ending.FLOOR, CONVERGED, loop)
+                relaxation = relieved
         return self._end(Ending.EXHAUSTED, Status(Outcome.NOT_CONVERGED), loop)
 
-    def _relieve_stall(self, relaxation: float) -> tuple[float, Status]:
+    def _relieve_stall(self, relaxation: float) -> tuple[float | None, Status]:
         """The film-state relaxation after the loop's change stopped falling at `relaxation`, and the status of the
         pressure cycled to its tolerance on the frozen film state, which shows the iteration that stalls. Pressure
         V-cycles that do not converge on a frozen film state (their own limit cycle: the film state is then evaluated
         on a different pressure at every update) have their Gauss-Seidel and Jacobi changes damped by
         cycle_damping, down to min_under_gs; a pressure that converges leaves a limit cycle of the film state (the
-        hot spot), whose relaxation is halved, down to min_relaxation_scale."""
+        hot spot), whose relaxation is halved, down to min_relaxation_scale. None instead of a relaxation where the
+        pressure converges and the relaxation is at its limit: the full step stopped contracting at the smallest
+        relaxation on a converged pressure, the loop's floor."""
         index, pressure = self.target.index, self.pressure
         status = pressure.cycle(index, pressure.settings.max_cycles)
         solver = pressure.solver
         cycles = solver.relaxation
         if status.converged or status.diverged or cycles.under_gs <= TUNING.min_under_gs:
-            return max(0.5 * relaxation, TUNING.min_relaxation_scale), status
+            halved = max(0.5 * relaxation, TUNING.min_relaxation_scale)
+            return (None if halved == relaxation and status.converged else halved), status
         damping = TUNING.cycle_damping
         solver.relaxation = replace(cycles, under_gs=damping * cycles.under_gs, under_jd=damping * cycles.under_jd)
         return relaxation, status
+
+    def _record_floor(self, changes: list[float]) -> None:
+        """The loop's floor into the history: the largest full-step change of its last stall window, the amplitude
+        its figures' iteration errors carry (error_bounds.iteration_error)."""
+        amplitude = max(changes[-TUNING.thermal_floor_window:])
+        if self.energy:
+            self.history.thermal_floor = amplitude
+        else:
+            self.history.viscosity_floor = amplitude
 
     def _closed_film(self, outer: int) -> Status | None:
         """None while the settled film is open (or opens when its pressure is cycled on the frozen film state to its

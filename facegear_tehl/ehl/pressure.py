@@ -24,6 +24,7 @@ import numpy as np
 from facegear_tehl.ehl.convergence import (
     History,
     at_algebraic_floor,
+    call_drifting,
     finite,
     flicker_stalled,
     running_away,
@@ -63,6 +64,7 @@ class PressureIteration:
         # the iterate it was switched on at, its change if that was the algebraic floor (else NaN), the call
         self.before_truncation: tuple[Iterate, float, int] | None = None
         self.calls = 0  # calls of `cycle` so far
+        self.undamped_gs = solver.relaxation.under_gs  # the attempt's Gauss-Seidel under-relaxation (cycle_damping's)
 
     def cycle(self, index: int, max_cycles: int, best: Best | None = None) -> Status:
         """V-cycles on level `index` until the tolerances are met (or the algebraic floor is reached), at most
@@ -80,7 +82,7 @@ class PressureIteration:
             if best is not None:
                 self._keep_best(best, index, change if extra > 0 else 1.0, load_error)
             if extra > 0:
-                ended = self._judge(index, change, load_error, extra)
+                ended = self._judge(index, change, load_error, extra, extra == max_cycles)
                 if ended is not None:
                     return ended
             if extra == max_cycles:
@@ -98,10 +100,13 @@ class PressureIteration:
 
     def _record(self, index: int, previous: np.ndarray, extra: int) -> tuple[float, float]:
         """The change against `previous` and the load error of level `index`, appended to the history (the entry
-        iterate of a call only as the first entry of a history, its change NaN)."""
+        iterate of a call only as the first entry of a history, its change NaN). The change is the undamped cycle's:
+        a cycle whose Gauss-Seidel and Jacobi changes a stalled outer loop damped (coupled.CoupledLoop, cycle_damping)
+        changes the pressure by the share of its smoothing the damping left, to first order; over that share it is
+        judged as the attempt's own cycle, not by a change the damping alone shrank."""
         solver, history = self.solver, self.history
         level = solver.levels[index]
-        change = solver.pressure_change(level, previous)
+        change = solver.pressure_change(level, previous) * self.undamped_gs / solver.relaxation.under_gs
         load_error = solver.force_error(level) / solver.problem.load_integral
         residual = solver.residual(level)
         positive = level.pressure > 0.0
@@ -118,15 +123,17 @@ class PressureIteration:
         if score < best.score:
             best.score, best.iterate = score, self.solver.snapshot(index)
 
-    def _judge(self, index: int, change: float, load_error: float, extra: int) -> Status | None:
-        """CONVERGED on the tolerances, on the algebraic floor (not while the truncation is on trial) or on a failed
-        truncation taken back to the floor it began at; None to go on."""
+    def _judge(self, index: int, change: float, load_error: float, extra: int, last: bool) -> Status | None:
+        """CONVERGED on the tolerances, on the algebraic floor (not while the truncation is on trial, nor before the
+        `last` cycle of the call while this call's central film drifts one way: its fixed point is further on) or on
+        a failed truncation taken back to the floor it began at; None to go on."""
         settings, history = self.settings, self.history
         if change < settings.tolerance and abs(load_error) < settings.load_tolerance:
             return CONVERGED
         if self._update_truncation(index, extra):
             return CONVERGED
-        if at_algebraic_floor(history.changes, history.loads, settings) and not self._on_trial():
+        if (at_algebraic_floor(history.changes, history.loads, settings) and not self._on_trial()
+                and (last or not call_drifting(history.films, extra))):
             history.floor = change
             return CONVERGED
         return None
