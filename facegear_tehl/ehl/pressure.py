@@ -64,7 +64,6 @@ class PressureIteration:
         # the iterate it was switched on at, its change if that was the algebraic floor (else NaN), the call
         self.before_truncation: tuple[Iterate, float, int] | None = None
         self.calls = 0  # calls of `cycle` so far
-        self.undamped_gs = solver.relaxation.under_gs  # the attempt's Gauss-Seidel under-relaxation (cycle_damping's)
 
     def cycle(self, index: int, max_cycles: int, best: Best | None = None) -> Status:
         """V-cycles on level `index` until the tolerances are met (or the algebraic floor is reached), at most
@@ -100,13 +99,10 @@ class PressureIteration:
 
     def _record(self, index: int, previous: np.ndarray, extra: int) -> tuple[float, float]:
         """The change against `previous` and the load error of level `index`, appended to the history (the entry
-        iterate of a call only as the first entry of a history, its change NaN). The change is the undamped cycle's:
-        a cycle whose Gauss-Seidel and Jacobi changes a stalled outer loop damped (coupled.CoupledLoop, cycle_damping)
-        changes the pressure by the share of its smoothing the damping left, to first order; over that share it is
-        judged as the attempt's own cycle, not by a change the damping alone shrank."""
+        iterate of a call only as the first entry of a history, its change NaN)."""
         solver, history = self.solver, self.history
         level = solver.levels[index]
-        change = solver.pressure_change(level, previous) * self.undamped_gs / solver.relaxation.under_gs
+        change = solver.pressure_change(level, previous)
         load_error = solver.force_error(level) / solver.problem.load_integral
         residual = solver.residual(level)
         positive = level.pressure > 0.0
