@@ -120,16 +120,16 @@ class PressureIteration:
             best.score, best.iterate = score, self.solver.snapshot(index)
 
     def _judge(self, index: int, change: float, load_error: float, extra: int, last: bool) -> Status | None:
-        """CONVERGED on the tolerances, on the algebraic floor (not while the truncation is on trial, nor before the
-        `last` cycle of the call while this call's central film drifts one way: its fixed point is further on) or on
-        a failed truncation taken back to the floor it began at; None to go on."""
+        """CONVERGED on the tolerances or on the algebraic floor (not while the truncation is on trial), neither
+        before the `last` cycle of the call while this call's central film drifts one way (its fixed point lies
+        further on); or on a failed truncation taken back to the floor it began at; None to go on."""
         settings, history = self.settings, self.history
-        if change < settings.tolerance and abs(load_error) < settings.load_tolerance:
+        settled = last or not call_drifting(history.films, extra)
+        if change < settings.tolerance and abs(load_error) < settings.load_tolerance and settled:
             return CONVERGED
         if self._update_truncation(index, extra):
             return CONVERGED
-        if (at_algebraic_floor(history.changes, history.loads, settings) and not self._on_trial()
-                and (last or not call_drifting(history.films, extra))):
+        if at_algebraic_floor(history.changes, history.loads, settings) and not self._on_trial() and settled:
             history.floor = change
             return CONVERGED
         return None
