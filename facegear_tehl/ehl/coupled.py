@@ -146,8 +146,9 @@ class CoupledLoop:
     """The outer loop of one target, from the film state (`temperature` K, `factor` eta*/eta) it starts at."""
 
     def __init__(self, target: CoupledTarget, pressure: PressureIteration, history: History, max_iterations: int,
-                 inlet_temperature: float):
+                 inlet_temperature: float, floor_ends: bool = True):
         self.target, self.pressure, self.history = target, pressure, history
+        self.floor_ends = floor_ends  # a floor ends the loop (else it goes on to max_iterations, for a retry)
         self.max_iterations, self.t_inlet = max_iterations, inlet_temperature
         self.energy = target.model.solve_energy
         depth = TUNING.anderson_depth if self.energy else TUNING.eyring_anderson_depth
@@ -194,10 +195,10 @@ class CoupledLoop:
                 relieved, status = self._relieve_stall(relaxation)
                 if status.diverged:
                     return self._end(Ending.DIVERGED, status, loop)
-                if relieved is None:  # nothing left to relieve: the loop is at its floor
+                if relieved is None and self.floor_ends:  # nothing left to relieve: the loop is at its floor
                     self._record_floor(loop.changes)
                     return self._end(Ending.FLOOR, CONVERGED, loop)
-                relaxation = relieved
+                relaxation = relaxation if relieved is None else relieved
         return self._end(Ending.EXHAUSTED, Status(Outcome.NOT_CONVERGED), loop)
 
     def _relieve_stall(self, relaxation: float) -> tuple[float | None, Status]:
