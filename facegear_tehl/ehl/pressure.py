@@ -21,6 +21,7 @@ import math
 
 import numpy as np
 
+from facegear_tehl.ehl.anderson import Anderson
 from facegear_tehl.ehl.convergence import (
     History,
     at_algebraic_floor,
@@ -50,6 +51,24 @@ class Best:
     iterate: Iterate
 
 
+def pressure_mixer() -> Anderson | None:
+    """The Anderson history of one call of the pressure iteration (None: bare V-cycles)."""
+    depth = TUNING.pressure_anderson_depth
+    return Anderson(depth, TUNING.pressure_anderson_growth) if depth else None
+
+
+def accelerate(solver: MultigridSolver, index: int, before: Iterate, mixer: Anderson) -> None:
+    """Level `index` on Anderson's combination of the V-cycles so far (Walker & Ni 2011, eq. 1.3) on the map
+    x = (P, H_0) -> V(x): the last cycle went from `before` to the level's pressure and H_0, its plain step f = V(x) - x;
+    the combination is projected on P >= 0 (Brune, Knepley, Smith & Tu 2015, the FAS cycle as the nonlinear
+    preconditioner of Anderson's method)."""
+    level = solver.levels[index]
+    x = np.append(before.pressure.ravel(), before.h0)
+    f = np.append(level.pressure.ravel(), solver.h0) - x
+    mixed = mixer.step(x, f)
+    solver.restore(index, Iterate(np.maximum(mixed[:-1], 0.0).reshape(level.pressure.shape), float(mixed[-1])))
+
+
 class PressureIteration:
     """The pressure iteration of one point solve: the current multigrid solver and history (the solve replaces
     them when it begins a new hierarchy or adds an outlet patch), and the state its limit-cycle remedies keep
@@ -72,6 +91,7 @@ class PressureIteration:
         previous = level.pressure.copy()
         self.calls += 1
         means = 0  # period-2 cycles replaced by the mean of their phases
+        mixer = pressure_mixer()
         for extra in itertools.count():
             change, load_error = self._record(index, previous, extra)
             if running_away(load_error):
@@ -91,6 +111,10 @@ class PressureIteration:
             if extra >= 3 and means < TUNING.max_phase_means and self._in_phase_band(change):
                 self._restore_mean(index)
                 means += 1
+                if mixer is not None:
+                    mixer.reset()
+            elif extra > 0 and mixer is not None:
+                self._mix(index, mixer)
             previous = self._one_cycle(index)
             if not finite(level):
                 return Status(Outcome.DIVERGED,
@@ -148,6 +172,13 @@ class PressureIteration:
             solver.truncated = False
         self.history.cycles += 1
         return previous
+
+    def _mix(self, index: int, mixer: Anderson) -> None:
+        """Level `index` on Anderson's combination of its last V-cycles (`accelerate`)."""
+        if self.before_cycle is None:
+            mixer.reset()
+        else:
+            accelerate(self.solver, index, self.before_cycle[0], mixer)
 
     def _update_truncation(self, index: int, extra: int) -> bool:
         """Switch the truncated correction on at a flicker stall below truncation_band times the tolerance; switch it
