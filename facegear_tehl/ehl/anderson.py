@@ -74,6 +74,11 @@ class Anderson:
         self._mask: np.ndarray | None = None
         self._whole = False
 
+    @property
+    def columns(self) -> int:
+        """The pairs of differences the last step combined (0: it was the plain step)."""
+        return len(self._df)
+
     def reset(self) -> None:
         """Forget the history (the next step is the plain one) and its support."""
         self._forget()
@@ -140,7 +145,8 @@ class Anderson:
             return np.array([np.dot(a[block], b[block]) for block in blocks])
 
         norm = math.sqrt(float(squares @ products(f, f)))
-        if self._last is not None and norm > (TUNING.anderson_growth if self.growth is None else self.growth) * self._norm:
+        growth = TUNING.anderson_growth if self.growth is None else self.growth
+        if self._last is not None and norm > growth * self._norm:
             self._forget()
         self._norm = norm
         if self._last is not None:

@@ -1,15 +1,19 @@
 """The pressure iteration on a frozen film state: V-cycles on one level until its tolerances or its algebraic floor.
 
 `PressureIteration.cycle` is the one loop every stage cycles the pressure with (Venner & Lubrecht 2000, ch. 5):
-per cycle it records the change, residual and load error into the solve's History, judges them with
-convergence.py, and deals with the two limit cycles the V-cycle can fall into above its floor:
+per cycle it records the change, residual and load error into the solve's History and judges them with
+convergence.py. From the third cycle of a call on, each cycle starts from Anderson's combination of the cycles so far
+on the map (P, H_0) -> V(P, H_0) (`accelerate`; Walker & Ni 2011; Brune, Knepley, Smith & Tu 2015), which damps the
+few modes a bare V-cycle cycles or grows on (an iteration factor near -1 or slightly above 1). It deals with the two
+limit cycles the V-cycle can fall into above its floor:
 - a period-2 limit cycle between floor_band and phase_mean_band times the tolerance is replaced by the mean of its
   last two iterates (the fixed point its phases straddle), at most max_phase_means times per call;
 - a stall below truncation_band times the tolerance switches the truncated coarse-grid correction on (the nodes next
   to cavitation skip it, multigrid.corrected_nodes) for the rest of the solve; if the change then leaves the band on
   one film state it is switched off for good and, within the call that switched it on, the iterate it began at is
   restored.
-The discrete solution is unchanged by both: convergence is judged on an undamped cycle's change and load error.
+The discrete solution is unchanged by all three: convergence is judged on an undamped cycle's change and load error,
+and a call that converges ends on that cycle's iterate.
 """
 
 from __future__ import annotations
@@ -59,14 +63,15 @@ def pressure_mixer() -> Anderson | None:
 
 def accelerate(solver: MultigridSolver, index: int, before: Iterate, mixer: Anderson) -> None:
     """Level `index` on Anderson's combination of the V-cycles so far (Walker & Ni 2011, eq. 1.3) on the map
-    x = (P, H_0) -> V(x): the last cycle went from `before` to the level's pressure and H_0, its plain step f = V(x) - x;
-    the combination is projected on P >= 0 (Brune, Knepley, Smith & Tu 2015, the FAS cycle as the nonlinear
-    preconditioner of Anderson's method)."""
+    x = (P, H_0) -> V(x): the last cycle went from `before` to the level's pressure and H_0, its plain step
+    f = V(x) - x; the combination is projected on P >= 0 (Brune, Knepley, Smith & Tu 2015, SIAM Rev. 57:535-565, the
+    FAS cycle as the nonlinear preconditioner of Anderson's method)."""
     level = solver.levels[index]
     x = np.append(before.pressure.ravel(), before.h0)
     f = np.append(level.pressure.ravel(), solver.h0) - x
     mixed = mixer.step(x, f)
-    solver.restore(index, Iterate(np.maximum(mixed[:-1], 0.0).reshape(level.pressure.shape), float(mixed[-1])))
+    if mixer.columns:  # else the plain step: the level is on it
+        solver.restore(index, Iterate(np.maximum(mixed[:-1], 0.0).reshape(level.pressure.shape), float(mixed[-1])))
 
 
 class PressureIteration:
@@ -82,6 +87,8 @@ class PressureIteration:
         # the iterate it was switched on at, its change if that was the algebraic floor (else NaN), the call
         self.before_truncation: tuple[Iterate, float, int] | None = None
         self.calls = 0  # calls of `cycle` so far
+        self.mixer: Anderson | None = None  # the Anderson history of the call under way (None: bare V-cycles)
+        self.mixed_under = self.truncation  # the truncation its history was gathered with
 
     def cycle(self, index: int, max_cycles: int, best: Best | None = None) -> Status:
         """V-cycles on level `index` until the tolerances are met (or the algebraic floor is reached), at most
@@ -91,7 +98,7 @@ class PressureIteration:
         previous = level.pressure.copy()
         self.calls += 1
         means = 0  # period-2 cycles replaced by the mean of their phases
-        mixer = pressure_mixer()
+        self.mixer, self.mixed_under = pressure_mixer(), self.truncation
         for extra in itertools.count():
             change, load_error = self._record(index, previous, extra)
             if running_away(load_error):
@@ -111,10 +118,10 @@ class PressureIteration:
             if extra >= 3 and means < TUNING.max_phase_means and self._in_phase_band(change):
                 self._restore_mean(index)
                 means += 1
-                if mixer is not None:
-                    mixer.reset()
-            elif extra > 0 and mixer is not None:
-                self._mix(index, mixer)
+                if self.mixer is not None:
+                    self.mixer.reset()
+            elif extra > 0:
+                self._mix(index)
             previous = self._one_cycle(index)
             if not finite(level):
                 return Status(Outcome.DIVERGED,
@@ -173,11 +180,16 @@ class PressureIteration:
         self.history.cycles += 1
         return previous
 
-    def _mix(self, index: int, mixer: Anderson) -> None:
-        """Level `index` on Anderson's combination of its last V-cycles (`accelerate`)."""
-        if self.before_cycle is None:
+    def _mix(self, index: int) -> None:
+        """Level `index` on Anderson's combination of its last V-cycles (`accelerate`); the history is dropped where
+        the map changed (the truncation switched) or the last cycle's start is not known."""
+        mixer = self.mixer
+        if mixer is None:
+            return
+        if self.before_cycle is None or self.truncation is not self.mixed_under:
             mixer.reset()
-        else:
+            self.mixed_under = self.truncation
+        if self.before_cycle is not None:
             accelerate(self.solver, index, self.before_cycle[0], mixer)
 
     def _update_truncation(self, index: int, extra: int) -> bool:
