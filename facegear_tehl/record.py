@@ -48,6 +48,7 @@ class Action(Enum):
     FINER_COARSEST_GRID = "the start begun again from a finer coarsest grid"
     COARSEST_GRID_AGAIN = "the coarse stage begun again from the coarsest grid"
     COUPLED_ON_FINEST = "coupled on the finest grid alone from its isothermal solution"
+    FINEST_AGAIN = "the finest grid solved again from the converged coarse stage with the next relaxation"
     DROPPED = "dropped: the solution below it is reported"
     MORE_COARSE_CYCLES = "solved again with more V-cycles of the grid below per patch correction"
     STAGES_AGAIN = "back to where the outlet stages began, the stages below it solved again, each to convergence"

@@ -86,7 +86,7 @@ DEFLATE_THREADS = 4
 _AXES = ("x", "y")
 # Scalars and columns that count something: stored as integers (a sweep column keeps floats where it holds NaN).
 COUNTS = frozenset({"iterations", "thermal_iterations", "thermal_layers", "grid", "grid_y", "coarsest_grid",
-                    "level_nodes", "attempts"})
+                    "level_nodes", "attempts", "cycle_nodes_history"})
 # The index a history runs along, by the start of its name (default: the finest-grid cycle).
 _HISTORY_INDEX = (("level_", "level", "full-multigrid level, coarsest first"),
                   ("thermal_", "outer_iteration", "outer (thermal) iteration"),

@@ -2,6 +2,7 @@
 holds; a feature narrower than the grid, an estimate outside the asymptotic range and p_max are unresolved; each
 reported bound holds against a finer grid's solution of the same contact; the run table shows them."""
 
+from dataclasses import replace
 import math
 
 import numpy as np
@@ -211,3 +212,85 @@ def test_a_loop_whose_changes_no_longer_contract_leaves_their_largest():
     assert remaining_error(flicker[1:-1], floored=True) == 0.04
     solution, _, _ = _loop_history(0.3)
     assert iteration_error(solution, "dT_max") < solution.history["thermal_change_history"].values[-1] / 60.0
+
+
+def _cycled(films: np.ndarray, floor: float = math.nan, nodes: np.ndarray | None = None) -> PointSolution:
+    """An isothermal Newtonian solve (no outer loop) whose pressure cycles left the central and the minimum film
+    `films` (m) after each cycle, on levels of `nodes` nodes along x (default: all on the reported 257), the
+    pressure changing in proportion to the film (0.01 of its relative change: one mode; the first entry 0 as the
+    history records the start)."""
+    nodes = np.full(films.size, 257.0) if nodes is None else nodes
+    pressure = np.concatenate([[0.0], 0.01 * np.abs(np.diff(films)) / films[-1]])
+    history = {"cycle_h_c_history": Field(films, "m", ""), "cycle_h_min_history": Field(0.8 * films, "m", ""),
+               "cycle_nodes_history": Field(nodes, "1", ""), "pressure_change_history": Field(pressure, "1", "")}
+    solution = _solution(h_c=films[-1], h_min=0.8 * films[-1], error_estimate_h_c=0.001, error_estimate_h_min=0.001,
+                         algebraic_floor=floor)
+    return PointSolution(solution.name, solution.outcome, "", solution.scalars, {}, solution.axes, history)
+
+
+@pytest.mark.parametrize("rho", [0.3, 0.6, 0.85])
+def test_the_pressure_cycles_slow_contraction_enters_the_film_bound(rho):
+    """Without an outer loop the film's own change per pressure cycle is the iteration's record: a film contracting
+    by rho per cycle towards h* (h_k = h* (1 + 0.05 rho^k)) was left c rho/(1 - rho) off after its last change c (the
+    geometric tail; Ortega & Rheinboldt 1970, 12.1.2). The bound adds exactly that to F_s |e_x|, and covers the true
+    error, which at rho = 0.85 is 5.7 times the last change."""
+    exact, k = 2.0e-7, np.arange(12)
+    films = exact * (1.0 + 0.05 * rho**k)
+    solution = _cycled(films)
+    true = abs(films[-1] - exact) / films[-1]
+    assert iteration_error(solution, "h_c") == pytest.approx(true, rel=1e-9)
+    assert iteration_error(solution, "h_min") == pytest.approx(true, rel=1e-9)
+    bounded = bounds(solution, {"h_c": 0.0, "h_min": 0.0}, {"h_min": 9})
+    assert bounded["unresolved_h_c"][0] == 0.0
+    assert bounded["error_bound_h_c"][0] == pytest.approx(TUNING.bound_safety * 0.001 + true, rel=1e-9)
+    assert bounded["error_bound_h_c"][0] >= true
+
+
+def test_a_film_the_pressure_cycles_leave_drifting_is_unresolved_never_small():
+    """A film still moving one way by nearly the same step each cycle (contraction 0.97: the geometric tail is 32
+    last changes, and the rate read from a few cycles cannot be trusted that close to 1) has no bound: unresolved,
+    even where the pressure change was accepted as its algebraic floor."""
+    films = 2.0e-7 * (1.0 + 0.3 * 0.97 ** np.arange(14))
+    for floor in (math.nan, 1.5e-4):
+        bounded = bounds(_cycled(films, floor), {"h_c": 0.0, "h_min": 0.0}, {"h_min": 9})
+        assert bounded["unresolved_h_c"][0] == 1.0 and "error_bound_h_c" not in bounded
+        assert bounded["unresolved_h_min"][0] == 1.0
+
+
+def test_a_film_wandering_below_the_drift_floor_keeps_a_bound_of_its_largest_change():
+    """A run of one sign at 5e-5 of the film per cycle, not contracting, is the wander of the iteration's floor
+    (below drift_floor): bounded by the window's largest change, not unresolved."""
+    steps = np.array([0.0, -1.2e-5, -2.4e-5, -7.8e-5, -1.1e-4, -3.3e-5])
+    films = 2.0e-7 * (1.0 + np.cumsum(steps))
+    bounded = bounds(_cycled(films, 1e-4), {"h_c": 0.0, "h_min": 0.0}, {"h_min": 9})
+    assert bounded["unresolved_h_c"][0] == 0.0
+    assert iteration_error(_cycled(films, 1e-4), "h_c") == pytest.approx(1.1e-4 * 2.0e-7 / films[-1], rel=1e-6)
+
+
+def test_a_film_flickering_about_its_fixed_point_leaves_its_largest_change_and_only_the_last_level_counts():
+    """Changes alternating in sign straddle the fixed point (the algebraic floor): the error left is the window's
+    largest change. Cycles on a coarser level before the last (the start's, another grid) are not the reported
+    film's iteration and do not enter."""
+    flicker = 2.0e-7 * (1.0 + np.array([0.0, 4e-4, -3e-4, 3.5e-4, -3e-4, 3.2e-4, -3e-4]))
+    nodes = np.array([129.0] * 3 + [257.0] * 7)
+    films = np.concatenate([[1.0e-7, 1.5e-7, 1.9e-7], flicker])
+    left = iteration_error(_cycled(films, floor=2e-5, nodes=nodes), "h_c")
+    assert left == pytest.approx(np.abs(np.diff(flicker[-6:])).max() / flicker[-1], rel=1e-9)
+
+
+@pytest.mark.parametrize("tolerance", [3e-3, 3e-4])
+def test_a_real_solve_stopped_early_is_bounded_against_the_same_grid_iterated_to_convergence(tolerance):
+    """The circular M = 1000, L = 10 contact (Roelands, Dowson-Higginson) on 129^2 stopped at a loose pressure
+    tolerance, against the same discrete problem cycled until its change per cycle is ~1e-9: the difference is the
+    iteration error alone (same grid, same domain), and the bound's iteration part (`iteration_error`, here from the
+    pressure cycles) must hold it or the figure be unresolved. At 3e-3 it left h_c 1.6 % and h_min 10 % off."""
+    point, lubricant = contact_from_moes(1000.0, 10.0, viscosity_model="roelands", density_model="dowson_higginson")
+    settings = _settings(129)
+    converged = solve_point(point, lubricant, replace(settings, tolerance=1e-8, load_tolerance=1e-8, max_cycles=60))
+    assert np.asarray(converged.history["pressure_change_history"].values)[-1] < 1e-8
+    stopped = solve_point(point, lubricant, replace(settings, tolerance=tolerance, load_tolerance=tolerance))
+    assert stopped.outcome is Outcome.CONVERGED
+    for name in ("h_c", "h_min"):
+        true = abs(stopped.scalar(name) / converged.scalar(name) - 1.0)
+        assert iteration_error(stopped, name) >= true
+        assert stopped.scalar(f"unresolved_{name}") == 1.0 or stopped.scalar(f"error_bound_{name}") >= true

@@ -289,3 +289,39 @@ def test_refinement_stops_where_the_next_grid_would_pass_the_time_budget(budget,
     if stopped:
         note = refinement_note("contact", refined["contact"], solution)
         assert "not started: it would have passed the point's time budget" in note
+
+
+def test_a_finest_grid_that_fails_after_a_converged_coarse_stage_is_solved_again_from_that_stage(monkeypatch):
+    """The finest grid of a thermal contact (a/b = 5, 0.8 GPa, 10 m/s, SRR 0.5, 129 x 33) made to run away with the
+    first attempt's relaxation: the staged solver solves that grid again from the converged coarse stage with the next
+    attempt's relaxation (Venner's switch), not a whole new attempt from the coarsest grid, and says so. It solves
+    the discrete equations of a whole second attempt, so both converge to the same film within the loop's
+    tolerances."""
+    from facegear_tehl.ehl.retry import ATTEMPTS
+    from facegear_tehl.ehl.solve import PointSolve
+    from facegear_tehl.ehl.staged import UNBOUNDED
+    from facegear_tehl.record import Stage
+    from facegear_tehl.solution import Status
+
+    name = "ab5_ph0.8_u10_srr0.5_th"
+    second = UNBOUNDED.finish(_thermal_solve(name, 129, 33, 2).begin())
+    assert second.converged, second.message
+    couple = PointSolve.couple
+    ran_away = Status(Outcome.DIVERGED, "diverged at cycle 3 on the finest grid (non-finite pressure or film)")
+
+    def finest_runs_away_first(self, index, initial=None, coarse_h_c=float("nan")):
+        if index == len(self.solver.levels) - 1 and self.solver.relaxation == ATTEMPTS[0].relaxation:
+            return None, ran_away
+        return couple(self, index, initial, coarse_h_c)
+
+    monkeypatch.setattr(PointSolve, "couple", finest_runs_away_first)
+    begun = _thermal_solve(name, 129, 33, 1).begin()
+    assert isinstance(begun, PointSolve)
+    again = UNBOUNDED.finish(begun)
+    assert again.converged, again.message
+    assert [(r.reason, r.action, r.attempt) for r in again.record.retries] == [
+        (Reason.RAN_AWAY, Action.FINEST_AGAIN, 2)]
+    assert again.record.attempt == 2 and again.scalar("attempts") == 2
+    assert [s.stage for s in again.record.stages].count(Stage.START) == 1  # the start and coarse stage ran once
+    for key in ("h_c", "h_min", "dT_max"):
+        assert again.scalar(key) == pytest.approx(second.scalar(key), rel=2e-3), key

@@ -270,6 +270,42 @@ def test_the_finer_grid_follows_where_the_film_is_lowest(y_over_a, thermal, aske
     assert (None if finer is None else (finer.grid, finer.nodes_y)) == chosen
 
 
+def test_a_point_whose_attempts_all_fail_is_refined_where_the_finest_grid_reached_closes():
+    # The wide envelope's w10 on 513 x 129: the first attempt's start ran away on its 65 x 65 level, whose film closed
+    # near the centre line (y = 0.2 a); the last attempt reached 513 x 129 and its film closed at the end of the
+    # major axis (y = 0.96 a). The first attempt is reported (no retry did better), but the next grid follows where
+    # the film of the grid asked for closes: twice the rows (513 x 257), not both axes (1025 x 257, past the thermal
+    # cap: no finer grid at all).
+    from dataclasses import replace
+
+    from facegear_tehl.ehl.retry import POLICY
+    from facegear_tehl.ehl.staged import STAGED
+    from facegear_tehl.record import SolveRecord
+    from facegear_tehl.settings import SolverSettings
+    from facegear_tehl.solution import Field, Outcome, PointSolution
+
+    a = 8.1e-3
+
+    def failed(outcome: Outcome, nx: int, ny: int, y_over_a: float, attempt: int) -> PointSolution:
+        axes = {"x": Field(np.zeros(nx), "m"), "y": Field(np.zeros(ny), "m")}
+        scalars = {"a": (a, "m"), "x_film_closed": (0.0, "m"), "y_film_closed": (y_over_a * a, "m"),
+                   "attempts": (float(attempt), "1"), "wall_time": (1.0, "s"), "cpu_time": (1.0, "s")}
+        return PointSolution(name="w10", outcome=outcome, message="the film closes", scalars=scalars, fields={},
+                             axes=axes, models={"thermal": "full"}, record=SolveRecord(attempt=attempt))
+
+    first = failed(Outcome.DIVERGED, 65, 65, 0.21, 1)
+    last = failed(Outcome.DIVERGED, 513, 129, 0.96, 4)
+    kept = STAGED.with_retry(first, last)
+    assert kept.outcome is Outcome.DIVERGED and kept.record.attempt == 1  # the first attempt is what is reported
+    assert kept.scalars["y_film_closed"][0] == pytest.approx(0.96 * a)
+    settings = replace(SolverSettings(), grid=513, grid_y=129, thermal="full")
+    finer = POLICY.finer_settings(settings, kept)
+    assert (finer.grid, finer.nodes_y) == (513, 257)
+    # a retry reported on a grid no finer than the first attempt's leaves the first attempt's place
+    coarse = STAGED.with_retry(failed(Outcome.DIVERGED, 513, 129, 0.21, 1), failed(Outcome.DIVERGED, 65, 65, 0.96, 4))
+    assert coarse.scalars["y_film_closed"][0] == pytest.approx(0.21 * a)
+
+
 def test_a_period_2_limit_cycle_is_replaced_by_the_mean_of_its_phases():
     """The envelope's a/b = 5, 0.3 GPa, 2 m/s contact (isothermal, lengthened to 1025 x 65) falls into a period-2
     limit cycle of the V-cycle at 1.1e-3 per cycle with the default relaxation, damped too, h_c alternating by

@@ -30,6 +30,7 @@ class History:
     changes: list[float] = field(default_factory=list)  # relative L1 pressure change per cycle (NaN: start)
     residuals: list[float] = field(default_factory=list)  # mean |Reynolds residual| over pressurised nodes
     loads: list[float] = field(default_factory=list)  # relative load error per cycle
+    films: list[tuple[float, float, float]] = field(default_factory=list)  # per cycle: nodes along x, H_c, H_min
     floor: float = math.nan  # pressure change at an accepted algebraic floor
     thermal_floor: float = math.nan  # K, temperature change at an accepted thermal floor
     viscosity_floor: float = math.nan  # change of ln(eta*/eta) at an accepted floor of an isothermal Ree-Eyring film

@@ -12,9 +12,13 @@ is the closed form of Venner & Lubrecht (2000, eq. 8.6) for 1/r over a rectangle
     R(x1, x2; y1, y2) = F(x2, y2) - F(x1, y2) - F(x2, y1) + F(x1, y1),   F(x, y) = x asinh(y/|x|) + y asinh(x/|y|).
 
 The discrete convolution W_ij = sum K(|i - i'|, |j - j'|) P_i'j' is evaluated with real FFTs on a grid padded
-to `scipy.fft.next_fast_len(2 n - 1)` (linear, not circular, convolution). The two-dimensional transforms are taken
-one axis at a time, so that the rows of zeros the padding adds are never transformed along X and only the rows
-of the grid are transformed back (a pruned FFT, bit-identical to the padded two-dimensional transforms).
+to m = `scipy.fft.next_fast_len(2 n - 2)` nodes per axis: a circular convolution of period m >= 2 n - 2 is the
+linear one on the grid's n nodes because K is even (offsets d and -d, the only ones of |d| <= n - 1 that share a
+residue modulo 2 n - 2, carry the same K(n - 1)); for the grids of 2^k + 1 nodes m = 2^(k+1), against the 2^(k+1) + 1
+of a general kernel, whose fast sizes (1080 for 1025) cost 1.2-2x more. The even kernel's transform is real (its
+imaginary part is round-off, below 1e-16 of its largest value, and is dropped). The two-dimensional transforms are
+taken one axis at a time, so that the rows of zeros the padding adds are never transformed along X and only the
+rows of the grid are transformed back (a pruned FFT).
 A grid of at most DENSE_NODES nodes (the coarsest) is multiplied by the dense matrix of K instead.
 """
 
@@ -62,28 +66,34 @@ class DeflectionOperator:
             j, i = np.divmod(np.arange(nx * ny), nx)
             self._matrix = self.coefficients[np.abs(j[:, None] - j[None, :]), np.abs(i[:, None] - i[None, :])]
             return
-        self.shape = (fft.next_fast_len(2 * ny - 1, real=True), fft.next_fast_len(2 * nx - 1, real=True))
+        self.shape = (fft.next_fast_len(2 * ny - 2, real=True), fft.next_fast_len(2 * nx - 2, real=True))
         full = np.zeros(self.shape)
         k = self.coefficients
-        # Place K(|d|) at circular offsets d and -d so that the product of transforms is a linear convolution.
+        # Place K(|d|) at circular offsets d and -d so that the product of transforms is a linear convolution (for
+        # m = 2 n - 2 both write K(n - 1) at offset n - 1).
         full[:ny, :nx] = k
         full[:ny, -(nx - 1):] = k[:, :0:-1]
         full[-(ny - 1):, :nx] = k[:0:-1, :]
         full[-(ny - 1):, -(nx - 1):] = k[:0:-1, :0:-1]
-        self._kernel_hat = fft.rfft2(full)
+        # An even kernel's transform is real: its imaginary part (round-off) is set to zero; kept complex, as the
+        # product of a complex array with a real one costs NumPy a cast of the real one (1.6x the complex product).
+        self._kernel_hat = fft.rfft2(full).real.astype(complex)
         self._inverse_size = 1.0 / (self.shape[0] * self.shape[1])  # the inverse transform's normalisation
+        self._padded = np.zeros((ny, self.shape[1]))  # the pressure's rows padded along X (the padding stays zero)
 
     def apply(self, pressure: np.ndarray) -> np.ndarray:
         """W_ij = sum_{i'j'} K(|i - i'|, |j - j'|) P_{i'j'}; pressure shape (ny, nx). The transform of the padded
         pressure one axis at a time: along X its ny rows alone (the padding's rows transform to zero), along Y
         every column; back along Y every column, along X the ny rows kept, the normalisation 1/(m_y m_x) applied once
-        at the end as the two-dimensional inverse applies it: the same numbers as rfft2 and irfft2 of the padded
-        arrays, bit for bit (a heavy hard case's 513^2 solve, M = 5000, converged with those and closed its film
-        with the normalisation applied per axis). 2.3 -> 1.9 ms on 513 x 65, 17.4 -> 8.8 ms on 4097 x 65 (medians, one
-        machine)."""
+        at the end as the two-dimensional inverse applies it (a heavy hard case's 513^2 solve, M = 5000, closed its
+        film with the normalisation applied per axis). The rows are padded in a work array kept with the operator (a
+        padding by `rfft(n=...)` cost up to 3x the transform of 1025 x 129 pressures on 2048 nodes). 1.05 -> 0.90 ms on
+        513 x 65 (transforms of 1080 x 135 -> 1024 x 128 nodes), 5.3 -> 4.3 ms on 1025 x 129, 65 -> 54 ms on 1025^2
+        (`python scripts/bench_deflection.py --before DIR`, medians of 5, one machine)."""
         if self._matrix is not None:
             return (self._matrix @ pressure.ravel()).reshape(self.ny, self.nx)
-        rows = fft.rfft(pressure, n=self.shape[1], axis=1)
+        self._padded[:, : self.nx] = pressure
+        rows = fft.rfft(self._padded, axis=1)
         spectrum = fft.fft(rows, n=self.shape[0], axis=0, overwrite_x=True)
         spectrum *= self._kernel_hat
         rows = fft.ifft(spectrum, axis=0, norm="forward", overwrite_x=True)[: self.ny]

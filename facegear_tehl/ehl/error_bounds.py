@@ -5,23 +5,25 @@ A reported error estimate is a promise: the bound of a figure f solved on nx x n
     B = F_s (|e_x| + |e_y|) + e_it,
 
 e_x the Richardson estimate of the solve from the grid one coarser along x alone (report.estimate), e_y the Richardson
-estimate along y (`y_estimates`), e_it the error the outer loop left, from its last change and contraction rate
-(`iteration_error`) and F_s = TUNING.bound_safety, the factor of Roache's grid convergence index (Roache 1994, J. Fluids
-Eng. 116: 405-413; Roache 1998, "Verification and Validation in Computational Science and Engineering", ch. 5: F_s = 3
-for an estimate from two grids at an assumed order). The x-only hierarchy never refines y, so e_y comes from one more
-solve of the same point and model on the solved domain with (ny + 1)/2 nodes along y. Under the additive error model f =
-f* + C_x h_x^p + C_y h_y^p (Roache 1998, ch. 5) the y-error does not depend on h_x, so where the solve has a converged
-coarse stage at (nx + 1)/2 x ny (a thermal full multigrid), the check solves (nx + 1)/2 x (ny + 1)/2 and e_y = (f_stage
-- f_check)/((2^p - 1) f): a quarter of the finest grid's nodes instead of half. Without a coarse stage the check solves
-nx x (ny + 1)/2 against the solution itself. On a square finest grid e_x covers both axes (e_y = 0).
+estimate along y (`y_estimates`), e_it the error the iteration left, from its last changes and contraction rate
+(`iteration_error`: the outer loop's where the solve has one, else the finest grid's pressure cycles') and F_s =
+TUNING.bound_safety, the factor of Roache's grid convergence index (Roache 1994, J. Fluids Eng. 116: 405-413; Roache
+1998, "Verification and Validation in Computational Science and Engineering", ch. 5: F_s = 3 for an estimate from two
+grids at an assumed order). The x-only hierarchy never refines y, so e_y comes from one more solve of the same point and
+model on the solved domain with (ny + 1)/2 nodes along y. Under the additive error model f = f* + C_x h_x^p + C_y h_y^p
+(Roache 1998, ch. 5) the y-error does not depend on h_x, so where the solve has a converged coarse stage at (nx + 1)/2 x
+ny (a thermal full multigrid), the check solves (nx + 1)/2 x (ny + 1)/2 and e_y = (f_stage - f_check)/((2^p - 1) f): a
+quarter of the finest grid's nodes instead of half. Without a coarse stage the check solves nx x (ny + 1)/2 against the
+solution itself. On a square finest grid e_x covers both axes (e_y = 0).
 
-A figure is "unresolved" (`unresolved_<name>` = 1 in the file, the word in the tables) where no bound can be given:
-a solve that did not converge; no e_x or no e_y (ny is the coarsest grid, or the check did not converge); an e_x
-or e_y above TUNING.asymptotic_estimate (outside the asymptotic range); its feature (the lowest film's basin, the hot
-or the cold spot) spanning fewer than TUNING.feature_nodes nodes along x or y (`feature_nodes`); p_max always
-(UNBOUNDED); and dT_max where the film's compression, not its shear, sets its temperatures and the outlet spike's
-expansion cooling is unresolved (`compression_held`). docs/accuracy.md (error bounds) holds the calibration that chose
-these rules.
+A figure is "unresolved" (`unresolved_<name>` = 1 in the file, the word in the tables) where no bound can be given: a
+solve that did not converge; no e_x or no e_y (ny is the coarsest grid, or the check did not converge); an e_x or e_y
+above TUNING.asymptotic_estimate (outside the asymptotic range); its feature (the lowest film's basin, the hot or the
+cold spot) spanning fewer than TUNING.feature_nodes nodes along x or y (`feature_nodes`); p_max always (UNBOUNDED); h_c
+and h_min of a solve without an outer loop whose pressure cycles left the film `drifting` one way without contracting
+(its iteration error has no bound); and dT_max where the film's compression, not its shear, sets its temperatures and
+the outlet spike's expansion cooling is unresolved (`compression_held`). docs/accuracy.md (error bounds) holds the
+calibration that chose these rules.
 """
 
 from __future__ import annotations
@@ -116,16 +118,67 @@ def remaining_error(changes: np.ndarray, floored: bool) -> float:
     return last * rho / (1.0 - rho)
 
 
+def cycle_changes(solution: PointSolution, name: str) -> tuple[np.ndarray, np.ndarray]:
+    """Change of a film figure (h_c, h_min) per pressure cycle relative to its last value, signed, and the pressure's
+    relative change in the same cycles, over the cycles on the level the pressure iteration ended on (after the first of
+    them, its entry iterate); empty without the per-cycle record of the figure."""
+    history, key = solution.history, f"cycle_{name}_history"
+    if key not in history or "cycle_nodes_history" not in history or "pressure_change_history" not in history:
+        return np.empty(0), np.empty(0)
+    values = np.asarray(history[key].values, dtype=float)
+    nodes = np.asarray(history["cycle_nodes_history"].values, dtype=float)
+    pressure = np.asarray(history["pressure_change_history"].values, dtype=float)
+    first = int(np.flatnonzero(nodes != nodes[-1])[-1]) + 1 if np.any(nodes != nodes[-1]) else 0
+    if values.size - first < 2 or values[-1] == 0.0:
+        return np.empty(0), np.empty(0)
+    return np.diff(values[first:]) / abs(values[-1]), pressure[first + 1:]
+
+
+def drifting(changes: np.ndarray) -> bool:
+    """Over its last contraction_window + 1 changes the figure moves one way (their sum is more than half their
+    absolute sum, which averages drift_floor or more per change) and the changes do not contract (rate above
+    max_contraction): no rate read from them bounds where it goes (a flicker straddling the fixed point alternates in
+    sign instead; below drift_floor the film wanders at the iteration's floor)."""
+    window = changes[-(TUNING.contraction_window + 1):]
+    if window.size <= TUNING.contraction_window or window[0] == 0.0:
+        return False
+    one_way = abs(window.sum()) > 0.5 * np.abs(window).sum() and np.abs(window).mean() > TUNING.drift_floor
+    return bool(one_way and abs(window[-1] / window[0]) ** (1.0 / (window.size - 1)) > TUNING.max_contraction)
+
+
+def cycle_error(solution: PointSolution, name: str) -> float:
+    """Relative error the finest grid's pressure cycles left in a film figure, the larger of two readings of the
+    contraction (Ortega & Rheinboldt 1970, 12.1.2): remaining_error of the figure's own change per cycle, and that of
+    the pressure's change per cycle scaled to the figure by the largest ratio of their changes over the window (the
+    figure's sensitivity to the iterate; a figure's change can pass through zero while the iterate still moves).
+    Changes that stopped contracting at the algebraic floor are a flicker (the largest of the window); inf where the
+    figure is `drifting` (no bound: unresolved); 0 without a per-cycle record."""
+    changes, pressure = cycle_changes(solution, name)
+    if changes.size == 0:
+        return 0.0
+    if drifting(changes):
+        return math.inf
+    floored = math.isfinite(solution.scalars.get("algebraic_floor", (math.nan, "1"))[0])
+    own = remaining_error(np.abs(changes), floored)
+    n = min(TUNING.contraction_window + 1, changes.size)
+    if not np.all(pressure[-n:] > 0.0):
+        return own
+    sensitivity = float(np.max(np.abs(changes[-n:]) / pressure[-n:]))
+    return max(own, sensitivity * remaining_error(pressure, floored))
+
+
 def iteration_error(solution: PointSolution, name: str) -> float:
-    """Relative error the outer loop left in a figure (remaining_error of its changes): of the largest layer
-    temperature for the temperatures (K over |value|), of ln(eta*/eta) for mu of an isothermal Ree-Eyring film, else
-    of the central film, whose last change contracts as the loop's film state does; 0 without an outer loop."""
+    """Relative error the iteration left in a figure (remaining_error of its changes): of the outer loop where the
+    solve has one, of the largest layer temperature for the temperatures (K over |value|), of ln(eta*/eta) for mu of
+    an isothermal Ree-Eyring film, else of the central film, whose last change contracts as the loop's film state does;
+    without an outer loop, of the pressure cycles for the film figures (`cycle_error`, inf where it cannot bound), else
+    0."""
     history, value = solution.history, solution.scalar(name)
     thermal = "thermal_change_history" in history
     key, floor = ("thermal_change_history", "thermal_floor") if thermal else ("viscosity_change_history",
                                                                                 "viscosity_floor")
     if key not in history:
-        return 0.0
+        return cycle_error(solution, name) if name in ("h_c", "h_min") else 0.0
     changes = np.asarray(history[key].values, dtype=float)
     floored = math.isfinite(solution.scalars.get(floor, (math.nan, "1"))[0])
     if name in ("dT_max", "dT_min") and thermal:
@@ -211,10 +264,11 @@ def bounds(solution: PointSolution, e_y: dict[str, float],
         unresolved["dT_max"] = True
     out: dict[str, tuple[float, str]] = {}
     for name, (e_x, along_y) in estimates.items():
-        if not unresolved[name]:
-            bound = TUNING.bound_safety * (abs(e_x) + abs(along_y)) + iteration_error(solution, name)
+        bound = math.inf if unresolved[name] else (TUNING.bound_safety * (abs(e_x) + abs(along_y))
+                                                   + iteration_error(solution, name))
+        if math.isfinite(bound):
             out[f"error_bound_{name}"] = (bound, "1")
-        out[f"unresolved_{name}"] = (float(unresolved[name]), "1")
+        out[f"unresolved_{name}"] = (float(not math.isfinite(bound)), "1")
     return out
 
 

@@ -140,6 +140,8 @@ class PressureIteration:
             history.changes.append(change if extra > 0 else math.nan)
             history.residuals.append(float(np.abs(residual[positive]).mean()) if positive.any() else 0.0)
             history.loads.append(load_error)
+            history.films.append((float(level.nx), solver.central_film(level),
+                                  float(level.film.min())))
         return change, load_error
 
     def _keep_best(self, best: Best, index: int, change: float, load_error: float) -> None:

@@ -298,6 +298,7 @@ def _histories(solve: Reported) -> dict[str, Field]:
         "residual_history": Field(np.array(history.residuals), "1",
                                   "mean |Reynolds residual| over pressurised nodes after each cycle"),
         "load_error_history": Field(np.array(history.loads), "1", "relative load-balance error after each cycle"),
+        **_film_histories(history, film_scale),
         "level_h_c": Field(np.array([s.h_c * film_scale for s in summaries]), "m",
                            "central film on each full-multigrid level as solved there (isothermal start; "
                            "the last two levels with their film state in the reduced model), coarsest first"),
@@ -314,6 +315,15 @@ def _histories(solve: Reported) -> dict[str, Field]:
     if history.thermal_h_c:
         records["thermal_h_c_history"] = Field(np.array(history.thermal_h_c), "m", "central film per outer iteration")
     return records
+
+
+def _film_histories(history: History, film_scale: float) -> dict[str, Field]:
+    """The film after each cycle (the pressure iteration's own change history of the figures) and the level's nodes
+    along x it was on."""
+    films = np.array(history.films, dtype=float).reshape(-1, 3)
+    return {"cycle_nodes_history": Field(films[:, 0], "1", "nodes along x of the level each cycle ran on"),
+            "cycle_h_c_history": Field(films[:, 1] * film_scale, "m", "central film after each cycle"),
+            "cycle_h_min_history": Field(films[:, 2] * film_scale, "m", "minimum film after each cycle")}
 
 
 def _models(solve: Reported, record: SolveRecord) -> dict[str, str]:

@@ -13,9 +13,13 @@ In the order a failing solve meets them:
    convergence; a stage that fails for good is dropped and the solution below it reported (outlet.py);
 5. the whole attempt runs away, stalls short of its tolerances or closes its film: the next of ATTEMPTS
    (`next_attempt`): the ellipse-scaled Gauss-Seidel / Jacobi switch, Venner's switch, that damped, and for a
-   heavily loaded point that damped from a start at a fraction of its load (load continuation);
+   heavily loaded point that damped from a start at a fraction of its load (load continuation); an attempt whose
+   coarse stage converged and whose finest grid failed has that grid solved again from its coarse stage with the next
+   attempt's relaxation first (`finest_again`);
 6. the grid does not resolve the film (it closes, or an estimate exceeds its bound): the point is solved again on
-   a finer grid, up to a cap (`finer_settings`, run.py).
+   a finer grid, up to a cap (`finer_settings`, run.py), twice the rows alone where the film closes in a side lobe;
+   of a point whose attempts all failed, where it closes is read on the finest grid an attempt was reported on
+   (`closure_place`), not on a runaway start's coarse level.
 The measurements behind each choice are in docs/tuning.md.
 """
 
@@ -26,9 +30,11 @@ import math
 
 from facegear_tehl.ehl.relaxation import Relaxation
 from facegear_tehl.ehl.tuning import TUNING
-from facegear_tehl.record import Reason
+from facegear_tehl.record import Reason, Stage
 from facegear_tehl.settings import SolverSettings, ThermalMode
 from facegear_tehl.solution import Outcome, PointSolution
+
+CLOSURE_PLACE = ("x_film_closed", "y_film_closed")  # where a reported iterate's film is lowest (report.py)
 
 
 @dataclass(frozen=True)
@@ -90,11 +96,39 @@ class RetryPolicy:
         heavy = solution.scalar("moes_m") > TUNING.continuation_moes_m
         return following if heavy or not self.attempts[following - 1].load_continuation else None
 
+    def finest_again(self, solution: PointSolution) -> int | None:
+        """The attempt (1-based) whose relaxation solves the finest grid again from the converged coarse stage of
+        `solution`, whose finest grid failed (ran away, stalled or closed its film): the next attempt, where the
+        policy has one (`next_attempt`) and its relaxation differs; else None. The coarse stage's solution and film
+        state are sound, the failure is the finest grid's iteration: a whole new attempt would begin again from the
+        coarsest grid, whose start and seed stage the point already got through once."""
+        following = self.next_attempt(solution)
+        if following is None or solution.record is None:
+            return None
+        stages = {s.stage: s.outcome for s in solution.record.stages}
+        if stages.get(Stage.COARSE) is not Outcome.CONVERGED or stages.get(Stage.FINEST) is Outcome.CONVERGED:
+            return None
+        if self.attempts[following - 1].relaxation == self.attempts[int(solution.scalar("attempts")) - 1].relaxation:
+            return None
+        return following
+
     @staticmethod
     def reason(solution: PointSolution) -> Reason:
         """The typed failure of an attempt that is retried."""
         return {Outcome.DIVERGED: Reason.RAN_AWAY, Outcome.NOT_CONVERGED: Reason.STALLED}.get(
             solution.outcome, Reason.FILM_CLOSED)
+
+    @staticmethod
+    def closure_place(first: PointSolution, retry: PointSolution) -> dict[str, tuple[float, str]]:
+        """Where the film of a point whose attempts failed closed, for the way a finer grid must resolve it
+        (`finer_settings`): the place on the finer of the grids the first attempt and the last retry are reported on.
+        A first attempt whose start ran away is reported on the start's coarse level, where the film closes wherever
+        that grid fails to carry the load; an attempt that reached the finest grid shows where the film of the grid
+        asked for closes. Empty when the retry's grid is not finer or it did not close its film, or the first attempt
+        has a film (kept as it is)."""
+        if "h_min" in first.scalars or reported_nodes(retry) <= reported_nodes(first):
+            return {}
+        return {key: retry.scalars[key] for key in CLOSURE_PLACE if key in retry.scalars}
 
     @staticmethod
     def better(first: PointSolution, retry: PointSolution) -> bool:
@@ -139,6 +173,12 @@ class RetryPolicy:
 def estimates(solution: PointSolution) -> tuple[float, float]:
     """The solve's own relative error estimates of h_c and h_min (0 where it has none)."""
     return tuple(solution.scalars.get(f"error_estimate_{key}", (0.0, "1"))[0] for key in ("h_c", "h_min"))
+
+
+def reported_nodes(solution: PointSolution) -> int:
+    """Nodes of the grid `solution` is reported on (0 without its axes)."""
+    axes = solution.axes
+    return len(axes["x"].values) * len(axes["y"].values) if "x" in axes and "y" in axes else 0
 
 
 def _in_side_lobe(solution: PointSolution) -> bool:

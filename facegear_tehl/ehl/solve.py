@@ -350,10 +350,14 @@ class PointSolve:
         return frozen, self.cycle(index, cycles)
 
     def _film_model(self, level: Level) -> FilmThermalModel:
+        """The film model of `level`: its columns below the Newtonian bound r_N = sqrt(6 share eyring_tolerance) taken
+        as Newtonian (ln(eta*/eta) off by at most r_N^2/6, a share of the change of ln(eta*/eta) an isothermal
+        Ree-Eyring loop stops at; a thermal loop stops at about 1e-3 in ln(eta) too: 2e-3 of a rise of 20-50 K at
+        beta = 0.02-0.03 1/K)."""
+        newtonian_below = math.sqrt(6.0 * TUNING.eyring_newtonian_share * self.settings.eyring_tolerance)
         if self.mode is not ThermalMode.OFF:
             return FilmThermalModel(level.x * self.scaling.b, level.y * self.scaling.a, self.settings.thermal_layers,
-                                    self.lubricant, self.point, solve_energy=True)
-        newtonian_below = math.sqrt(6.0 * TUNING.eyring_newtonian_share * self.settings.eyring_tolerance)
+                                    self.lubricant, self.point, solve_energy=True, newtonian_below=newtonian_below)
         return FilmThermalModel(level.x * self.scaling.b, level.y * self.scaling.a, TUNING.eyring_layers,
                                 self.lubricant, self.point, solve_energy=False, newtonian_below=newtonian_below)
 

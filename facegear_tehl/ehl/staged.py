@@ -4,6 +4,7 @@ different worker processes with the same result (`begin`, `finish`)."""
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+import pickle
 
 import numpy as np
 
@@ -39,6 +40,29 @@ def noted_retry(solve: PointSolve, retry_after: PointSolution, attempt: int) -> 
     solve.retries.append(RetryRecord(POLICY.reason(retry_after), Action.NEXT_RELAXATION, attempt,
                                      f"attempt {attempt - 1}: {retry_after.message}"))
     return solve
+
+
+def finest_again(stage: PointSolve, solution: PointSolution, kept: PointSolve) -> tuple[PointSolve, PointSolution]:
+    """After `stage.finish()` gave `solution`: where its finest grid failed after a converged coarse stage
+    (RetryPolicy.finest_again), the finest grid solved again from that coarse stage (`kept`, a copy taken before the
+    finest grid ran) with the next attempt's relaxation. Returns the solve and solution to report: the new ones if
+    that converged, else the first with the time of both and the try in its record (the policy's next attempt
+    follows as before)."""
+    attempt = POLICY.finest_again(solution)
+    if attempt is None:
+        return stage, solution
+    kept.solver.relaxation = POLICY.attempts[attempt - 1].relaxation
+    kept.retries.append(RetryRecord(POLICY.reason(solution), Action.FINEST_AGAIN, attempt,
+                                    f"attempt {kept.attempt}: {solution.message}"))
+    kept.attempt, kept.elapsed = attempt, spent_on(solution)
+    with np.errstate(**RUN_AWAY_ARITHMETIC):
+        again = kept.finish()
+    if again.converged:
+        return kept, again
+    record = solution.record.with_retry(RetryRecord(POLICY.reason(again), Action.FINEST_AGAIN, attempt,
+                                                    f"ended: {again.message}"))
+    return stage, replace(solution, scalars={**solution.scalars, **spent_on(again).scalars()},
+                          models={**solution.models, "solver": record.render()}, record=record)
 
 
 def _completed(solver: StagedSolver, begun: PointSolution | PointSolve) -> PointSolution:
@@ -89,8 +113,10 @@ class StagedSolver:
         the check started from that stage: y_check.py; the check of a `reduced` one is reduced too, its finest figures
         then alike); `check`, when given, solves the bounds' check instead (as in `bound`)."""
         start = CoarseStart.of(stage) if stage.mode is ThermalMode.FULL else None
+        kept = pickle.loads(pickle.dumps(stage))  # the converged coarse stage, for the finest grid again
         with np.errstate(**RUN_AWAY_ARITHMETIC):
             solution = stage.finish()
+        stage, solution = finest_again(stage, solution, kept)
         coarse = None  # a reduced solve's finest figures are one film-state evaluation, its coarse stage's coupled
         if stage.mode is ThermalMode.FULL and len(stage.summaries) >= 2 and len(stage.solver.levels) >= 2:
             coarse = coarse_stage(stage.summaries[-2], stage.solver.levels[-2].ny, stage.scaling)
@@ -114,7 +140,8 @@ class StagedSolver:
 
     def with_retry(self, first: PointSolution, retry: PointSolution) -> PointSolution:
         """The last retry's solution if it did better than the first attempt (RetryPolicy.better); else the first
-        attempt's, with the time and count of all attempts and what the retries did in its record."""
+        attempt's, with the time and count of all attempts, what the retries did in its record and where its film
+        closed on the finest grid an attempt reached (RetryPolicy.closure_place)."""
         if POLICY.better(first, retry):
             return retry
         last = RetryRecord(POLICY.reason(retry), Action.FIRST_KEPT, int(retry.scalar("attempts")),
@@ -122,8 +149,8 @@ class StagedSolver:
         record = replace(retry.record, stages=first.record.stages, attempt=first.record.attempt,
                          relaxation=first.record.relaxation, iteration=first.record.iteration,
                          notes=first.record.notes).with_retry(last)
-        return replace(first, scalars={**first.scalars, **spent_on(retry).scalars(),
-                                       "attempts": retry.scalars["attempts"]},
+        return replace(first, scalars={**first.scalars, **POLICY.closure_place(first, retry),
+                                       **spent_on(retry).scalars(), "attempts": retry.scalars["attempts"]},
                        models={**first.models, "solver": record.render()}, record=record)
 
 
