@@ -38,7 +38,8 @@ class AffineCycles:
         self.star = np.append(1.0 + rng.random(size - 1), H0_STAR)  # positive pressure: no projection at x*
         self.problem = SimpleNamespace(load_integral=1.0)
         start = self.star + 1e-2 * rng.standard_normal(size)
-        self.levels = [SimpleNamespace(pressure=start[:-1].reshape(SHAPE), film=np.ones(SHAPE), eps=np.ones(SHAPE))]
+        self.levels = [SimpleNamespace(pressure=start[:-1].reshape(SHAPE), film=np.ones(SHAPE), eps=np.ones(SHAPE),
+                                       nx=SHAPE[1])]
         self.h0 = float(start[-1])
         self.truncated = False
 
@@ -52,6 +53,9 @@ class AffineCycles:
 
     def pressure_change(self, level, previous: np.ndarray) -> float:
         return float(np.abs(level.pressure - previous).sum() / np.abs(level.pressure).sum())
+
+    def central_film(self, level) -> float:
+        return 1.0
 
     def force_error(self, level) -> float:
         return self.h0 - H0_STAR
@@ -88,3 +92,18 @@ def test_the_bare_cycles_of_the_same_map_do_not_converge(monkeypatch):
     solver, outcome = _iterate(monkeypatch, depth=0)
     assert outcome is not Outcome.CONVERGED
     assert np.abs(solver.state() - solver.star).max() > 1e-3
+
+
+def test_a_call_whose_bare_cycles_contract_is_not_accelerated(monkeypatch):
+    """Every mode damped (eigenvalues 0.3): the bare cycles contract, the accelerated loop never engages and ends on
+    the very iterate of the bare one."""
+    eigenvalues = np.full(SHAPE[0] * SHAPE[1] + 1, 0.3)
+    ends = []
+    for depth in (5, 0):
+        monkeypatch.setattr(pressure_module, "TUNING", replace(pressure_module.TUNING, pressure_anderson_depth=depth))
+        solver = AffineCycles(eigenvalues)
+        status = PressureIteration(solver, SolverSettings(tolerance=1e-8, load_tolerance=1e-8),
+                                   History(cycles=0)).cycle(0, max_cycles=60)
+        assert status.outcome is Outcome.CONVERGED
+        ends.append(solver.state())
+    assert np.array_equal(ends[0], ends[1])

@@ -2,9 +2,10 @@
 
 `PressureIteration.cycle` is the one loop every stage cycles the pressure with (Venner & Lubrecht 2000, ch. 5):
 per cycle it records the change, residual and load error into the solve's History and judges them with
-convergence.py. From the third cycle of a call on, each cycle starts from Anderson's combination of the cycles so far
-on the map (P, H_0) -> V(P, H_0) (`accelerate`; Walker & Ni 2011; Brune, Knepley, Smith & Tu 2015), which damps the
-few modes a bare V-cycle cycles or grows on (an iteration factor near -1 or slightly above 1). It deals with the two
+convergence.py. Once a call's bare cycles stop contracting (the change fell by less than 1 - floor_stall over two
+cycles: a mode with an iteration factor near -1 or slightly above 1), each cycle starts from Anderson's combination of
+the cycles of the call so far on the map (P, H_0) -> V(P, H_0) (`accelerate`; Walker & Ni 2011; Brune, Knepley,
+Smith & Tu 2015), which damps those few modes; a call whose bare cycles contract is not touched. It deals with the two
 limit cycles the V-cycle can fall into above its floor:
 - a period-2 limit cycle between floor_band and phase_mean_band times the tolerance is replaced by the mean of its
   last two iterates (the fixed point its phases straddle), at most max_phase_means times per call;
@@ -61,16 +62,18 @@ def pressure_mixer() -> Anderson | None:
     return Anderson(depth, TUNING.pressure_anderson_growth) if depth else None
 
 
-def accelerate(solver: MultigridSolver, index: int, before: Iterate, mixer: Anderson) -> None:
+def accelerate(solver: MultigridSolver, index: int, before: Iterate, mixer: Anderson, apply: bool = True) -> None:
     """Level `index` on Anderson's combination of the V-cycles so far (Walker & Ni 2011, eq. 1.3) on the map
     x = (P, H_0) -> V(x): the last cycle went from `before` to the level's pressure and H_0, its plain step
     f = V(x) - x; the combination is projected on P >= 0 (Brune, Knepley, Smith & Tu 2015, SIAM Rev. 57:535-565, the
-    FAS cycle as the nonlinear preconditioner of Anderson's method)."""
+    FAS cycle as the nonlinear preconditioner of Anderson's method). Without `apply` the pair (x, f) only enters the
+    history (Anderson's columns are differences of pairs, whichever iterate each cycle started from) and the level
+    stays on the plain step."""
     level = solver.levels[index]
     x = np.append(before.pressure.ravel(), before.h0)
     f = np.append(level.pressure.ravel(), solver.h0) - x
     mixed = mixer.step(x, f)
-    if mixer.columns:  # else the plain step: the level is on it
+    if apply and mixer.columns:  # else the plain step: the level is on it
         solver.restore(index, Iterate(np.maximum(mixed[:-1], 0.0).reshape(level.pressure.shape), float(mixed[-1])))
 
 
@@ -89,6 +92,7 @@ class PressureIteration:
         self.calls = 0  # calls of `cycle` so far
         self.mixer: Anderson | None = None  # the Anderson history of the call under way (None: bare V-cycles)
         self.mixed_under = self.truncation  # the truncation its history was gathered with
+        self.engaged = False  # the call's bare cycles stopped contracting: its cycles start from the combination
 
     def cycle(self, index: int, max_cycles: int, best: Best | None = None) -> Status:
         """V-cycles on level `index` until the tolerances are met (or the algebraic floor is reached), at most
@@ -98,7 +102,7 @@ class PressureIteration:
         previous = level.pressure.copy()
         self.calls += 1
         means = 0  # period-2 cycles replaced by the mean of their phases
-        self.mixer, self.mixed_under = pressure_mixer(), self.truncation
+        self.mixer, self.mixed_under, self.engaged = pressure_mixer(), self.truncation, False
         for extra in itertools.count():
             change, load_error = self._record(index, previous, extra)
             if running_away(load_error):
@@ -121,6 +125,7 @@ class PressureIteration:
                 if self.mixer is not None:
                     self.mixer.reset()
             elif extra > 0:
+                self.engaged = self.engaged or flicker_stalled(history.changes[-extra:])
                 self._mix(index)
             previous = self._one_cycle(index)
             if not finite(level):
@@ -183,8 +188,9 @@ class PressureIteration:
         return previous
 
     def _mix(self, index: int) -> None:
-        """Level `index` on Anderson's combination of its last V-cycles (`accelerate`); the history is dropped where
-        the map changed (the truncation switched) or the last cycle's start is not known."""
+        """The last V-cycle into the Anderson history and, once the call is `engaged`, level `index` on the
+        combination (`accelerate`); the history is dropped where the map changed (the truncation switched) or the last
+        cycle's start is not known."""
         mixer = self.mixer
         if mixer is None:
             return
@@ -192,7 +198,7 @@ class PressureIteration:
             mixer.reset()
             self.mixed_under = self.truncation
         if self.before_cycle is not None:
-            accelerate(self.solver, index, self.before_cycle[0], mixer)
+            accelerate(self.solver, index, self.before_cycle[0], mixer, self.engaged)
 
     def _update_truncation(self, index: int, extra: int) -> bool:
         """Switch the truncated correction on at a flicker stall below truncation_band times the tolerance; switch it
