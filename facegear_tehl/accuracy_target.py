@@ -17,10 +17,11 @@ Per point, on a start grid of TUNING.accuracy_start_grid nodes along x (the case
    to bring the rest within it, or the next grid passes the point's time budget (`solver.time_budget`). A figure
    without a bound to predict from is refined for twice as fine along the axis whose estimate dominates (at its cap:
    the other), or along the axes on which its feature spans fewer than TUNING.feature_nodes nodes (the error bounds'
-   feature rule); such a figure is set aside, unresolved with why, where no grid within reach can bound it
-   (`out_of_reach`: its feature narrows with the grid, or the first grid that could resolve it passes the caps or the
-   time budget). A finer grid along one axis that does not converge is followed by one along both; where that fails
-   too the converged coarser solution is kept.
+   feature rule), along both where a figure's estimate along the other axis alone keeps its bound above the target;
+   such a figure is set aside, unresolved with why, where no grid within reach can bound it (`out_of_reach`: its
+   feature narrows with the grid, or the first grid that could resolve it passes the caps or the time budget). A finer
+   grid along one axis that does not converge is followed by one along both; where that fails too the converged
+   coarser solution is kept.
 
 A figure's bound (`figure_bound`) is the solve's own `error_bound_<name>` (ehl/error_bounds.py: every converged solve
 with a film reports it, with its y-check, or `unresolved_<name>`); a figure the solve reports unresolved, or without
@@ -287,6 +288,17 @@ def refined_axis(missing: Mapping[str, Bound]) -> str:
     return "x" if along_x >= along_y else "y"
 
 
+def with_other_axis(axis: str, missing: Mapping[str, Bound], target: float) -> str:
+    """`axis`, or both where a figure's estimate along the other axis alone keeps its bound above `target` (F_s |e| >
+    target): under the additive error model f = f* + C_x h_x^p + C_y h_y^p (Roache 1998, ch. 5) refining one axis
+    leaves the other's error as it is, so that figure needs both, and doubling both at once saves the solve between."""
+    if axis == "xy":
+        return axis
+    other = "y" if axis == "x" else "x"
+    along = [abs(b.e_y if other == "y" else b.e_x) for b in missing.values()]
+    return "xy" if any(math.isfinite(e) and TUNING.bound_safety * e > target for e in along) else axis
+
+
 def out_of_reach(point: Progressing, name: str, bound: Bound, spans: Spans) -> str:
     """Why no grid within the caps and the time budget can bound figure `name` ("" where one may): it has no bound
     because its feature spans fewer than TUNING.feature_nodes nodes along an axis (error_bounds.py), and either it
@@ -488,8 +500,9 @@ def planned(point: Progressing, missing: Mapping[str, Bound], target: float) -> 
     """The point's next grid and why (None: none, with the reason). After a finer grid along one axis that did not
     converge: both axes twice as fine. Where every figure above the target has a bound: the predicted grid
     (grid_prediction.py) for those predicted to come within the target at all within the caps (none: it stops).
-    Else, and once a predicted grid past one doubling did not converge, twice as fine along the axis whose estimate
-    dominates (`refined_axis`; at its cap along the other)."""
+    Else, and once a predicted grid past one doubling did not converge, twice as fine along the axes on which a
+    feature is too narrow, else along the axis whose estimate dominates (`refined_axis`), with the other where its
+    estimate alone keeps a figure above the target (`with_other_axis`); at an axis's cap along the other."""
     settings = point.task.settings
     largest = f"the largest grid {TUNING.accuracy_max_grid} x {TUNING.accuracy_max_grid_y}"
     if point.failed:
@@ -508,9 +521,8 @@ def planned(point: Progressing, missing: Mapping[str, Bound], target: float) -> 
         margin = f"{100 * TUNING.accuracy_jump_margin * target:.2g} %"
         return (replace(settings, grid=prediction.grid, grid_y=prediction.grid_y),
                 f"{prediction.words()} (margin {margin}){beyond}")
-    axis = feature_axes(missing, point.spans()) or refined_axis(missing)
-    finer = refined_settings(settings, axis) or (refined_settings(settings, "xy".replace(axis, ""))
-                                                 if axis != "xy" else None)
+    axis = with_other_axis(feature_axes(missing, point.spans()) or refined_axis(missing), missing, target)
+    finer = next((s for a in (axis, *axis, *"xy") if (s := refined_settings(settings, a)) is not None), None)
     if finer is not None and (finer.grid, finer.nodes_y) in point.failed_grids:  # as if it had failed again
         return planned(replace(point, failed=f"{grid_words(finer)} ended as before"), missing, target)
     reason = f"after {point.after_jump}" if point.after_jump else "a figure above the target without a bound"

@@ -176,6 +176,19 @@ def test_a_figure_the_solve_cannot_bound_along_y_is_refined_along_y():
     assert {f.name: f.verdict for f in solution.accuracy.figures}["h_c"] is Verdict.MET
 
 
+def test_a_figure_without_a_bound_along_y_whose_x_estimate_alone_passes_the_target_is_refined_along_both():
+    """As above, but with an x error whose estimate alone, times F_s, passes the target on 129 x 17: refining y alone
+    would leave it above the target (the additive error model), so both axes are doubled at once, 257 x 33, and the
+    point goes on from there without the 129 x 33 solve between."""
+    solver, task = AnalyticSolver(c_x=200.0), _task(grid_y=33)
+    start = AnalyticSolver(c_x=200.0)(task.point, task.lubricant, replace(task.settings, grid=129, grid_y=17))
+    assert TUNING.bound_safety * abs(start.scalar("error_estimate_h_c")) > 0.01
+    (solution,) = solve_to_accuracy([task], solver, jobs=1)
+    assert solver.grids[:2] == [(129, 17), (257, 33)] and (129, 33) not in solver.grids
+    assert {f.name: f.verdict for f in solution.accuracy.figures}["h_c"] is Verdict.MET
+    assert _true_error(solver, solution, "h_c") <= 0.01
+
+
 def test_the_axis_whose_estimate_dominates_is_refined_y_from_the_solves_y_estimate():
     solver = AnalyticSolver(c_x=0.01, c_y=20.0)
     (solution,) = solve_to_accuracy([_task()], solver, jobs=1)

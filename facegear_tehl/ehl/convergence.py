@@ -60,6 +60,32 @@ def flicker_stalled(changes: list[float]) -> bool:
     return len(changes) >= 3 and changes[-1] > TUNING.floor_stall * changes[-3]
 
 
+def runs_one_way(window: np.ndarray) -> bool:
+    """Over the contraction_window + 1 changes `window` the figure moves one way (their sum is more than half their
+    absolute sum, which averages drift_floor or more per change) and the changes do not contract (rate above
+    max_contraction)."""
+    if window.size <= TUNING.contraction_window or window[0] == 0.0:
+        return False
+    one_way = abs(window.sum()) > 0.5 * np.abs(window).sum() and np.abs(window).mean() > TUNING.drift_floor
+    return bool(one_way and abs(window[-1] / window[0]) ** (1.0 / (window.size - 1)) > TUNING.max_contraction)
+
+
+def drifting(changes: np.ndarray) -> bool:
+    """The figure `runs_one_way` over its last contraction_window + 1 changes or over the contraction_window + 1
+    before its last contraction_window: no rate read from them bounds where it goes (a flicker straddling the fixed
+    point alternates in sign instead; below drift_floor the film wanders at the iteration's floor). A rate read just
+    after a drift is no bound either: the 1025^2 film of ab1_ph2.5_u0.5_eta0.01_iso rose 3-6 % per cycle over ten
+    cycles, then 2.7, 2.8, 1.5 and 0.7 % (a rate of 0.58) at 35.0 nm, 28 % below its fixed point."""
+    n, last = TUNING.contraction_window, changes.size
+    return any(runs_one_way(changes[max(end - n - 1, 0):end]) for end in (last, last - n) if end > n)
+
+
+def call_drifting(films: list[tuple[float, float, float]], cycles: int) -> bool:
+    """The central film of the last `cycles` V-cycles on one frozen film state (History.films) is `drifting`."""
+    h_c = np.array([film[1] for film in films[-cycles:]]) if cycles > TUNING.contraction_window + 1 else np.empty(0)
+    return h_c.size > 0 and h_c[-1] != 0.0 and drifting(np.diff(h_c) / abs(h_c[-1]))
+
+
 def at_algebraic_floor(changes: list[float], loads: list[float], settings: SolverSettings) -> bool:
     """The pressure iteration has reached its algebraic floor: a flicker stall below floor_band times the tolerance
     (after at least five cycles) with the load balanced to its tolerance; h_c and h_min are then steady to ~1e-5."""

@@ -35,7 +35,7 @@ from facegear_tehl.ehl.convergence import History, stalled
 from facegear_tehl.ehl.pressure import PressureIteration
 from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel, relaxed_steps
 from facegear_tehl.ehl.tuning import TUNING
-from facegear_tehl.solution import Outcome, Status
+from facegear_tehl.solution import CONVERGED, Outcome, Status
 
 
 class Ending(Enum):
@@ -117,17 +117,18 @@ def energy_forcing(changes: list[float]) -> float:
 def next_film_state(accelerator: Anderson, temperature: np.ndarray, factor: np.ndarray, update: FilmState,
                     scale: float, rise: float | None) -> tuple[np.ndarray, np.ndarray, float, float]:
     """The next layer temperatures (K) and eta*/eta from the current ones and the film state `update` evaluated at
-    them, and the largest changes of the plain step (K; of ln(eta*/eta)). The plain step is under-relaxed
-    (thermal_relaxation and viscosity_relaxation times `scale`; eyring_relaxation without the energy equation;
-    eta*/eta in log space) and Anderson-accelerated, the temperatures weighted by 1/rise (K) against ln(eta*/eta);
-    the accelerated temperatures move by at most max_temperature_step, as a plain update does. rise None: no energy
-    equation (the temperatures stay)."""
+    them, and the largest changes of the plain step at the full relaxation (K; of ln(eta*/eta)). The plain step is
+    under-relaxed (thermal_relaxation and viscosity_relaxation times `scale`; eyring_relaxation without the energy
+    equation; eta*/eta in log space) and Anderson-accelerated, the temperatures weighted by 1/rise (K) against
+    ln(eta*/eta); the accelerated temperatures move by at most max_temperature_step, as a plain update does. The
+    changes returned are those of `scale` 1 (the step over `scale`): a loop whose relaxation a stall halved is judged,
+    and its iteration error estimated, by the same measure as before, not by a change the halving alone shrank.
+    rise None: no energy equation (the temperatures stay)."""
     if rise is None:  # the change judged stays viscosity_relaxation times the residual: the tolerance keeps its meaning
         log_factor, residual = np.empty(factor.shape), np.empty(factor.shape)
         largest = rheology.log_factor_change(factor, update.viscosity_factor, log_factor, residual)
         step_f = residual * (scale * TUNING.eyring_relaxation)
-        return (temperature, np.exp(accelerator.step(log_factor, step_f)), 0.0,
-                scale * TUNING.viscosity_relaxation * largest)
+        return (temperature, np.exp(accelerator.step(log_factor, step_f)), 0.0, TUNING.viscosity_relaxation * largest)
     size = temperature.size
     x, f = np.empty(2 * size), np.empty(2 * size)
     np.log(factor.ravel(), out=x[size:])
@@ -138,15 +139,16 @@ def next_film_state(accelerator: Anderson, temperature: np.ndarray, factor: np.n
     accelerated = x[:size].reshape(temperature.shape)
     step = TUNING.max_temperature_step
     np.clip(accelerated, temperature - step, temperature + step, out=accelerated)
-    return accelerated, np.exp(x[size:]).reshape(temperature.shape), thermal_change, viscosity_change
+    return accelerated, np.exp(x[size:]).reshape(temperature.shape), thermal_change / scale, viscosity_change / scale
 
 
 class CoupledLoop:
     """The outer loop of one target, from the film state (`temperature` K, `factor` eta*/eta) it starts at."""
 
     def __init__(self, target: CoupledTarget, pressure: PressureIteration, history: History, max_iterations: int,
-                 inlet_temperature: float):
+                 inlet_temperature: float, floor_ends: bool = True):
         self.target, self.pressure, self.history = target, pressure, history
+        self.floor_ends = floor_ends  # a floor ends the loop (else it goes on to max_iterations, for a retry)
         self.max_iterations, self.t_inlet = max_iterations, inlet_temperature
         self.energy = target.model.solve_energy
         depth = TUNING.anderson_depth if self.energy else TUNING.eyring_anderson_depth
@@ -190,27 +192,43 @@ class CoupledLoop:
             if stalled(loop.changes[window:]):  # a limit cycle above the floor (or h_c unsteady): which one?
                 window = len(loop.changes)
                 self.accelerator.reset()
-                relaxation, status = self._relieve_stall(relaxation)
+                relieved, status = self._relieve_stall(relaxation)
                 if status.diverged:
                     return self._end(Ending.DIVERGED, status, loop)
+                if relieved is None and self.floor_ends:  # nothing left to relieve: the loop is at its floor
+                    self._record_floor(loop.changes)
+                    return self._end(Ending.FLOOR, CONVERGED, loop)
+                relaxation = relaxation if relieved is None else relieved
         return self._end(Ending.EXHAUSTED, Status(Outcome.NOT_CONVERGED), loop)
 
-    def _relieve_stall(self, relaxation: float) -> tuple[float, Status]:
+    def _relieve_stall(self, relaxation: float) -> tuple[float | None, Status]:
         """The film-state relaxation after the loop's change stopped falling at `relaxation`, and the status of the
         pressure cycled to its tolerance on the frozen film state, which shows the iteration that stalls. Pressure
         V-cycles that do not converge on a frozen film state (their own limit cycle: the film state is then evaluated
         on a different pressure at every update) have their Gauss-Seidel and Jacobi changes damped by
         cycle_damping, down to min_under_gs; a pressure that converges leaves a limit cycle of the film state (the
-        hot spot), whose relaxation is halved, down to min_relaxation_scale."""
+        hot spot), whose relaxation is halved, down to min_relaxation_scale. None instead of a relaxation where the
+        pressure converges and the relaxation is at its limit: the full step stopped contracting at the smallest
+        relaxation on a converged pressure, the loop's floor."""
         index, pressure = self.target.index, self.pressure
         status = pressure.cycle(index, pressure.settings.max_cycles)
         solver = pressure.solver
         cycles = solver.relaxation
         if status.converged or status.diverged or cycles.under_gs <= TUNING.min_under_gs:
-            return max(0.5 * relaxation, TUNING.min_relaxation_scale), status
+            halved = max(0.5 * relaxation, TUNING.min_relaxation_scale)
+            return (None if halved == relaxation and status.converged else halved), status
         damping = TUNING.cycle_damping
         solver.relaxation = replace(cycles, under_gs=damping * cycles.under_gs, under_jd=damping * cycles.under_jd)
         return relaxation, status
+
+    def _record_floor(self, changes: list[float]) -> None:
+        """The loop's floor into the history: the largest full-step change of its last stall window, the amplitude
+        its figures' iteration errors carry (error_bounds.iteration_error)."""
+        amplitude = max(changes[-TUNING.thermal_floor_window:])
+        if self.energy:
+            self.history.thermal_floor = amplitude
+        else:
+            self.history.viscosity_floor = amplitude
 
     def _closed_film(self, outer: int) -> Status | None:
         """None while the settled film is open (or opens when its pressure is cycled on the frozen film state to its

@@ -21,8 +21,11 @@ solve that did not converge; no e_x or no e_y (ny is the coarsest grid, or the c
 above TUNING.asymptotic_estimate (outside the asymptotic range); its feature (the lowest film's basin, the hot or the
 cold spot) spanning fewer than TUNING.feature_nodes nodes along x or y (`feature_nodes`); p_max always (UNBOUNDED); h_c
 and h_min of a solve without an outer loop whose pressure cycles left the film `drifting` one way without contracting
-(its iteration error has no bound); and dT_max where the film's compression, not its shear, sets its temperatures and
-the outlet spike's expansion cooling is unresolved (`compression_held`). docs/accuracy.md (error bounds) holds the
+(its iteration error has no bound); any figure whose iteration error e_it (`iteration_error_<name>` in the file, the
+reason) exceeds TUNING.max_iteration_error, as a loop ended at its floor can leave it (the full step no longer
+contracting at the smallest relaxation: e_it is the amplitude of its last window, `floor_error`); and dT_max where
+the film's compression, not its shear, sets its temperatures and the outlet spike's expansion cooling is unresolved
+(`compression_held`). docs/accuracy.md (error bounds) holds the
 calibration that chose these rules.
 """
 
@@ -36,6 +39,7 @@ import time
 import numpy as np
 
 from facegear_tehl.contact import ContactPoint
+from facegear_tehl.ehl.convergence import drifting
 from facegear_tehl.ehl.report import ORDER_DT_MAX, ORDER_MU, LevelSummary
 from facegear_tehl.ehl.richardson import ORDER
 from facegear_tehl.ehl.scaling import Scaling
@@ -134,18 +138,6 @@ def cycle_changes(solution: PointSolution, name: str) -> tuple[np.ndarray, np.nd
     return np.diff(values[first:]) / abs(values[-1]), pressure[first + 1:]
 
 
-def drifting(changes: np.ndarray) -> bool:
-    """Over its last contraction_window + 1 changes the figure moves one way (their sum is more than half their
-    absolute sum, which averages drift_floor or more per change) and the changes do not contract (rate above
-    max_contraction): no rate read from them bounds where it goes (a flicker straddling the fixed point alternates in
-    sign instead; below drift_floor the film wanders at the iteration's floor)."""
-    window = changes[-(TUNING.contraction_window + 1):]
-    if window.size <= TUNING.contraction_window or window[0] == 0.0:
-        return False
-    one_way = abs(window.sum()) > 0.5 * np.abs(window).sum() and np.abs(window).mean() > TUNING.drift_floor
-    return bool(one_way and abs(window[-1] / window[0]) ** (1.0 / (window.size - 1)) > TUNING.max_contraction)
-
-
 def cycle_error(solution: PointSolution, name: str) -> float:
     """Relative error the finest grid's pressure cycles left in a film figure, the larger of two readings of the
     contraction (Ortega & Rheinboldt 1970, 12.1.2): remaining_error of the figure's own change per cycle, and that of
@@ -167,12 +159,32 @@ def cycle_error(solution: PointSolution, name: str) -> float:
     return max(own, sensitivity * remaining_error(pressure, floored))
 
 
+def floor_error(changes: np.ndarray, films: np.ndarray) -> tuple[float, float]:
+    """The error a loop ended at its floor (its full step no longer contracting at the smallest relaxation) leaves:
+    the amplitude of its last thermal_floor_window changes (their largest; the floor's iterates straddle the fixed
+    point, no rate bounds their distance from it), and that amplitude carried into the central film `films` (one per
+    change, m), the larger of h_c's spread over the window and the amplitude times h_c's largest change per unit
+    change there (relative). No change: 0."""
+    window = changes[-TUNING.thermal_floor_window:]
+    if window.size == 0:
+        return 0.0, 0.0
+    amplitude = float(window.max())
+    films = films[-(window.size + 1):]
+    if films.size < 2 or films[-1] == 0.0:
+        return amplitude, 0.0
+    relative = films / abs(films[-1])
+    steps = np.abs(np.diff(relative))
+    paired = window[-steps.size:]
+    sensitivity = float(np.max(np.where(paired > 0.0, steps / np.where(paired > 0.0, paired, 1.0), 0.0)))
+    return amplitude, max(float(relative.max() - relative.min()), sensitivity * amplitude)
+
+
 def iteration_error(solution: PointSolution, name: str) -> float:
     """Relative error the iteration left in a figure (remaining_error of its changes): of the outer loop where the
     solve has one, of the largest layer temperature for the temperatures (K over |value|), of ln(eta*/eta) for mu of
     an isothermal Ree-Eyring film, else of the central film, whose last change contracts as the loop's film state does;
-    without an outer loop, of the pressure cycles for the film figures (`cycle_error`, inf where it cannot bound), else
-    0."""
+    at the loop's floor the amplitude of its last window instead (`floor_error`); without an outer loop, of the
+    pressure cycles for the film figures (`cycle_error`, inf where it cannot bound), else 0."""
     history, value = solution.history, solution.scalar(name)
     thermal = "thermal_change_history" in history
     key, floor = ("thermal_change_history", "thermal_floor") if thermal else ("viscosity_change_history",
@@ -181,15 +193,17 @@ def iteration_error(solution: PointSolution, name: str) -> float:
         return cycle_error(solution, name) if name in ("h_c", "h_min") else 0.0
     changes = np.asarray(history[key].values, dtype=float)
     floored = math.isfinite(solution.scalars.get(floor, (math.nan, "1"))[0])
+    h_c = np.asarray(history["thermal_h_c_history"].values if "thermal_h_c_history" in history else (), dtype=float)
+    state, film = floor_error(changes, h_c) if floored else (remaining_error(changes, False), math.nan)
     if name in ("dT_max", "dT_min") and thermal:
-        return remaining_error(changes, floored) / abs(value) if value != 0.0 else 0.0
+        return state / abs(value) if value != 0.0 else 0.0
     if name == "mu" and not thermal:
-        return remaining_error(changes, floored)
-    h_c = history["thermal_h_c_history"].values if "thermal_h_c_history" in history else ()
-    if len(h_c) < 2 or h_c[-1] == 0.0:
+        return state
+    if floored:
+        return film
+    if h_c.size < 2 or h_c[-1] == 0.0:
         return 0.0
     last = abs(h_c[-1] - h_c[-2]) / abs(h_c[-1])
-    state = remaining_error(changes, floored)
     return last if state == 0.0 or changes[-1] == 0.0 else last * state / float(changes[-1])
 
 
@@ -264,10 +278,13 @@ def bounds(solution: PointSolution, e_y: dict[str, float],
         unresolved["dT_max"] = True
     out: dict[str, tuple[float, str]] = {}
     for name, (e_x, along_y) in estimates.items():
-        bound = math.inf if unresolved[name] else (TUNING.bound_safety * (abs(e_x) + abs(along_y))
-                                                   + iteration_error(solution, name))
+        left = iteration_error(solution, name) if solution.outcome is Outcome.CONVERGED else math.inf
+        bound = math.inf if unresolved[name] or left > TUNING.max_iteration_error else (
+            TUNING.bound_safety * (abs(e_x) + abs(along_y)) + left)
         if math.isfinite(bound):
             out[f"error_bound_{name}"] = (bound, "1")
+        if math.isfinite(left):
+            out[f"iteration_error_{name}"] = (left, "1")
         out[f"unresolved_{name}"] = (float(not math.isfinite(bound)), "1")
     return out
 

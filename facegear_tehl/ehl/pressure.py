@@ -30,6 +30,7 @@ from facegear_tehl.ehl.anderson import Anderson
 from facegear_tehl.ehl.convergence import (
     History,
     at_algebraic_floor,
+    call_drifting,
     finite,
     flicker_stalled,
     running_away,
@@ -111,7 +112,7 @@ class PressureIteration:
             if best is not None:
                 self._keep_best(best, index, change if extra > 0 else 1.0, load_error)
             if extra > 0:
-                ended = self._judge(index, change, load_error, extra)
+                ended = self._judge(index, change, load_error, extra, extra == max_cycles)
                 if ended is not None:
                     return ended
             if extra == max_cycles:
@@ -154,15 +155,17 @@ class PressureIteration:
         if score < best.score:
             best.score, best.iterate = score, self.solver.snapshot(index)
 
-    def _judge(self, index: int, change: float, load_error: float, extra: int) -> Status | None:
-        """CONVERGED on the tolerances, on the algebraic floor (not while the truncation is on trial) or on a failed
-        truncation taken back to the floor it began at; None to go on."""
+    def _judge(self, index: int, change: float, load_error: float, extra: int, last: bool) -> Status | None:
+        """CONVERGED on the tolerances or on the algebraic floor (not while the truncation is on trial), neither
+        before the `last` cycle of the call while this call's central film drifts one way (its fixed point lies
+        further on); or on a failed truncation taken back to the floor it began at; None to go on."""
         settings, history = self.settings, self.history
-        if change < settings.tolerance and abs(load_error) < settings.load_tolerance:
+        settled = last or not call_drifting(history.films, extra)
+        if change < settings.tolerance and abs(load_error) < settings.load_tolerance and settled:
             return CONVERGED
         if self._update_truncation(index, extra):
             return CONVERGED
-        if at_algebraic_floor(history.changes, history.loads, settings) and not self._on_trial():
+        if at_algebraic_floor(history.changes, history.loads, settings) and not self._on_trial() and settled:
             history.floor = change
             return CONVERGED
         return None

@@ -295,8 +295,9 @@ class PointSolve:
         temperature = model.initial_temperature() if initial is None else initial.temperature
         factor = np.ones_like(temperature) if initial is None else initial.viscosity_factor
         target = UniformTarget(self, index, model, initial, coarse_h_c)
+        floor_ends = self.attempt >= TUNING.damped_attempt  # before it a floor is a stall the damped attempt may pass
         end = CoupledLoop(target, self.pressure, self.history, self.settings.max_thermal_iterations,
-                          self.lubricant.inlet_temperature).run(temperature, factor)
+                          self.lubricant.inlet_temperature, floor_ends).run(temperature, factor)
         self.loop_ending = end.ending
         if end.ending in (Ending.TOLERANCE, Ending.FLOOR, Ending.STOPPED):
             if end.ending is not Ending.STOPPED:
