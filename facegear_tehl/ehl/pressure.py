@@ -126,12 +126,19 @@ class PressureIteration:
                 if self.mixer is not None:
                     self.mixer.reset()
             elif extra > 0:
-                self.engaged = self.engaged or flicker_stalled(history.changes[-extra:])
+                self.engaged = self.engaged or self._stalled_past_means(change, extra, means)
                 self._mix(index)
             previous = self._one_cycle(index)
             if not finite(level):
                 return Status(Outcome.DIVERGED,
                               f"diverged at cycle {history.cycles} on the finest grid (non-finite pressure or film)")
+
+    def _stalled_past_means(self, change: float, extra: int, means: int) -> bool:
+        """The call's bare cycles stopped contracting (`flicker_stalled`) where the phase means do not reach: above
+        phase_mean_band times the tolerance, or with the call's max_phase_means used up (a period-2 stall inside the
+        band is the phase means', whose mean is the fixed point its phases straddle)."""
+        reached = change < TUNING.phase_mean_band * self.settings.tolerance and means < TUNING.max_phase_means
+        return not reached and flicker_stalled(self.history.changes[-extra:])
 
     def _record(self, index: int, previous: np.ndarray, extra: int) -> tuple[float, float]:
         """The change against `previous` and the load error of level `index`, appended to the history (the entry
