@@ -8,12 +8,14 @@ current factor (at most TUNING.load_step), moves H_0 by the predicted change of 
 --tolerance (at most --cycles). A step is accepted when they are and the film is open (h_min > 0); otherwise it is
 taken back and the logarithm of its factor halved, down to TUNING.min_load_step. With --phase-means a V-cycle
 whose pressure change runs against the previous one (correlation below -0.8: a period-2 limit cycle) is replaced by
-the mean of its two phases. Prints per step the load fraction, the cycles, the change, the load error, h_min and
-where it lies; at the end the fraction reached, Moes M there, and where the pressure change of the next V-cycles
-concentrates with the correlation of successive changes (-1: a period-2 limit cycle).
+the mean of its two phases; with --anderson M each step's V-cycles are accelerated by Anderson's method with M
+columns (pressure.accelerate, as the pressure iteration does). Prints per step the load fraction, the cycles, the
+change, the load error, h_min and where it lies; at the end the fraction reached, Moes M there, and where the
+pressure change of the next V-cycles concentrates with the correlation of successive changes (-1: a period-2 limit
+cycle).
 
     python scripts/continuation_reach.py w01 [--grid 257] [--grid-y 65] [--attempt 3] [--phase-means]
-                                             [--tolerance 1e-3] [--cycles 12]
+                                             [--anderson M] [--tolerance 1e-3] [--cycles 12]
 """
 
 from __future__ import annotations
@@ -25,9 +27,11 @@ import sys
 
 import numpy as np
 
+from facegear_tehl.ehl.anderson import Anderson
 from facegear_tehl.ehl.convergence import finite
 from facegear_tehl.ehl.domain import predicted_central_film
 from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem, at_load_fraction
+from facegear_tehl.ehl.pressure import accelerate
 from facegear_tehl.ehl.retry import ATTEMPTS
 from facegear_tehl.ehl.solve import PointSolve
 from facegear_tehl.ehl.start import FILM_LOAD_EXPONENT
@@ -46,11 +50,12 @@ def correlation(first: np.ndarray, second: np.ndarray) -> float:
 class Continuation:
     """The finest level of one contact's solver, its load raised step by step."""
 
-    def __init__(self, solve: PointSolve, tolerance: float, cycles: int, phase_means: bool):
+    def __init__(self, solve: PointSolve, tolerance: float, cycles: int, phase_means: bool, anderson: int = 0):
         self.solver: MultigridSolver = solve.solver
         self.full: Problem = solve.solver.problem
         self.top = len(self.solver.levels) - 1
         self.tolerance, self.cycles, self.phase_means = tolerance, cycles, phase_means
+        self.mixer = Anderson(anderson, TUNING.pressure_anderson_growth) if anderson else None
         self.fraction = min(1.0, TUNING.continuation_moes_m / solve.scaling.moes_m)
         self.solver.problem = at_load_fraction(self.full, self.fraction)
         central = predicted_central_film(solve.scaling) / solve.scaling.film_scale
@@ -80,13 +85,18 @@ class Continuation:
     def converge(self) -> tuple[bool, int, float]:
         """V-cycles until the pressure change and the load error are below the tolerance: (met, cycles, change)."""
         last, change = None, math.inf
+        if self.mixer is not None:
+            self.mixer.reset()
         for cycle in range(1, self.cycles + 1):
+            before = self.solver.snapshot(self.top)
             last = self.one_cycle(last)
             if not finite(self.level) or abs(self.load_error()) > TUNING.diverged_load_error:
                 return False, cycle, math.inf
             change = float(np.abs(last).sum() / max(np.abs(self.level.pressure).sum(), 1e-300))
             if change < self.tolerance and abs(self.load_error()) < self.tolerance:
                 return True, cycle, change
+            if self.mixer is not None:
+                accelerate(self.solver, self.top, before, self.mixer)
         return False, self.cycles, change
 
     def step(self, factor: float) -> bool:
@@ -142,11 +152,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--phase-means", action="store_true", help="replace period-2 cycles by their mean")
     parser.add_argument("--tolerance", type=float, default=1e-3)
     parser.add_argument("--cycles", type=int, default=12, help="V-cycles per step at most")
+    parser.add_argument("--anderson", type=int, default=0, help="Anderson columns on the V-cycle map (0: bare)")
     args = parser.parse_args(argv)
     case = args.case
     solve = PointSolve(case.point(), case.lubricant(), case.settings(args.grid, args.grid_y),
                        ATTEMPTS[args.attempt - 1].relaxation, attempt=args.attempt)
-    run = Continuation(solve, args.tolerance, args.cycles, args.phase_means)
+    run = Continuation(solve, args.tolerance, args.cycles, args.phase_means, args.anderson)
     run.raise_load()
     level = run.level
     print(f"{case.name} on {level.nx} x {level.ny}: load reached {run.fraction:.3f} (Moes M "

@@ -181,7 +181,10 @@ def test_near_the_solution_the_truncated_correction_converges_below_the_old_floo
     pressurised node the V-cycle stalls at ~6.4e-5 per cycle (the cavitation boundary flips by a node every cycle) and
     ends on that algebraic floor; truncated next to cavitation once the change is below 10x the tolerance
     (TUNING.truncation_band) it converges on its tolerance, and on to 1e-7 when asked, to the same discrete solution
-    (h_c and p_max within the flicker of the stalled iterate)."""
+    (h_c and p_max within the flicker of the stalled iterate). Both with the bare V-cycles (pressure_anderson_depth
+    0); with Anderson's method (pressure.accelerate), which engages only when a call's bare cycles stop contracting,
+    the full correction's call reaches that floor at the stall that would engage it and ends there; asked for 1e-7,
+    the stall engages it and it converges to the truncated solve's h_c."""
     from dataclasses import replace
 
     from facegear_tehl.ehl import pressure as pressure_module
@@ -193,8 +196,10 @@ def test_near_the_solution_the_truncated_correction_converges_below_the_old_floo
     settings = SolverSettings(grid=257, grid_y=33, domain_x=(-4.5, 1.5), domain_y=(-3.0, 3.0), max_cycles=60,
                               tolerance=1e-5, load_tolerance=1e-5)
     results = {}
-    for band in (0.0, TUNING.truncation_band):  # 0: never truncated
-        pressure_module.TUNING = replace(TUNING, truncation_band=band)
+    runs = {"stalled": (0.0, 0), "truncated": (TUNING.truncation_band, 0), "accelerated": (0.0, None)}
+    for name, (band, depth) in runs.items():  # band 0: never truncated; depth 0: bare V-cycles
+        depth = TUNING.pressure_anderson_depth if depth is None else depth
+        pressure_module.TUNING = replace(TUNING, truncation_band=band, pressure_anderson_depth=depth)
         try:
             solve = PointSolve(point, lubricant, settings)
             index, status = start(solve, below_top=0)
@@ -206,14 +211,18 @@ def test_near_the_solution_the_truncated_correction_converges_below_the_old_floo
         finally:
             pressure_module.TUNING = TUNING
         level = solve.solver.levels[index]
-        results[band] = status, floor, further, solve.history, solve.solver.central_film(level), level.pressure.max()
-    stalled, truncated = results[0.0], results[TUNING.truncation_band]
+        results[name] = status, floor, further, solve.history, solve.solver.central_film(level), level.pressure.max()
+    stalled, truncated, accelerated = results["stalled"], results["truncated"], results["accelerated"]
     assert stalled[0].converged and stalled[1] > 3e-5  # ended on the floor
     assert not stalled[2].converged and min(stalled[3].changes[-10:]) > 3e-5  # and cannot leave it
     assert truncated[0].converged and math.isnan(truncated[1])  # on its tolerance
     assert truncated[2].converged and truncated[3].changes[-1] < 1e-7
     assert truncated[4] == pytest.approx(stalled[4], rel=1e-4)
     assert truncated[5] == pytest.approx(stalled[5], abs=2e-3)
+    assert accelerated[0].converged and accelerated[1] == stalled[1]  # on the same floor
+    # asked for 1e-7 its stall engages the acceleration, which leaves the floor for the truncated solve's h_c (the
+    # stalled iterate's is 2e-5 from it)
+    assert accelerated[2].converged and accelerated[4] == pytest.approx(truncated[4], rel=2e-6)
 
 
 def test_the_truncated_correction_waits_for_a_stall():

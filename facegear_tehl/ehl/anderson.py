@@ -10,7 +10,8 @@ with dX, dF the columns x_i+1 - x_i, f_i+1 - f_i of the last m pairs and W a dia
 components comparable: one scale per block of components (the thermal loop's temperatures and ln(eta*/eta)), so that
 the inner products are kept per block and unweighted, each formed once, when its column enters, however the scales
 move (the thermal loop's 1/rise moves at every update). For a linear map Anderson's iterates are those of GMRES on it
-(Walker & Ni 2011, theorem 2.2). The history restarts when a step grows (TUNING.anderson_growth). The m x m
+(Walker & Ni 2011, theorem 2.2). The history restarts when a step grows by more than a factor (TUNING.anderson_growth
+for the film-state loops). The m x m
 least-squares problem is solved through its normal equations (m <= 5 here: the vectors are long, the system tiny),
 dropping directions whose singular value is below TUNING.gram_cutoff of the largest.
 
@@ -57,9 +58,10 @@ def _combine(x, f, gamma, columns, out):
 class Anderson:
     """The history of an accelerated fixed-point iteration (float arrays of one shape) and its next iterate."""
 
-    def __init__(self, depth: int):
-        """`depth`: m, the number of earlier pairs (x_i, f_i) combined."""
-        self.depth = depth
+    def __init__(self, depth: int, growth: float | None = None):
+        """`depth`: m, the number of earlier pairs (x_i, f_i) combined; `growth`: the factor by which the weighted step
+        may grow from one iterate to the next before the history is dropped (None: TUNING.anderson_growth)."""
+        self.depth, self.growth = depth, growth
         self._last: tuple[np.ndarray, np.ndarray] | None = None  # (x, f) of the last step, on the support
         self._dg: list[np.ndarray] = []  # the columns of dX + dF: the step's correction is their combination
         self._df: list[np.ndarray] = []
@@ -71,6 +73,11 @@ class Anderson:
         self._support: np.ndarray | None = None
         self._mask: np.ndarray | None = None
         self._whole = False
+
+    @property
+    def columns(self) -> int:
+        """The pairs of differences the last step combined (0: it was the plain step)."""
+        return len(self._df)
 
     def reset(self) -> None:
         """Forget the history (the next step is the plain one) and its support."""
@@ -138,7 +145,8 @@ class Anderson:
             return np.array([np.dot(a[block], b[block]) for block in blocks])
 
         norm = math.sqrt(float(squares @ products(f, f)))
-        if self._last is not None and norm > TUNING.anderson_growth * self._norm:
+        growth = TUNING.anderson_growth if self.growth is None else self.growth
+        if self._last is not None and norm > growth * self._norm:
             self._forget()
         self._norm = norm
         if self._last is not None:

@@ -1,15 +1,20 @@
 """The pressure iteration on a frozen film state: V-cycles on one level until its tolerances or its algebraic floor.
 
 `PressureIteration.cycle` is the one loop every stage cycles the pressure with (Venner & Lubrecht 2000, ch. 5):
-per cycle it records the change, residual and load error into the solve's History, judges them with
-convergence.py, and deals with the two limit cycles the V-cycle can fall into above its floor:
+per cycle it records the change, residual and load error into the solve's History and judges them with
+convergence.py. Once a call's bare cycles stop contracting (the change fell by less than 1 - floor_stall over two
+cycles: a mode with an iteration factor near -1 or slightly above 1), each cycle starts from Anderson's combination of
+the cycles of the call so far on the map (P, H_0) -> V(P, H_0) (`accelerate`; Walker & Ni 2011; Brune, Knepley,
+Smith & Tu 2015), which damps those few modes; a call whose bare cycles contract is not touched. It deals with the two
+limit cycles the V-cycle can fall into above its floor:
 - a period-2 limit cycle between floor_band and phase_mean_band times the tolerance is replaced by the mean of its
   last two iterates (the fixed point its phases straddle), at most max_phase_means times per call;
 - a stall below truncation_band times the tolerance switches the truncated coarse-grid correction on (the nodes next
   to cavitation skip it, multigrid.corrected_nodes) for the rest of the solve; if the change then leaves the band on
   one film state it is switched off for good and, within the call that switched it on, the iterate it began at is
   restored.
-The discrete solution is unchanged by both: convergence is judged on an undamped cycle's change and load error.
+The discrete solution is unchanged by all three: convergence is judged on an undamped cycle's change and load error,
+and a call that converges ends on that cycle's iterate.
 """
 
 from __future__ import annotations
@@ -21,6 +26,7 @@ import math
 
 import numpy as np
 
+from facegear_tehl.ehl.anderson import Anderson
 from facegear_tehl.ehl.convergence import (
     History,
     at_algebraic_floor,
@@ -51,6 +57,27 @@ class Best:
     iterate: Iterate
 
 
+def pressure_mixer() -> Anderson | None:
+    """The Anderson history of one call of the pressure iteration (None: bare V-cycles)."""
+    depth = TUNING.pressure_anderson_depth
+    return Anderson(depth, TUNING.pressure_anderson_growth) if depth else None
+
+
+def accelerate(solver: MultigridSolver, index: int, before: Iterate, mixer: Anderson, apply: bool = True) -> None:
+    """Level `index` on Anderson's combination of the V-cycles so far (Walker & Ni 2011, eq. 1.3) on the map
+    x = (P, H_0) -> V(x): the last cycle went from `before` to the level's pressure and H_0, its plain step
+    f = V(x) - x; the combination is projected on P >= 0 (Brune, Knepley, Smith & Tu 2015, SIAM Rev. 57:535-565, the
+    FAS cycle as the nonlinear preconditioner of Anderson's method). Without `apply` the pair (x, f) only enters the
+    history (Anderson's columns are differences of pairs, whichever iterate each cycle started from) and the level
+    stays on the plain step."""
+    level = solver.levels[index]
+    x = np.append(before.pressure.ravel(), before.h0)
+    f = np.append(level.pressure.ravel(), solver.h0) - x
+    mixed = mixer.step(x, f)
+    if apply and mixer.columns:  # else the plain step: the level is on it
+        solver.restore(index, Iterate(np.maximum(mixed[:-1], 0.0).reshape(level.pressure.shape), float(mixed[-1])))
+
+
 class PressureIteration:
     """The pressure iteration of one point solve: the current multigrid solver and history (the solve replaces
     them when it begins a new hierarchy or adds an outlet patch), and the state its limit-cycle remedies keep
@@ -64,6 +91,9 @@ class PressureIteration:
         # the iterate it was switched on at, its change if that was the algebraic floor (else NaN), the call
         self.before_truncation: tuple[Iterate, float, int] | None = None
         self.calls = 0  # calls of `cycle` so far
+        self.mixer: Anderson | None = None  # the Anderson history of the call under way (None: bare V-cycles)
+        self.mixed_under = self.truncation  # the truncation its history was gathered with
+        self.engaged = False  # the call's bare cycles stopped contracting: its cycles start from the combination
 
     def cycle(self, index: int, max_cycles: int, best: Best | None = None) -> Status:
         """V-cycles on level `index` until the tolerances are met (or the algebraic floor is reached), at most
@@ -73,6 +103,7 @@ class PressureIteration:
         previous = level.pressure.copy()
         self.calls += 1
         means = 0  # period-2 cycles replaced by the mean of their phases
+        self.mixer, self.mixed_under, self.engaged = pressure_mixer(), self.truncation, False
         for extra in itertools.count():
             change, load_error = self._record(index, previous, extra)
             if running_away(load_error):
@@ -92,10 +123,22 @@ class PressureIteration:
             if extra >= 3 and means < TUNING.max_phase_means and self._in_phase_band(change):
                 self._restore_mean(index)
                 means += 1
+                if self.mixer is not None:
+                    self.mixer.reset()
+            elif extra > 0:
+                self.engaged = self.engaged or self._stalled_past_means(change, extra, means)
+                self._mix(index)
             previous = self._one_cycle(index)
             if not finite(level):
                 return Status(Outcome.DIVERGED,
                               f"diverged at cycle {history.cycles} on the finest grid (non-finite pressure or film)")
+
+    def _stalled_past_means(self, change: float, extra: int, means: int) -> bool:
+        """The call's bare cycles stopped contracting (`flicker_stalled`) where the phase means do not reach: above
+        phase_mean_band times the tolerance, or with the call's max_phase_means used up (a period-2 stall inside the
+        band is the phase means', whose mean is the fixed point its phases straddle)."""
+        reached = change < TUNING.phase_mean_band * self.settings.tolerance and means < TUNING.max_phase_means
+        return not reached and flicker_stalled(self.history.changes[-extra:])
 
     def _record(self, index: int, previous: np.ndarray, extra: int) -> tuple[float, float]:
         """The change against `previous` and the load error of level `index`, appended to the history (the entry
@@ -153,6 +196,19 @@ class PressureIteration:
             solver.truncated = False
         self.history.cycles += 1
         return previous
+
+    def _mix(self, index: int) -> None:
+        """The last V-cycle into the Anderson history and, once the call is `engaged`, level `index` on the
+        combination (`accelerate`); the history is dropped where the map changed (the truncation switched) or the last
+        cycle's start is not known."""
+        mixer = self.mixer
+        if mixer is None:
+            return
+        if self.before_cycle is None or self.truncation is not self.mixed_under:
+            mixer.reset()
+            self.mixed_under = self.truncation
+        if self.before_cycle is not None:
+            accelerate(self.solver, index, self.before_cycle[0], mixer, self.engaged)
 
     def _update_truncation(self, index: int, extra: int) -> bool:
         """Switch the truncated correction on at a flicker stall below truncation_band times the tolerance; switch it

@@ -36,6 +36,8 @@ class Tuning:
     max_phase_means: int = 10  # phase means per call of the pressure iteration (the 2000:1 ellipse needs ten)
     truncation_band: float = 10.0  # a stall below this multiple of the tolerance tries the truncated correction
     truncation_trial: int = 4  # cycles the truncated correction runs before a stall counts as the floor
+    pressure_anderson_depth: int = 5  # Anderson columns on the V-cycle map P, H_0 -> V(P, H_0) (0: bare cycles)
+    pressure_anderson_growth: float = 2.0  # ... its history is dropped when the cycle's step grew by this factor
     # --- the coupled (pressure-film state) outer loop
     cycles_per_thermal_update: int = 2  # V-cycles on the pressure between two updates of a thermal film state
     cycles_per_eyring_update: int = 1  # ... of an isothermal Ree-Eyring film's state (an update costs 1/4 cycle)
