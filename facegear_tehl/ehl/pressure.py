@@ -3,10 +3,11 @@
 `PressureIteration.cycle` is the one loop every stage cycles the pressure with (Venner & Lubrecht 2000, ch. 5):
 per cycle it records the change, residual and load error into the solve's History and judges them with
 convergence.py. Once a call's bare cycles stop contracting (the change fell by less than 1 - floor_stall over two
-cycles: a mode with an iteration factor near -1 or slightly above 1), each cycle starts from Anderson's combination of
-the cycles of the call so far on the map (P, H_0) -> V(P, H_0) (`accelerate`; Walker & Ni 2011; Brune, Knepley,
-Smith & Tu 2015), which damps those few modes; a call whose bare cycles contract is not touched. It deals with the two
-limit cycles the V-cycle can fall into above its floor:
+cycles: a mode with an iteration factor near -1 or slightly above 1) where the phase means below do not reach (above
+phase_mean_band times the tolerance, or with the call's phase means used up), each cycle starts from Anderson's
+combination of the cycles of the call so far on the map (P, H_0) -> V(P, H_0) (`accelerate`; Walker & Ni 2011;
+Brune, Knepley, Smith & Tu 2015), which damps those few modes; a call whose bare cycles contract is not touched. It
+deals with the two limit cycles the V-cycle can fall into above its floor:
 - a period-2 limit cycle between floor_band and phase_mean_band times the tolerance is replaced by the mean of its
   last two iterates (the fixed point its phases straddle), at most max_phase_means times per call;
 - a stall below truncation_band times the tolerance switches the truncated coarse-grid correction on (the nodes next
