@@ -3,14 +3,15 @@
 1. Solves one point of a gear case (default S1 of cases/facegear_110.yaml, thermal full, outlet stage off), keeps its
    pressure and film, iterates the film-state map alone (`FilmThermalModel.update`, no V-cycles) to a reference fixed
    point, raises the interior layers by --perturbation K and iterates again with full steps (no relaxation, no
-   Anderson), each update's sweeps run to their cap; prints the largest error after each update and its ratio to the
-   one before, for the map as solved, with parts of the film state held at the reference (the surfaces' Jaeger
-   temperatures, the velocities across the film, the dissipation), and with more sweeps per update.
+   Anderson), each update's sweeps run to their cap (--sweeps, default TUNING.energy_sweeps); prints the largest error
+   after each update and its ratio to the one before, for the map as solved, with parts of the film state held at the
+   reference (the surfaces' Jaeger temperatures, the velocities across the film, the dissipation), and with two and
+   four times the sweeps per update.
 2. With --forcing F [F ...]: the case's points solved in turn in one process (one BLAS thread) with
    `TUNING.energy_forcing` (the largest share of `coupled.energy_forcing`, the energy sweeps' adaptive tolerance)
    set to each F: outer iterations and CPU time of the solves.
 
-    python scripts/film_state_map.py [CASE] [--point S1] [--perturbation 2] [--forcing 0.3 0.15]
+    python scripts/film_state_map.py [CASE] [--point S1] [--perturbation 2] [--sweeps 32] [--forcing 0.3 0.15]
 
 docs/benchmarks.md ("Where S1's thermal time goes") and docs/tuning.md (`energy_forcing`) quote both.
 """
@@ -37,7 +38,7 @@ REFERENCE_UPDATES = 200  # half steps to the reference fixed point
 REFERENCE_TOLERANCE = 1e-6  # K, the sweeps' tolerance: they run to their cap
 
 
-def frozen_map(case, point_name: str, perturbation: float) -> None:
+def frozen_map(case, point_name: str, perturbation: float, sweeps: int) -> None:
     point = next(p for p in contact_analysis(case).points if p.name == point_name)
     settings = replace(case.solver, thermal="full", outlet_refinement="never")
     point_solve = PointSolve(point, case.lubricant, settings)
@@ -80,7 +81,7 @@ def frozen_map(case, point_name: str, perturbation: float) -> None:
 
     thermal.rheology.shear_state = holding
     tuning = thermal.TUNING
-    sweeps = tuning.energy_sweeps
+    thermal.TUNING = replace(tuning, energy_sweeps=sweeps)
     try:
         run(f"as solved ({sweeps} sweeps per update)")
         model._surface = lambda flux, index, speed: reference[0 if index == 0 else -1]
@@ -127,11 +128,12 @@ def main() -> None:
     parser.add_argument("case", nargs="?", default=str(HERE / "cases" / "facegear_110.yaml"))
     parser.add_argument("--point", default="S1")
     parser.add_argument("--perturbation", type=float, default=2.0, help="K added to the interior layers")
+    parser.add_argument("--sweeps", type=int, default=None, help="energy sweeps per update (the variants' cap)")
     parser.add_argument("--forcing", type=float, nargs="*", default=[])
     args = parser.parse_args()
     case = load_case(args.case)
     with threadpool_limits(limits=1):
-        frozen_map(case, args.point, args.perturbation)
+        frozen_map(case, args.point, args.perturbation, args.sweeps or thermal.TUNING.energy_sweeps)
         if args.forcing:
             forcing_table(case, args.forcing)
 
