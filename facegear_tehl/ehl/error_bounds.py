@@ -40,11 +40,13 @@ import numpy as np
 
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.convergence import drifting
+from facegear_tehl.ehl.grid import hierarchy_shapes
 from facegear_tehl.ehl.report import ORDER_DT_MAX, ORDER_MU, LevelSummary
 from facegear_tehl.ehl.richardson import ORDER
 from facegear_tehl.ehl.scaling import Scaling
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.lubricant import Lubricant
+from facegear_tehl.record import Stage
 from facegear_tehl.settings import OutletRefinement, SolverSettings
 from facegear_tehl.solution import Outcome, PointSolution
 
@@ -179,32 +181,80 @@ def floor_error(changes: np.ndarray, films: np.ndarray) -> tuple[float, float]:
     return amplitude, max(float(relative.max() - relative.min()), sensitivity * amplitude)
 
 
-def iteration_error(solution: PointSolution, name: str) -> float:
-    """Relative error the iteration left in a figure (remaining_error of its changes): of the outer loop where the
-    solve has one, of the largest layer temperature for the temperatures (K over |value|), of ln(eta*/eta) for mu of
-    an isothermal Ree-Eyring film, else of the central film, whose last change contracts as the loop's film state does;
-    at the loop's floor the amplitude of its last window instead (`floor_error`); without an outer loop, of the
-    pressure cycles for the film figures (`cycle_error`, inf where it cannot bound), else 0."""
-    history, value = solution.history, solution.scalar(name)
-    thermal = "thermal_change_history" in history
-    key, floor = ("thermal_change_history", "thermal_floor") if thermal else ("viscosity_change_history",
-                                                                                "viscosity_floor")
-    if key not in history:
-        return cycle_error(solution, name) if name in ("h_c", "h_min") else 0.0
-    changes = np.asarray(history[key].values, dtype=float)
-    floored = math.isfinite(solution.scalars.get(floor, (math.nan, "1"))[0])
-    h_c = np.asarray(history["thermal_h_c_history"].values if "thermal_h_c_history" in history else (), dtype=float)
-    state, film = floor_error(changes, h_c) if floored else (remaining_error(changes, False), math.nan)
+def loop_error(changes: np.ndarray, films: np.ndarray, floored: bool, name: str, value: float,
+               thermal: bool) -> float:
+    """Relative error an outer loop with these `changes` (of the largest layer temperature, K, where `thermal`, else of
+    ln(eta*/eta)) and central films `films` (m, one per change) left in figure `name` of value `value`
+    (`iteration_error`); `floored`: the loop ended at its floor (`floor_error`)."""
+    state, film = floor_error(changes, films) if floored else (remaining_error(changes, False), math.nan)
     if name in ("dT_max", "dT_min") and thermal:
         return state / abs(value) if value != 0.0 else 0.0
     if name == "mu" and not thermal:
         return state
     if floored:
         return film
-    if h_c.size < 2 or h_c[-1] == 0.0:
+    if films.size < 2 or films[-1] == 0.0:
         return 0.0
-    last = abs(h_c[-1] - h_c[-2]) / abs(h_c[-1])
+    last = abs(films[-1] - films[-2]) / abs(films[-1])
     return last if state == 0.0 or changes[-1] == 0.0 else last * state / float(changes[-1])
+
+
+def outer_loop(solution: PointSolution) -> tuple[np.ndarray, np.ndarray, bool, bool]:
+    """The outer loops' changes and central films over the whole solve (every stage's, in order), whether it is
+    thermal, and whether its last loop ended at its floor; empty without an outer loop."""
+    history = solution.history
+    thermal = "thermal_change_history" in history
+    key, floor = ("thermal_change_history", "thermal_floor") if thermal else ("viscosity_change_history",
+                                                                                "viscosity_floor")
+    if key not in history:
+        return np.empty(0), np.empty(0), thermal, False
+    changes = np.asarray(history[key].values, dtype=float)
+    floored = math.isfinite(solution.scalars.get(floor, (math.nan, "1"))[0])
+    h_c = np.asarray(history["thermal_h_c_history"].values if "thermal_h_c_history" in history else (), dtype=float)
+    return changes, h_c, thermal, floored
+
+
+def iteration_error(solution: PointSolution, name: str) -> float:
+    """Relative error the iteration left in a figure (remaining_error of its changes): of the outer loop where the
+    solve has one, of the largest layer temperature for the temperatures (K over |value|), of ln(eta*/eta) for mu of
+    an isothermal Ree-Eyring film, else of the central film, whose last change contracts as the loop's film state does;
+    at the loop's floor the amplitude of its last window instead (`floor_error`); without an outer loop, of the
+    pressure cycles for the film figures (`cycle_error`, inf where it cannot bound), else 0."""
+    changes, h_c, thermal, floored = outer_loop(solution)
+    if changes.size == 0:
+        return cycle_error(solution, name) if name in ("h_c", "h_min") else 0.0
+    return loop_error(changes, h_c, floored, name, solution.scalar(name), thermal)
+
+
+def reference_stage(solution: PointSolution, name: str) -> tuple[Stage, int]:
+    """The stage whose figure the x-estimate of `name` compares the reported one with, and the ratio of the x
+    spacings: the outlet patches' uniform grid for dT_max, dT_min and mu of an outlet-refined solve (2^patches,
+    report._outlet_scalars), else the coarse stage (2)."""
+    patches = solution.scalars.get("outlet_patches", (0.0, "1"))[0]
+    if patches > 0.0 and name in ("dT_max", "mu"):
+        return Stage.FINEST, 2 ** int(patches)
+    return Stage.COARSE, 2
+
+
+def reference_error(solution: PointSolution, name: str) -> float:
+    """The share of the x-estimate of `name` the reference grid's own iteration error can take (`reference_stage`):
+    the loop error that grid's last outer loop left (`loop_error`: its remaining change, or a flicker's largest
+    change), over r^p - 1 as the estimate divides its difference (report.estimate, richardson.richardson_error).
+    A seeded coarse stage stops at its own tolerance from a state other than the cold start's, so that its figures,
+    and the x-estimate with them, carry its iteration error (docs/accuracy.md, error bounds). 0 without a coupled
+    reference stage (an isothermal solve's levels are the full-multigrid start's, on both grids of the estimate)."""
+    stage, ratio = reference_stage(solution, name)
+    record = solution.record
+    ran = [s for s in (record.stages if record is not None else ()) if s.stage is stage and s.outer > 0]
+    changes, h_c, thermal, _ = outer_loop(solution)
+    if not ran or ran[-1].first_outer < 0 or changes.size == 0 or name not in solution.scalars:
+        return 0.0
+    window = slice(ran[-1].first_outer, ran[-1].first_outer + ran[-1].outer)
+    if changes[window].size < ran[-1].outer:
+        return 0.0
+    films = h_c[window] if h_c.size >= window.stop else np.empty(0)
+    left = loop_error(changes[window], films, False, name, solution.scalar(name), thermal)
+    return left / (ratio ** ORDERS[name] - 1.0)
 
 
 def runs(field: np.ndarray, inside: np.ndarray) -> tuple[int, int]:
@@ -257,6 +307,69 @@ def compression_held(solution: PointSolution, cold_unresolved: bool) -> bool:
     return cold_unresolved and rise > 0.0 and -cold >= rise
 
 
+def lowest_order(order: int) -> float:
+    """The lowest order q of a figure converging as C h^q at which F_s times its Richardson estimate at the assumed
+    `order` p still bounds its error: F_s/(2^p - 1) >= 1/(2^q - 1), q = log2(1 + (2^p - 1)/F_s) (1 for p = 2, 0.415
+    for p = 1 at F_s = 3)."""
+    return math.log2(1.0 + (2.0**order - 1.0) / TUNING.bound_safety)
+
+
+def observed_order(e_x: float, coarser: float) -> float:
+    """The order q of f = f* + C h^q read from three grids along x (Roache 1998, ch. 5; Celik et al. 2008, J. Fluids
+    Eng. 130: 078001, eq. 4 at the ratio 2): log2 of the ratio of the successive differences, from the x-estimates of
+    the finer pair `e_x` and of the next coarser pair `coarser` (both Richardson-scaled at the same order and in units
+    of the reported figure); NaN where the differences change sign (oscillatory convergence) or vanish."""
+    if not (math.isfinite(e_x) and math.isfinite(coarser)) or e_x * coarser <= 0.0:
+        return math.inf if e_x == 0.0 and coarser != 0.0 and math.isfinite(coarser) else math.nan
+    return math.log2(coarser / e_x)
+
+
+def three_grid_estimate(e_x: float, coarser: float, order: int) -> float:
+    """|e_x| checked against the next coarser pair along x (`coarser`, NaN: no third grid, |e_x| as it is); inf where
+    the three grids are outside the asymptotic range: the differences change sign, or do not fall at the observed order
+    `lowest_order` of the assumed `order` asks (Roache's asymptotic-range check of the grid convergence index, 1998,
+    ch. 5; the figures it concerns: docs/accuracy.md, error bounds). Within it, the larger of |e_x| and the coarser
+    pair's estimate carried one grid finer at the assumed order, |coarser|/2^p: under f = f* + C h^q the error of the
+    finest figure is at most F_s |e_x| for q down to lowest_order, and at most |coarser|/2^p for q at or above p; the
+    second also holds a finest pair whose difference vanishes by chance (an error crossing zero)."""
+    if not math.isfinite(coarser):
+        return abs(e_x)
+    if coarser == 0.0:
+        return abs(e_x) if e_x == 0.0 else math.inf
+    q = observed_order(e_x, coarser)
+    if math.isnan(q) or q < lowest_order(order):
+        return math.inf
+    return max(abs(e_x), abs(coarser) / 2.0**order)
+
+
+def coarser_estimates(solution: PointSolution) -> dict[str, float]:
+    """The next coarser pair's x-estimate of h_c and h_min (Richardson-scaled as report.estimate, in units of the
+    finest level's figure) from the solve's last three level summaries (`level_h_c`, `level_h_min`), where they are one
+    model on one refinement (the same rows, or all square): an isothermal Newtonian solve's full-multigrid levels, or a
+    coupled solve's seed stage, coarse stage and finest grid. Empty elsewhere (a coupled solve without a seed stage:
+    its levels below the coarse stage are the isothermal start's)."""
+    history, record = solution.history, solution.record
+    if "level_nodes" not in history or "grid" not in solution.scalars or "grid_y" not in solution.scalars:
+        return {}
+    coupled = "thermal_change_history" in history or "viscosity_change_history" in history
+    if coupled and (record is None or not any(s.stage is Stage.SEED for s in record.stages)):
+        return {}
+    nodes = [int(n) for n in history["level_nodes"].values[-3:]]
+    coarsest = int(solution.scalars.get("coarsest_grid", (17.0, "1"))[0])
+    shapes = hierarchy_shapes(int(solution.scalar("grid")), int(solution.scalar("grid_y")), coarsest)[-3:]
+    same_rows = len({ny for _, ny in shapes}) == 1 or all(nx == ny for nx, ny in shapes)
+    if len(nodes) < 3 or len(shapes) < 3 or nodes != [nx for nx, _ in shapes] or not same_rows:
+        return {}
+    out = {}
+    for name in ("h_c", "h_min"):
+        key = f"level_{name}"
+        if key in history and history[key].values.size >= 3:
+            third, second, first = (float(v) for v in history[key].values[-3:])
+            if first != 0.0:
+                out[name] = (second - third) / (2.0 ** ORDERS[name] - 1.0) / first
+    return out
+
+
 def unresolved_figure(solution: PointSolution, name: str, e_x: float, along_y: float, nodes: int) -> bool:
     """A figure no bound can be given (module docstring), from its estimates along x and y and the nodes across its
     feature."""
@@ -265,11 +378,12 @@ def unresolved_figure(solution: PointSolution, name: str, e_x: float, along_y: f
             or max(abs(e_x), abs(along_y)) > TUNING.asymptotic_estimate or nodes < TUNING.feature_nodes)
 
 
-def bounds(solution: PointSolution, e_y: dict[str, float],
-           nodes: dict[str, int] | None = None) -> dict[str, tuple[float, str]]:
+def bounds(solution: PointSolution, e_y: dict[str, float], nodes: dict[str, int] | None = None,
+           coarser: dict[str, float] | None = None) -> dict[str, tuple[float, str]]:
     """`error_bound_<name>` (relative, >= 0) of every reported figure it can bound and `unresolved_<name>` (1 or 0)
-    of every reported figure (module docstring); `nodes`: feature_nodes of the solution."""
-    nodes = nodes or {}
+    of every reported figure (module docstring); `nodes`: feature_nodes of the solution; `coarser`: the next coarser
+    pair's x-estimate of a figure (`three_grid_estimate`; `observed_order_<name>` in the file)."""
+    nodes, coarser = nodes or {}, coarser or {}
     estimates = {name: (solution.scalars.get(f"error_estimate_{name}", (math.nan, "1"))[0], e_y.get(name, math.nan))
                  for name in FIGURES if name in solution.scalars}
     unresolved = {name: unresolved_figure(solution, name, *estimates[name], nodes.get(name, TUNING.feature_nodes))
@@ -278,15 +392,40 @@ def bounds(solution: PointSolution, e_y: dict[str, float],
         unresolved["dT_max"] = True
     out: dict[str, tuple[float, str]] = {}
     for name, (e_x, along_y) in estimates.items():
-        left = iteration_error(solution, name) if solution.outcome is Outcome.CONVERGED else math.inf
+        converged = solution.outcome is Outcome.CONVERGED
+        left = iteration_error(solution, name) if converged else math.inf
+        along_x = three_grid_estimate(e_x, coarser.get(name, math.nan), ORDERS[name])
+        along_x += reference_error(solution, name) if converged else 0.0
         bound = math.inf if unresolved[name] or left > TUNING.max_iteration_error else (
-            TUNING.bound_safety * (abs(e_x) + abs(along_y)) + left)
+            TUNING.bound_safety * (along_x + abs(along_y)) + left)
         if math.isfinite(bound):
             out[f"error_bound_{name}"] = (bound, "1")
         if math.isfinite(left):
             out[f"iteration_error_{name}"] = (left, "1")
+        if name in coarser and math.isfinite(e_x) and math.isfinite(coarser[name]):
+            out[f"observed_order_{name}"] = (observed_order(e_x, coarser[name]), "1")
         out[f"unresolved_{name}"] = (float(not math.isfinite(bound)), "1")
     return out
+
+
+def with_coarser_pair(solution: PointSolution, coarser: PointSolution, t_inlet: float) -> PointSolution:
+    """`solution`'s bounds again with the x-estimates of `coarser`, the same point and model solved converged on the
+    grid its coarse stage lies on (the accuracy target's last grid), as the next coarser pair along x
+    (`three_grid_estimate`; in units of `solution`'s figures), for the figures whose estimates both solves take at the
+    ratio 2 (not dT_max and mu of an outlet-refined solve, report._outlet_scalars); t_inlet in K."""
+    if not (solution.converged and coarser.converged) or "film_thickness" not in solution.fields:
+        return solution
+    pairs = coarser_estimates(solution)
+    for name in FIGURES:
+        patched = any(s.scalars.get("outlet_patches", (0.0, "1"))[0] > 0.0 for s in (solution, coarser))
+        value, before = solution.scalars.get(name, (0.0, "1"))[0], coarser.scalars.get(name, (0.0, "1"))[0]
+        estimate = coarser.scalars.get(f"error_estimate_{name}", (math.nan, "1"))[0]
+        if value != 0.0 and math.isfinite(estimate) and not (patched and name in ("dT_max", "mu")):
+            pairs[name] = estimate * before / value
+    e_y = {name: solution.scalars.get(f"error_estimate_y_{name}", (math.nan, "1"))[0] for name in FIGURES}
+    kept = {k: v for k, v in solution.scalars.items() if not k.startswith(("error_bound_", "observed_order_"))}
+    extra = bounds(solution, e_y, feature_nodes(solution, t_inlet), pairs)
+    return replace(solution, scalars={**kept, **extra})
 
 
 def with_error_bounds(solution: PointSolution, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
@@ -300,7 +439,8 @@ def with_error_bounds(solution: PointSolution, point: ContactPoint, lubricant: L
     e_y = {}
     if solution.outcome is Outcome.CONVERGED:
         e_y = y_estimates(solution, point, lubricant, settings, solve, coarse)
-    extra = bounds(solution, e_y, feature_nodes(solution, lubricant.inlet_temperature))
+    nodes = feature_nodes(solution, lubricant.inlet_temperature)
+    extra = bounds(solution, e_y, nodes, coarser_estimates(solution))
     extra |= {f"error_estimate_y_{k}": (v, "1") for k, v in e_y.items() if math.isfinite(v)}
     extra["error_check_time"] = (time.perf_counter() - clock, "s")
     extra["error_check_cpu_time"] = (time.process_time() - cpu, "s")
