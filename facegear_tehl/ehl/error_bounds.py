@@ -352,7 +352,8 @@ def coarser_estimates(solution: PointSolution) -> dict[str, float]:
     if "level_nodes" not in history or "grid" not in solution.scalars or "grid_y" not in solution.scalars:
         return {}
     coupled = "thermal_change_history" in history or "viscosity_change_history" in history
-    if coupled and (record is None or not any(s.stage is Stage.SEED for s in record.stages)):
+    # a seed stage's level is in the summaries unless a later failure began the hierarchy again (its place -1)
+    if coupled and (record is None or not any(s.stage is Stage.SEED and s.first_outer >= 0 for s in record.stages)):
         return {}
     nodes = [int(n) for n in history["level_nodes"].values[-3:]]
     coarsest = int(solution.scalars.get("coarsest_grid", (17.0, "1"))[0])
