@@ -22,6 +22,7 @@ from facegear_tehl.ehl.error_bounds import (
     remaining_error,
     runs,
     three_grid_estimate,
+    with_coarser_pair,
     y_estimates,
 )
 from facegear_tehl.ehl.richardson import richardson_error
@@ -400,3 +401,28 @@ def test_the_coarse_stages_iteration_error_enters_the_x_estimate():
     assert reference_error(solution, "dT_max") == pytest.approx(0.9 / 60.0)
     out = bounds(solution, {"dT_max": 0.0})
     assert out["error_bound_dT_max"][0] >= abs(truth) > TUNING.bound_safety * e_x + out["iteration_error_dT_max"][0]
+
+
+def test_the_accuracy_targets_last_grid_is_the_third_grid_of_its_next_solve():
+    """The accuracy target's 257 x 65 and then 513 x 65 of one point (with_coarser_pair): h_min whose differences grow
+    from pair to pair (0.111, 0.123, 0.139 um: the envelope's ab30_ph1.5_u0.5_srr0.5_th) loses its bound; h_c, falling
+    at the second order, keeps it, with its observed order 2 in the file; dT_max of an outlet-refined solve (its
+    estimate over the patches' ratio, not 2) is left as the solve bounded it."""
+    film = {"film_thickness": Field(np.full((65, 513), 1.0e-7), "m", "")}
+    h_c = {257: 0.2 - 0.004, 513: 0.2 - 0.001}  # um: errors 0.004 and 0.001, the 129's 0.016
+    coarser = _solution(257, 65, h_c=h_c[257] * 1e-6, h_min=0.123e-6, dT_max=40.0,
+                        error_estimate_h_c=(h_c[257] - (0.2 - 0.016)) / 3.0 / h_c[257],
+                        error_estimate_h_min=(0.123 - 0.111) / 3.0 / 0.123, error_estimate_dT_max=0.004)
+    scalars = dict(h_c=h_c[513] * 1e-6, h_min=0.139e-6, dT_max=40.1, outlet_patches=2.0,
+                   error_estimate_h_c=(h_c[513] - h_c[257]) / 3.0 / h_c[513],
+                   error_estimate_h_min=(0.139 - 0.123) / 3.0 / 0.139, error_estimate_dT_max=0.0008,
+                   error_estimate_y_h_c=0.0, error_estimate_y_h_min=0.0, error_estimate_y_dT_max=0.0)
+    finer = _solution(513, 65, fields=film, **scalars)
+    finer = replace(finer, scalars=finer.scalars | {k: v for k, v in bounds(finer, {
+        "h_c": 0.0, "h_min": 0.0, "dT_max": 0.0}).items()})
+    assert finer.scalar("unresolved_h_min") == 0.0  # by its own two grids
+    checked = with_coarser_pair(finer, coarser, 300.0)
+    assert checked.scalar("unresolved_h_min") == 1.0 and "error_bound_h_min" not in checked.scalars
+    assert checked.scalar("unresolved_h_c") == 0.0 and checked.scalar("observed_order_h_c") == pytest.approx(2.0, 0.01)
+    assert checked.scalar("error_bound_dT_max") == finer.scalar("error_bound_dT_max")
+    assert "observed_order_dT_max" not in checked.scalars

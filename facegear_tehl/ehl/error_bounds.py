@@ -2,9 +2,13 @@
 
 A reported error estimate is a promise: the bound of a figure f solved on nx x ny nodes is
 
-    B = F_s (|e_x| + |e_y|) + e_it,
+    B = F_s (|e_x| + e_ref + |e_y|) + e_it,
 
-e_x the Richardson estimate of the solve from the grid one coarser along x alone (report.estimate), e_y the Richardson
+e_x the Richardson estimate of the solve from the grid one coarser along x alone (report.estimate), checked against the
+next coarser pair along x where a third grid is at hand (`three_grid_estimate`: Roache's asymptotic-range check; the
+solve's own levels, `coarser_estimates`, or the accuracy target's last grid, `with_coarser_pair`), e_ref the iteration
+error of the grid e_x compares with (`reference_error`: the coarse stage's loop stops at its own tolerance), e_y the
+Richardson
 estimate along y (`y_estimates`), e_it the error the iteration left, from its last changes and contraction rate
 (`iteration_error`: the outer loop's where the solve has one, else the finest grid's pressure cycles') and F_s =
 TUNING.bound_safety, the factor of Roache's grid convergence index (Roache 1994, J. Fluids Eng. 116: 405-413; Roache
@@ -18,7 +22,8 @@ solution itself. On a square finest grid e_x covers both axes (e_y = 0).
 
 A figure is "unresolved" (`unresolved_<name>` = 1 in the file, the word in the tables) where no bound can be given: a
 solve that did not converge; no e_x or no e_y (ny is the coarsest grid, or the check did not converge); an e_x or e_y
-above TUNING.asymptotic_estimate (outside the asymptotic range); its feature (the lowest film's basin, the hot or the
+above TUNING.asymptotic_estimate, or three grids along x whose differences change sign or fall slower than the lowest
+order F_s covers (outside the asymptotic range); its feature (the lowest film's basin, the hot or the
 cold spot) spanning fewer than TUNING.feature_nodes nodes along x or y (`feature_nodes`); p_max always (UNBOUNDED); h_c
 and h_min of a solve without an outer loop whose pressure cycles left the film `drifting` one way without contracting
 (its iteration error has no bound); any figure whose iteration error e_it (`iteration_error_<name>` in the file, the
