@@ -353,6 +353,7 @@ def test_the_three_grid_check_flags_oscillating_and_growing_differences_and_catc
     assert TUNING.bound_safety * abs(e_x) < 0.1 * abs(truth)  # the two-grid bound alone misses it tenfold
     assert observed_order(e_x, coarser) > 8.0
     assert TUNING.bound_safety * three_grid_estimate(e_x, coarser, 2) >= abs(truth)
+    assert three_grid_estimate(0.001, 0.004 * 2.0**1.5, 2) == 0.001  # q = 3.5 < 2 + log2(3): the two-grid bound stands
 
 
 def _levels(values: list[float], nodes: list[float]) -> dict[str, Field]:

@@ -334,9 +334,10 @@ def three_grid_estimate(e_x: float, coarser: float, order: int) -> float:
     the three grids are outside the asymptotic range: the differences change sign, or do not fall at the observed order
     `lowest_order` of the assumed `order` asks (Roache's asymptotic-range check of the grid convergence index, 1998,
     ch. 5; the figures it concerns: docs/accuracy.md, error bounds). Within it, the larger of |e_x| and the coarser
-    pair's estimate carried one grid finer at the assumed order, |coarser|/2^p: under f = f* + C h^q the error of the
-    finest figure is at most F_s |e_x| for q down to lowest_order, and at most |coarser|/2^p for q at or above p; the
-    second also holds a finest pair whose difference vanishes by chance (an error crossing zero)."""
+    pair's estimate carried one grid finer at the assumed order over F_s, |coarser|/(2^p F_s): under f = f* + C h^q
+    F_s |e_x| bounds the error of the finest figure for q from lowest_order, |coarser|/2^p for q from p on; the second
+    takes over where it exceeds the first (q above p + log2 F_s), as where the finest pair's difference vanishes by
+    chance (an error crossing zero between its grids)."""
     if not math.isfinite(coarser):
         return abs(e_x)
     if coarser == 0.0:
@@ -344,7 +345,7 @@ def three_grid_estimate(e_x: float, coarser: float, order: int) -> float:
     q = observed_order(e_x, coarser)
     if math.isnan(q) or q < lowest_order(order):
         return math.inf
-    return max(abs(e_x), abs(coarser) / 2.0**order)
+    return max(abs(e_x), abs(coarser) / (2.0**order * TUNING.bound_safety))
 
 
 def coarser_estimates(solution: PointSolution) -> dict[str, float]:
