@@ -427,3 +427,7 @@ def test_the_accuracy_targets_last_grid_is_the_third_grid_of_its_next_solve():
     assert checked.scalar("unresolved_h_c") == 0.0 and checked.scalar("observed_order_h_c") == pytest.approx(2.0, 0.01)
     assert checked.scalar("error_bound_dT_max") == finer.scalar("error_bound_dT_max")
     assert "observed_order_dT_max" not in checked.scalars
+    assert all(math.isfinite(value) for value, _ in checked.scalars.values())  # a result file takes no NaN
+    oscillating = with_coarser_pair(finer, replace(coarser, scalars=coarser.scalars | {
+        "error_estimate_h_c": (-0.01, "1")}), 300.0)
+    assert oscillating.scalar("unresolved_h_c") == 1.0 and "observed_order_h_c" not in oscillating.scalars

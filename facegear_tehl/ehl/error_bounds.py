@@ -409,8 +409,9 @@ def bounds(solution: PointSolution, e_y: dict[str, float], nodes: dict[str, int]
             out[f"error_bound_{name}"] = (bound, "1")
         if math.isfinite(left):
             out[f"iteration_error_{name}"] = (left, "1")
-        if name in coarser and math.isfinite(e_x) and math.isfinite(coarser[name]):
-            out[f"observed_order_{name}"] = (observed_order(e_x, coarser[name]), "1")
+        order = observed_order(e_x, coarser.get(name, math.nan))
+        if math.isfinite(order):  # (none where the differences change sign or one vanishes: no order to read)
+            out[f"observed_order_{name}"] = (order, "1")
         out[f"unresolved_{name}"] = (float(not math.isfinite(bound)), "1")
     return out
 
