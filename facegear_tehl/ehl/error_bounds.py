@@ -233,7 +233,7 @@ def iteration_error(solution: PointSolution, name: str) -> float:
 
 def reference_stage(solution: PointSolution, name: str) -> tuple[Stage, int]:
     """The stage whose figure the x-estimate of `name` compares the reported one with, and the ratio of the x
-    spacings: the outlet patches' uniform grid for dT_max, dT_min and mu of an outlet-refined solve (2^patches,
+    spacings: the outlet patches' uniform grid for dT_max and mu of an outlet-refined solve (2^patches,
     report._outlet_scalars), else the coarse stage (2)."""
     patches = solution.scalars.get("outlet_patches", (0.0, "1"))[0]
     if patches > 0.0 and name in ("dT_max", "mu"):
