@@ -243,23 +243,13 @@ def reference_stage(solution: PointSolution, name: str) -> tuple[Stage, int]:
 
 def reference_error(solution: PointSolution, name: str) -> float:
     """The share of the x-estimate of `name` the reference grid's own iteration error can take (`reference_stage`):
-    the loop error that grid's last outer loop left (`loop_error`: its remaining change, or a flicker's largest
+    the loop error that grid's last outer loop left (`stage_error`: its remaining change, or a flicker's largest
     change), over r^p - 1 as the estimate divides its difference (report.estimate, richardson.richardson_error).
     A seeded coarse stage stops at its own tolerance from a state other than the cold start's, so that its figures,
     and the x-estimate with them, carry its iteration error (docs/accuracy.md, error bounds). 0 without a coupled
     reference stage (an isothermal solve's levels are the full-multigrid start's, on both grids of the estimate)."""
     stage, ratio = reference_stage(solution, name)
-    record = solution.record
-    ran = [s for s in (record.stages if record is not None else ()) if s.stage is stage and s.outer > 0]
-    changes, h_c, thermal, _ = outer_loop(solution)
-    if not ran or ran[-1].first_outer < 0 or changes.size == 0 or name not in solution.scalars:
-        return 0.0
-    window = slice(ran[-1].first_outer, ran[-1].first_outer + ran[-1].outer)
-    if changes[window].size < ran[-1].outer:
-        return 0.0
-    films = h_c[window] if h_c.size >= window.stop else np.empty(0)
-    left = loop_error(changes[window], films, False, name, solution.scalar(name), thermal)
-    return left / (ratio ** ORDERS[name] - 1.0)
+    return stage_error(solution, stage, name) / (ratio ** ORDERS[name] - 1.0)
 
 
 def runs(field: np.ndarray, inside: np.ndarray) -> tuple[int, int]:
@@ -329,31 +319,55 @@ def observed_order(e_x: float, coarser: float) -> float:
     return math.log2(coarser / e_x)
 
 
-def three_grid_estimate(e_x: float, coarser: float, order: int) -> float:
+def three_grid_estimate(e_x: float, coarser: float, order: int, noise: float = 0.0) -> float:
     """|e_x| checked against the next coarser pair along x (`coarser`, NaN: no third grid, |e_x| as it is); inf where
     the three grids are outside the asymptotic range: the differences change sign, or do not fall at the observed order
     `lowest_order` of the assumed `order` asks (Roache's asymptotic-range check of the grid convergence index, 1998,
-    ch. 5; the figures it concerns: docs/accuracy.md, error bounds). Within it, the larger of |e_x| and the coarser
-    pair's estimate carried one grid finer at the assumed order over F_s, |coarser|/(2^p F_s): under f = f* + C h^q
-    F_s |e_x| bounds the error of the finest figure for q from lowest_order, |coarser|/2^p for q from p on; the second
-    takes over where it exceeds the first (q above p + log2 F_s), as where the finest pair's difference vanishes by
-    chance (an error crossing zero between its grids)."""
+    ch. 5; the figures it concerns: docs/accuracy.md, error bounds), each beyond what the iterations' errors in the
+    two estimates, `noise` (in e_x's units), can make of them: two estimates within it of zero have no sign nor order
+    to read. Within it, the larger of |e_x| and the coarser pair's estimate carried one grid finer at the assumed order
+    over F_s, |coarser|/(2^p F_s): under f = f* + C h^q F_s |e_x| bounds the error of the finest figure for q from
+    lowest_order, |coarser|/2^p for q from p on; the second takes over where it exceeds the first (q above p + log2
+    F_s), as where the finest pair's difference vanishes by chance (an error crossing zero between its grids)."""
     if not math.isfinite(coarser):
         return abs(e_x)
-    if coarser == 0.0:
-        return abs(e_x) if e_x == 0.0 else math.inf
-    q = observed_order(e_x, coarser)
-    if math.isnan(q) or q < lowest_order(order):
+    oscillating = e_x * coarser < 0.0 and min(abs(e_x), abs(coarser)) > noise
+    slow = abs(coarser) + noise < 2.0 ** lowest_order(order) * (abs(e_x) - noise)
+    if oscillating or slow:
         return math.inf
     return max(abs(e_x), abs(coarser) / (2.0**order * TUNING.bound_safety))
 
 
-def coarser_estimates(solution: PointSolution) -> dict[str, float]:
-    """The next coarser pair's x-estimate of h_c and h_min (Richardson-scaled as report.estimate, in units of the
-    finest level's figure) from the solve's last three level summaries (`level_h_c`, `level_h_min`), where they are one
-    model on one refinement (the same rows, or all square): an isothermal Newtonian solve's full-multigrid levels, or a
-    coupled solve's seed stage, coarse stage and finest grid. Empty elsewhere (a coupled solve without a seed stage:
-    its levels below the coarse stage are the isothermal start's)."""
+@dataclass(frozen=True)
+class CoarserPair:
+    """The next coarser pair's x-estimate of a figure (Richardson-scaled as report.estimate, in units of the reported
+    figure) and how far the iterations of its two grids can move it (same units)."""
+
+    estimate: float
+    noise: float = 0.0
+
+
+def stage_error(solution: PointSolution, stage: Stage, name: str) -> float:
+    """Relative error the last outer loop of `stage` left in figure `name` (`loop_error` over that stage's changes in
+    the solve's history, read at its place in the record); 0 where the stage has no loop on record."""
+    record = solution.record
+    ran = [s for s in (record.stages if record is not None else ()) if s.stage is stage and s.outer > 0]
+    changes, h_c, thermal, _ = outer_loop(solution)
+    if not ran or ran[-1].first_outer < 0 or changes.size == 0 or name not in solution.scalars:
+        return 0.0
+    window = slice(ran[-1].first_outer, ran[-1].first_outer + ran[-1].outer)
+    if changes[window].size < ran[-1].outer:
+        return 0.0
+    films = h_c[window] if h_c.size >= window.stop else np.empty(0)
+    return loop_error(changes[window], films, False, name, solution.scalar(name), thermal)
+
+
+def coarser_estimates(solution: PointSolution) -> dict[str, CoarserPair]:
+    """The next coarser pair's x-estimate of h_c and h_min from the solve's last three level summaries (`level_h_c`,
+    `level_h_min`), where they are one model on one refinement (the same rows, or all square): an isothermal Newtonian
+    solve's full-multigrid levels, or a coupled solve's seed stage, coarse stage and finest grid, with the two stages'
+    loop errors as its noise (the seed stage stops at 2 % of the rise). Empty elsewhere (a coupled solve without a seed
+    stage: its levels below the coarse stage are the isothermal start's)."""
     history, record = solution.history, solution.record
     if "level_nodes" not in history or "grid" not in solution.scalars or "grid_y" not in solution.scalars:
         return {}
@@ -372,8 +386,10 @@ def coarser_estimates(solution: PointSolution) -> dict[str, float]:
         key = f"level_{name}"
         if key in history and history[key].values.size >= 3:
             third, second, first = (float(v) for v in history[key].values[-3:])
+            scale = 2.0 ** ORDERS[name] - 1.0
+            noise = (stage_error(solution, Stage.SEED, name) + stage_error(solution, Stage.COARSE, name)) / scale
             if first != 0.0:
-                out[name] = (second - third) / (2.0 ** ORDERS[name] - 1.0) / first
+                out[name] = CoarserPair((second - third) / scale / first, noise)
     return out
 
 
@@ -386,10 +402,11 @@ def unresolved_figure(solution: PointSolution, name: str, e_x: float, along_y: f
 
 
 def bounds(solution: PointSolution, e_y: dict[str, float], nodes: dict[str, int] | None = None,
-           coarser: dict[str, float] | None = None) -> dict[str, tuple[float, str]]:
+           coarser: dict[str, CoarserPair] | None = None) -> dict[str, tuple[float, str]]:
     """`error_bound_<name>` (relative, >= 0) of every reported figure it can bound and `unresolved_<name>` (1 or 0)
     of every reported figure (module docstring); `nodes`: feature_nodes of the solution; `coarser`: the next coarser
-    pair's x-estimate of a figure (`three_grid_estimate`; `observed_order_<name>` in the file)."""
+    pair along x of a figure (`three_grid_estimate`, whose noise adds this solve's e_ref and e_it/(2^p - 1) to the
+    pair's; `observed_order_<name>` in the file)."""
     nodes, coarser = nodes or {}, coarser or {}
     estimates = {name: (solution.scalars.get(f"error_estimate_{name}", (math.nan, "1"))[0], e_y.get(name, math.nan))
                  for name in FIGURES if name in solution.scalars}
@@ -401,15 +418,17 @@ def bounds(solution: PointSolution, e_y: dict[str, float], nodes: dict[str, int]
     for name, (e_x, along_y) in estimates.items():
         converged = solution.outcome is Outcome.CONVERGED
         left = iteration_error(solution, name) if converged else math.inf
-        along_x = three_grid_estimate(e_x, coarser.get(name, math.nan), ORDERS[name])
-        along_x += reference_error(solution, name) if converged else 0.0
+        reference = reference_error(solution, name) if converged else 0.0
+        pair = coarser.get(name, CoarserPair(math.nan))
+        noise = pair.noise + reference + (left / (2.0 ** ORDERS[name] - 1.0) if math.isfinite(left) else 0.0)
+        along_x = three_grid_estimate(e_x, pair.estimate, ORDERS[name], noise) + reference
         bound = math.inf if unresolved[name] or left > TUNING.max_iteration_error else (
             TUNING.bound_safety * (along_x + abs(along_y)) + left)
         if math.isfinite(bound):
             out[f"error_bound_{name}"] = (bound, "1")
         if math.isfinite(left):
             out[f"iteration_error_{name}"] = (left, "1")
-        order = observed_order(e_x, coarser.get(name, math.nan))
+        order = observed_order(e_x, pair.estimate)
         if math.isfinite(order):  # (none where the differences change sign or one vanishes: no order to read)
             out[f"observed_order_{name}"] = (order, "1")
         out[f"unresolved_{name}"] = (float(not math.isfinite(bound)), "1")
@@ -419,8 +438,9 @@ def bounds(solution: PointSolution, e_y: dict[str, float], nodes: dict[str, int]
 def with_coarser_pair(solution: PointSolution, coarser: PointSolution, t_inlet: float) -> PointSolution:
     """`solution`'s bounds again with the x-estimates of `coarser`, the same point and model solved converged on the
     grid its coarse stage lies on (the accuracy target's last grid), as the next coarser pair along x
-    (`three_grid_estimate`; in units of `solution`'s figures), for the figures whose estimates both solves take at the
-    ratio 2 (not dT_max and mu of an outlet-refined solve, report._outlet_scalars); t_inlet in K."""
+    (`three_grid_estimate`; in units of `solution`'s figures, its noise the coarser solve's e_ref and e_it/(2^p - 1)),
+    for the figures whose estimates both solves take at the ratio 2 (not dT_max and mu of an outlet-refined solve,
+    report._outlet_scalars); t_inlet in K."""
     if not (solution.converged and coarser.converged) or "film_thickness" not in solution.fields:
         return solution
     pairs = coarser_estimates(solution)
@@ -429,7 +449,9 @@ def with_coarser_pair(solution: PointSolution, coarser: PointSolution, t_inlet: 
         value, before = solution.scalars.get(name, (0.0, "1"))[0], coarser.scalars.get(name, (0.0, "1"))[0]
         estimate = coarser.scalars.get(f"error_estimate_{name}", (math.nan, "1"))[0]
         if value != 0.0 and math.isfinite(estimate) and not (patched and name in ("dT_max", "mu")):
-            pairs[name] = estimate * before / value
+            left = coarser.scalars.get(f"iteration_error_{name}", (0.0, "1"))[0] / (2.0 ** ORDERS[name] - 1.0)
+            noise = (reference_error(coarser, name) + left) * before / value
+            pairs[name] = CoarserPair(estimate * before / value, noise)
     e_y = {name: solution.scalars.get(f"error_estimate_y_{name}", (math.nan, "1"))[0] for name in FIGURES}
     kept = {k: v for k, v in solution.scalars.items() if not k.startswith(("error_bound_", "observed_order_"))}
     extra = bounds(solution, e_y, feature_nodes(solution, t_inlet), pairs)
