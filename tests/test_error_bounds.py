@@ -11,7 +11,6 @@ import pytest
 from facegear_tehl.case import SolverSettings
 from facegear_tehl.cli import summary_table
 from facegear_tehl.ehl.error_bounds import (
-    CoarserPair,
     CoarseStage,
     bounds,
     coarser_estimates,
