@@ -443,3 +443,22 @@ def test_the_accuracy_targets_last_grid_is_the_third_grid_of_its_next_solve():
     oscillating = with_coarser_pair(finer, replace(coarser, scalars=coarser.scalars | {
         "error_estimate_h_c": (-0.01, "1")}), 300.0)
     assert oscillating.scalar("unresolved_h_c") == 1.0 and "observed_order_h_c" not in oscillating.scalars
+
+
+def test_a_thermal_solve_without_its_coarse_stage_has_no_x_estimate_of_its_own_model():
+    """A thermal solve coupled on its finest grid alone (its coarse stage ran away: the record holds it at place -1,
+    the history begun again) reports the isothermal start's levels as its x-estimate: no estimate of the thermal film,
+    its film figures unresolved. With its coarse stage in the record the same estimates bound it."""
+    from facegear_tehl.record import SolveRecord, Stage, StageRecord
+
+    history = {"thermal_change_history": Field(np.array([1.0, 0.1, 0.01]), "K", ""),
+               "thermal_h_c_history": Field(np.full(3, 2.0e-7), "m", "")}
+    estimates = dict(error_estimate_h_c=0.001, error_estimate_h_min=0.002, thermal_floor=math.nan)
+    alone = (StageRecord(Stage.COARSE, 257, 257, 5, 4, Outcome.DIVERGED, 1.0, first_outer=-1),
+             StageRecord(Stage.FINEST, 513, 513, 9, 3, Outcome.CONVERGED, 1.0, first_outer=0))
+    staged = (StageRecord(Stage.COARSE, 257, 257, 5, 0, Outcome.CONVERGED, 1.0, first_outer=0),
+              StageRecord(Stage.FINEST, 513, 513, 9, 3, Outcome.CONVERGED, 1.0, first_outer=0))
+    for stages, flag in ((alone, 1.0), (staged, 0.0)):
+        solution = replace(_solution(513, 513, **estimates), history=history, record=SolveRecord(stages=stages))
+        out = bounds(solution, {"h_c": 0.0, "h_min": 0.0})
+        assert out["unresolved_h_c"][0] == flag and out["unresolved_h_min"][0] == flag

@@ -393,6 +393,19 @@ def coarser_estimates(solution: PointSolution) -> dict[str, CoarserPair]:
     return out
 
 
+def estimated_in_model(solution: PointSolution) -> bool:
+    """Whether the solve's x-estimates compare two grids of its own model: not a thermal solve without its coarse stage
+    in the record (below 129 nodes along x, or coupled on its finest grid alone after the coarse stage ran away or
+    closed its film), whose level summaries are the isothermal start's: an isothermal film's grid convergence says
+    nothing of the thermal one's (the envelope's ab30_ph1.5_u0.5_srr0.5_th coupled on 513 x 513 alone: its isothermal
+    start's h_min on 257 and 513 gives e_x 15 %, its thermal h_min grows from 0.111 to 0.123 and 0.139 um on 129, 257
+    and 513)."""
+    record = solution.record
+    if "thermal_change_history" not in solution.history or record is None:
+        return True
+    return any(s.stage is Stage.COARSE and s.first_outer >= 0 for s in record.stages)
+
+
 def unresolved_figure(solution: PointSolution, name: str, e_x: float, along_y: float, nodes: int) -> bool:
     """A figure no bound can be given (module docstring), from its estimates along x and y and the nodes across its
     feature."""
@@ -408,8 +421,9 @@ def bounds(solution: PointSolution, e_y: dict[str, float], nodes: dict[str, int]
     pair along x of a figure (`three_grid_estimate`, whose noise adds this solve's e_ref and e_it/(2^p - 1) to the
     pair's; `observed_order_<name>` in the file)."""
     nodes, coarser = nodes or {}, coarser or {}
-    estimates = {name: (solution.scalars.get(f"error_estimate_{name}", (math.nan, "1"))[0], e_y.get(name, math.nan))
-                 for name in FIGURES if name in solution.scalars}
+    in_model = estimated_in_model(solution)
+    estimates = {name: (solution.scalars.get(f"error_estimate_{name}", (math.nan, "1"))[0] if in_model else math.nan,
+                        e_y.get(name, math.nan)) for name in FIGURES if name in solution.scalars}
     unresolved = {name: unresolved_figure(solution, name, *estimates[name], nodes.get(name, TUNING.feature_nodes))
                   for name in estimates}
     if "dT_max" in unresolved and compression_held(solution, unresolved.get("dT_min", True)):
