@@ -25,14 +25,13 @@ solve that did not converge; no e_x or no e_y (ny is the coarsest grid, or the c
 above TUNING.asymptotic_estimate, or three grids along x whose differences change sign or fall slower than the lowest
 order F_s covers (outside the asymptotic range); an x-estimate of another model (a thermal solve without its coarse
 stage compares its isothermal start's levels: `estimated_in_model`); its feature (the lowest film's basin, the hot or
-the cold spot) spanning fewer than TUNING.feature_nodes nodes along x or y (`feature_nodes`); p_max always
-(UNBOUNDED); h_c and h_min of a solve without an outer loop whose pressure cycles left the film `drifting` one way without contracting
-(its iteration error has no bound); any figure whose iteration error e_it (`iteration_error_<name>` in the file, the
-reason) exceeds TUNING.max_iteration_error, as a loop ended at its floor can leave it (the full step no longer
-contracting at the smallest relaxation: e_it is the amplitude of its last window, `floor_error`); and dT_max where
-the film's compression, not its shear, sets its temperatures and the outlet spike's expansion cooling is unresolved
-(`compression_held`). docs/accuracy.md (error bounds) holds the
-calibration that chose these rules.
+the cold spot) spanning fewer than TUNING.feature_nodes nodes along x or y (`feature_nodes`); p_max always (UNBOUNDED);
+h_c and h_min of a solve without an outer loop whose pressure cycles left the film `drifting` one way without
+contracting (its iteration error has no bound); any figure whose iteration error e_it (`iteration_error_<name>` in the
+file, the reason) exceeds TUNING.max_iteration_error, as a loop ended at its floor can leave it (the full step no longer
+contracting at the smallest relaxation: e_it is the amplitude of its last window, `floor_error`); and dT_max where the
+film's compression, not its shear, sets its temperatures and the outlet spike's expansion cooling is unresolved
+(`compression_held`). docs/accuracy.md (error bounds) holds the calibration that chose these rules.
 """
 
 from __future__ import annotations
