@@ -24,8 +24,10 @@ Per point, on a start grid of TUNING.accuracy_start_grid nodes along x (the case
    coarser solution is kept.
 
 A figure's bound (`figure_bound`) is the solve's own `error_bound_<name>` (ehl/error_bounds.py: every converged solve
-with a film reports it, with its y-check, or `unresolved_<name>`); a figure the solve reports unresolved, or without
-a bound, has none and is refined for while the grid and the time allow. The axis to refine is read from the solve's
+with a film reports it, with its y-check, or `unresolved_<name>`); after one doubling along x it is checked
+against the last grid's x-estimates, the next coarser pair along x (`three_grid_checked`: Roache's asymptotic-range
+check, error_bounds.three_grid_estimate); a figure the solve reports unresolved, or without a bound, has none and is
+refined for while the grid and the time allow. The axis to refine is read from the solve's
 estimates along x (`error_estimate_<name>`) and y (`error_estimate_y_<name>`). p_max is never bounded: the pressure
 maximum is the outlet spike, which grows with every refinement on practical grids (Venner & Lubrecht 2000, ch. 8): it
 is reported as achieved, "unresolved", and never refined for; so is a dT_max the solve reports unresolved because the
@@ -576,6 +578,19 @@ def doublings_to(coarse: SolverSettings, fine: SolverSettings) -> tuple[int, int
             round(math.log2((fine.nodes_y - 1) / (coarse.nodes_y - 1))))
 
 
+def three_grid_checked(point: Progressing, task: SolveTask, solution: PointSolution) -> PointSolution:
+    """The finer `solution` of `task` with its bounds checked against the point's converged solve in the same model one
+    doubling coarser along x (error_bounds.with_coarser_pair: its x-estimates are the next coarser pair's, the third
+    grid of Roache's asymptotic-range check), where the two grids are both square or both not (an estimate along x
+    alone, or one along both axes at once, in both); as it is elsewhere."""
+    coarse, fine = point.task.settings, task.settings
+    if doublings_to(coarse, fine)[0] != 1 or (coarse.grid == coarse.nodes_y) != (fine.grid == fine.nodes_y):
+        return solution
+    from facegear_tehl.ehl.error_bounds import with_coarser_pair  # here: the command line loads no solver kernels
+
+    return with_coarser_pair(solution, point.solution, task.lubricant.inlet_temperature)
+
+
 def refined(point: Progressing, task: SolveTask, solution: PointSolution) -> Progressing:
     """The point after its finer solve: the finer solution; where it did not converge after a converged one, the
     coarser one kept: after a jump past one doubling, one doubling at a time from then on; after one doubling along
@@ -594,6 +609,8 @@ def refined(point: Progressing, task: SolveTask, solution: PointSolution) -> Pro
         before = f" (after {point.failed or point.after_jump})" if point.failed or point.after_jump else ""
         return replace(point, steps=steps, stop=f"{ended}{before}; the converged {grid_words(point.task.settings)} "
                                                 "solution kept")
+    if point.solution.converged and point.model_solved:
+        solution = three_grid_checked(point, task, solution)
     after = replace(point, task=task, solution=solution, steps=steps, failed="", model_solved=True,
                     coarser=point.spans() if point.solution.converged else point.coarser)
     if not (point.solution.converged and point.model_solved):  # no converged solve in this model to measure from

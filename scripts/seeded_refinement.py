@@ -2,7 +2,8 @@
 target's refinement) costs and changes: per point, the coarser grid solved once, then the finer grid seeded from it
 and from the cold start (ehl/staged.solve_point), interleaved per repeat; CPU time of each solve with its error check
 (this process), the ratio seeded / cold per point and its median, and each figure's difference seeded - cold against
-the cold solve's own error bound (docs/accuracy.md, the accuracy target).
+the cold solve's own error bound, and each solve's x-estimate, reference grid's iteration error, own iteration error
+and bound (docs/accuracy.md, the accuracy target).
 
     python scripts/seeded_refinement.py [--case cases/facegear_110.yaml] [--points S1,S2,S3,S4,S5]
         [--coarse 129x33] [--fine 257x65] [--repeats 1]
@@ -58,6 +59,20 @@ def shares(seeded: PointSolution, cold: PointSolution) -> str:
     return ", ".join(words)
 
 
+def bound_words(solution: PointSolution) -> str:
+    """Each figure's x-estimate, the iteration error of the grid it compares with (error_bounds.reference_error), the
+    solve's own iteration error and its bound, in %: where the seeded solve's bound differs from the cold one's."""
+    from facegear_tehl.ehl.error_bounds import reference_error
+
+    def percent(key: str) -> str:
+        value = solution.scalars.get(key, (float("nan"), ""))[0]
+        return f"{100 * value:.2f}"
+
+    return ", ".join(f"{name} e_x {percent(f'error_estimate_{name}')} "
+                     f"e_ref {100 * reference_error(solution, name):.2f} e_it {percent(f'iteration_error_{name}')} "
+                     f"bound {percent(f'error_bound_{name}')}" for name in FIGURES if name in solution.scalars)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--case", type=Path, default=ROOT / "cases" / "facegear_110.yaml")
@@ -82,6 +97,7 @@ def main(argv: list[str] | None = None) -> int:
                   f"ratio {ratios[-1]:.2f}; coarser {first.outcome.value}", flush=True)
             if seeded.converged and cold.converged:
                 print(f"  |seeded - cold| / cold against the cold bound: {shares(seeded, cold)}", flush=True)
+                print(f"  seeded (%): {bound_words(seeded)}\n  cold (%): {bound_words(cold)}", flush=True)
     print(f"median ratio seeded / cold CPU: {statistics.median(ratios):.2f} over {len(ratios)} solves")
     return 0
 

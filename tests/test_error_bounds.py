@@ -13,10 +13,16 @@ from facegear_tehl.cli import summary_table
 from facegear_tehl.ehl.error_bounds import (
     CoarseStage,
     bounds,
+    coarser_estimates,
     feature_nodes,
     iteration_error,
+    lowest_order,
+    observed_order,
+    reference_error,
     remaining_error,
     runs,
+    three_grid_estimate,
+    with_coarser_pair,
     y_estimates,
 )
 from facegear_tehl.ehl.richardson import richardson_error
@@ -306,3 +312,153 @@ def test_a_film_that_just_stopped_drifting_is_still_unresolved():
     bounded = bounds(_cycled(films, 1e-4), {"h_c": 0.0, "h_min": 0.0}, {"h_min": 9})
     assert abs(films[-1] - 48.4e-9) / films[-1] > 0.25
     assert bounded["unresolved_h_c"][0] == 1.0 and "error_bound_h_c" not in bounded
+
+
+def _sequence(q: float, order: int, scale: float = 0.3) -> tuple[float, float, float]:
+    """x-estimates of the finest pair and of the next coarser pair (Richardson-scaled at `order`, in units of the
+    finest figure) of f = f* (1 + scale h^q) on 257, 129 and 65 nodes, and the finest figure's true error."""
+    f1, f2, f3 = (1.0 + scale * (1.0 / (n - 1)) ** q * 64.0**q / 16.0 for n in (257, 129, 65))
+    return (f1 - f2) / (2.0**order - 1.0) / f1, (f2 - f3) / (2.0**order - 1.0) / f1, f1 - 1.0
+
+
+@pytest.mark.parametrize("order", [1, 2])
+def test_the_three_grid_check_keeps_a_bound_that_holds_and_unresolves_one_that_does_not(order):
+    """Manufactured sequences f = f* (1 + C h^q) on three grids (the model of Roache 1998, ch. 5), q from 0.2 to 4:
+    the check accepts those above lowest_order (1 for p = 2, 0.415 for p = 1 at F_s = 3), whose bound
+    F_s |e_x| then holds, and flags the slower ones, whose two-grid bound F_s |e_x| would understate their error."""
+    for q in np.arange(0.2, 4.01, 0.1):
+        e_x, coarser, truth = _sequence(q, order)
+        along_x = three_grid_estimate(e_x, coarser, order)
+        assert observed_order(e_x, coarser) == pytest.approx(q, abs=1e-9)
+        two_grid_holds = TUNING.bound_safety * abs(e_x) >= abs(truth)
+        if q < lowest_order(order) - 0.05:  # (at lowest_order itself the bound is an equality)
+            assert math.isinf(along_x) and not two_grid_holds
+        elif q > lowest_order(order) + 0.05:
+            assert TUNING.bound_safety * along_x >= abs(truth) and two_grid_holds
+
+
+def test_the_three_grid_check_flags_oscillating_and_growing_differences_and_catches_a_crossing():
+    """Differences that change sign (f = f* (1 + 0.3 h^2 (-1)^k)), or that grow, as the envelope's ab30_ph1.5_u0.5
+    srr0.5_th h_min did on 129, 257 and 513 (0.111, 0.123, 0.139 um: its 257 bound 3.4 % against a true error of
+    ~11 %), are outside the asymptotic range; an error crossing zero near the finest pair (f = f* (1 + h^2 - 4.35 h^3)
+    at h = 0.1, 0.2, 0.4: the finest pair's difference nearly vanishes, the coarser one's does not) keeps a bound from
+    the coarser pair, which holds where the finest pair's alone does not."""
+    assert math.isinf(three_grid_estimate(0.01, -0.04, 2))
+    h_min = {"third": 0.111, "second": 0.123, "first": 0.139}
+    e_x = (h_min["first"] - h_min["second"]) / 3.0 / h_min["first"]
+    coarser = (h_min["second"] - h_min["third"]) / 3.0 / h_min["first"]
+    assert observed_order(e_x, coarser) < 0.0 and math.isinf(three_grid_estimate(e_x, coarser, 2))
+    f = {h: 1.0 + h**2 - 4.35 * h**3 for h in (0.1, 0.2, 0.4)}  # f - f* = 0.0057, 0.0052, -0.118
+    e_x, coarser, truth = (f[0.1] - f[0.2]) / 3.0 / f[0.1], (f[0.2] - f[0.4]) / 3.0 / f[0.1], f[0.1] - 1.0
+    assert TUNING.bound_safety * abs(e_x) < 0.1 * abs(truth)  # the two-grid bound alone misses it tenfold
+    assert observed_order(e_x, coarser) > 8.0
+    assert TUNING.bound_safety * three_grid_estimate(e_x, coarser, 2) >= abs(truth)
+    assert three_grid_estimate(0.001, 0.004 * 2.0**1.5, 2) == 0.001  # q = 3.5 < 2 + log2(3): the two-grid bound stands
+
+
+def test_differences_within_the_iterations_errors_are_not_read_as_an_order():
+    """The shipped S1 at 1 % on 2049 x 513 solved: h_min's pairs differ by e_x = 0.016 % and 0.0174 % (observed order
+    0.12), its seed stage stopped at 2 % of the rise, its loop error (0.1 % of h_min, /3) larger than both: the three
+    grids say nothing of the order and the two-grid bound stands; without that noise the figure would be flagged. A sign
+    change within the noise is none either; one beyond it is."""
+    e_x, coarser = 1.6e-4, 1.74e-4
+    assert math.isinf(three_grid_estimate(e_x, coarser, 2))
+    assert three_grid_estimate(e_x, coarser, 2, noise=1e-3 / 3.0) == e_x
+    assert three_grid_estimate(e_x, -coarser, 2, noise=3e-4) == e_x
+    assert math.isinf(three_grid_estimate(e_x, -coarser, 2, noise=1e-4))
+
+
+def _levels(values: list[float], nodes: list[float]) -> dict[str, Field]:
+    return {"level_h_c": Field(np.array(values), "m", ""), "level_h_min": Field(np.array(values), "m", ""),
+            "level_nodes": Field(np.array(nodes), "1", "")}
+
+
+def test_a_solves_own_levels_give_the_third_grid_and_unresolve_growing_differences():
+    """An isothermal solve on 257 x 65 whose full-multigrid levels 65, 129 and 257 (x only: the rows of 65) carry h_min
+    0.111, 0.123, 0.139 um: its bound of h_min from e_x alone (0.2 % x 3) is withdrawn, the figure unresolved; levels
+    that converge at second order keep it. A coupled solve without a seed stage (its lower levels are the isothermal
+    start's) gives no third grid."""
+    e_x = (0.139 - 0.123) / 3.0 / 0.139
+    base = _solution(257, 65, h_c=0.139e-6, h_min=0.139e-6, grid=257.0, grid_y=65.0, coarsest_grid=17.0,
+                     error_estimate_h_c=e_x, error_estimate_h_min=e_x)
+    growing = replace(base, history=_levels([0.07e-6, 0.111e-6, 0.123e-6, 0.139e-6], [33.0, 65.0, 129.0, 257.0]))
+    coarser = coarser_estimates(growing)
+    assert coarser["h_min"].estimate == pytest.approx((0.123 - 0.111) / 3.0 / 0.139) and coarser["h_min"].noise == 0.0
+    out = bounds(growing, {"h_c": 0.0, "h_min": 0.0}, {}, coarser)  # (no loop: no noise)
+    assert out["unresolved_h_min"][0] == 1.0 and out["observed_order_h_min"][0] < 0.0
+    second = [0.14e-6 - 0.001e-6 * 4.0**k for k in (3, 2, 1, 0)]  # 0.076, 0.124, 0.136, 0.139 um
+    steady = replace(base, history=_levels(second, [33.0, 65.0, 129.0, 257.0]),
+                     scalars=base.scalars | {"error_estimate_h_min": ((0.139 - 0.136) / 3.0 / 0.139, "1")})
+    out = bounds(steady, {"h_c": 0.0, "h_min": 0.0}, {}, coarser_estimates(steady))
+    assert out["unresolved_h_min"][0] == 0.0 and out["observed_order_h_min"][0] == pytest.approx(2.0)
+    thermal = replace(growing, history={**growing.history, "thermal_change_history": Field(np.ones(3), "K", "")})
+    assert coarser_estimates(thermal) == {}
+
+
+def test_the_coarse_stages_iteration_error_enters_the_x_estimate():
+    """A thermal solve whose coarse stage stopped short: dT_max 60 K on the finest grid, its coarse stage's fixed point
+    59 K (first order: f* = 61 K, the true error -1.6 %), but the coarse loop stopped at 59.9 K after changes of 3.6,
+    1.8 and 0.9 K (rate 1/2: 0.9 K left, the geometric tail; Ortega & Rheinboldt 1970, 12.1.2), so that e_x reads
+    0.17 % and F_s e_x = 0.5 % understates the true error. The coarse stage's loop error (0.9 K of 60) enters the
+    x-estimate: the bound holds."""
+    from facegear_tehl.record import SolveRecord, Stage, StageRecord
+
+    stages = (StageRecord(Stage.COARSE, 129, 33, 6, 3, Outcome.CONVERGED, 1.0, first_outer=0),
+              StageRecord(Stage.FINEST, 257, 33, 6, 3, Outcome.CONVERGED, 1.0, first_outer=3))
+    history = {"thermal_change_history": Field(np.array([3.6, 1.8, 0.9, 0.4, 0.04, 0.004]), "K", ""),
+               "thermal_h_c_history": Field(np.full(6, 2.0e-7), "m", "")}
+    e_x = (60.0 - 59.9) / 60.0
+    solution = replace(_solution(257, 33, dT_max=60.0, error_estimate_dT_max=e_x, thermal_floor=math.nan),
+                       history=history, record=SolveRecord(stages=stages))
+    truth = 60.0 / 61.0 - 1.0
+    assert reference_error(solution, "dT_max") == pytest.approx(0.9 / 60.0)
+    out = bounds(solution, {"dT_max": 0.0})
+    assert out["error_bound_dT_max"][0] >= abs(truth) > TUNING.bound_safety * e_x + out["iteration_error_dT_max"][0]
+
+
+def test_the_accuracy_targets_last_grid_is_the_third_grid_of_its_next_solve():
+    """The accuracy target's 257 x 65 and then 513 x 65 of one point (with_coarser_pair): h_min whose differences grow
+    from pair to pair (0.111, 0.123, 0.139 um: the envelope's ab30_ph1.5_u0.5_srr0.5_th) loses its bound; h_c, falling
+    at the second order, keeps it, with its observed order 2 in the file; dT_max of an outlet-refined solve (its
+    estimate over the patches' ratio, not 2) is left as the solve bounded it."""
+    film = {"film_thickness": Field(np.full((65, 513), 1.0e-7), "m", "")}
+    h_c = {257: 0.2 - 0.004, 513: 0.2 - 0.001}  # um: errors 0.004 and 0.001, the 129's 0.016
+    coarser = _solution(257, 65, h_c=h_c[257] * 1e-6, h_min=0.123e-6, dT_max=40.0,
+                        error_estimate_h_c=(h_c[257] - (0.2 - 0.016)) / 3.0 / h_c[257],
+                        error_estimate_h_min=(0.123 - 0.111) / 3.0 / 0.123, error_estimate_dT_max=0.004)
+    scalars = dict(h_c=h_c[513] * 1e-6, h_min=0.139e-6, dT_max=40.1, outlet_patches=2.0,
+                   error_estimate_h_c=(h_c[513] - h_c[257]) / 3.0 / h_c[513],
+                   error_estimate_h_min=(0.139 - 0.123) / 3.0 / 0.139, error_estimate_dT_max=0.0008,
+                   error_estimate_y_h_c=0.0, error_estimate_y_h_min=0.0, error_estimate_y_dT_max=0.0)
+    finer = _solution(513, 65, fields=film, **scalars)
+    finer = replace(finer, scalars=finer.scalars | {k: v for k, v in bounds(finer, {
+        "h_c": 0.0, "h_min": 0.0, "dT_max": 0.0}).items()})
+    assert finer.scalar("unresolved_h_min") == 0.0  # by its own two grids
+    checked = with_coarser_pair(finer, coarser, 300.0)
+    assert checked.scalar("unresolved_h_min") == 1.0 and "error_bound_h_min" not in checked.scalars
+    assert checked.scalar("unresolved_h_c") == 0.0 and checked.scalar("observed_order_h_c") == pytest.approx(2.0, 0.01)
+    assert checked.scalar("error_bound_dT_max") == finer.scalar("error_bound_dT_max")
+    assert "observed_order_dT_max" not in checked.scalars
+    assert all(math.isfinite(value) for value, _ in checked.scalars.values())  # a result file takes no NaN
+    oscillating = with_coarser_pair(finer, replace(coarser, scalars=coarser.scalars | {
+        "error_estimate_h_c": (-0.01, "1")}), 300.0)
+    assert oscillating.scalar("unresolved_h_c") == 1.0 and "observed_order_h_c" not in oscillating.scalars
+
+
+def test_a_thermal_solve_without_its_coarse_stage_has_no_x_estimate_of_its_own_model():
+    """A thermal solve coupled on its finest grid alone (its coarse stage ran away: the record holds it at place -1,
+    the history begun again) reports the isothermal start's levels as its x-estimate: no estimate of the thermal film,
+    its film figures unresolved. With its coarse stage in the record the same estimates bound it."""
+    from facegear_tehl.record import SolveRecord, Stage, StageRecord
+
+    history = {"thermal_change_history": Field(np.array([1.0, 0.1, 0.01]), "K", ""),
+               "thermal_h_c_history": Field(np.full(3, 2.0e-7), "m", "")}
+    estimates = dict(error_estimate_h_c=0.001, error_estimate_h_min=0.002, thermal_floor=math.nan)
+    alone = (StageRecord(Stage.COARSE, 257, 257, 5, 4, Outcome.DIVERGED, 1.0, first_outer=-1),
+             StageRecord(Stage.FINEST, 513, 513, 9, 3, Outcome.CONVERGED, 1.0, first_outer=0))
+    staged = (StageRecord(Stage.COARSE, 257, 257, 5, 0, Outcome.CONVERGED, 1.0, first_outer=0),
+              StageRecord(Stage.FINEST, 513, 513, 9, 3, Outcome.CONVERGED, 1.0, first_outer=0))
+    for stages, flag in ((alone, 1.0), (staged, 0.0)):
+        solution = replace(_solution(513, 513, **estimates), history=history, record=SolveRecord(stages=stages))
+        out = bounds(solution, {"h_c": 0.0, "h_min": 0.0})
+        assert out["unresolved_h_c"][0] == flag and out["unresolved_h_min"][0] == flag

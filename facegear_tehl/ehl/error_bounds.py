@@ -2,9 +2,13 @@
 
 A reported error estimate is a promise: the bound of a figure f solved on nx x ny nodes is
 
-    B = F_s (|e_x| + |e_y|) + e_it,
+    B = F_s (|e_x| + e_ref + |e_y|) + e_it,
 
-e_x the Richardson estimate of the solve from the grid one coarser along x alone (report.estimate), e_y the Richardson
+e_x the Richardson estimate of the solve from the grid one coarser along x alone (report.estimate), checked against the
+next coarser pair along x where a third grid is at hand (`three_grid_estimate`: Roache's asymptotic-range check; the
+solve's own levels, `coarser_estimates`, or the accuracy target's last grid, `with_coarser_pair`), e_ref the iteration
+error of the grid e_x compares with (`reference_error`: the coarse stage's loop stops at its own tolerance), e_y the
+Richardson
 estimate along y (`y_estimates`), e_it the error the iteration left, from its last changes and contraction rate
 (`iteration_error`: the outer loop's where the solve has one, else the finest grid's pressure cycles') and F_s =
 TUNING.bound_safety, the factor of Roache's grid convergence index (Roache 1994, J. Fluids Eng. 116: 405-413; Roache
@@ -18,15 +22,16 @@ solution itself. On a square finest grid e_x covers both axes (e_y = 0).
 
 A figure is "unresolved" (`unresolved_<name>` = 1 in the file, the word in the tables) where no bound can be given: a
 solve that did not converge; no e_x or no e_y (ny is the coarsest grid, or the check did not converge); an e_x or e_y
-above TUNING.asymptotic_estimate (outside the asymptotic range); its feature (the lowest film's basin, the hot or the
-cold spot) spanning fewer than TUNING.feature_nodes nodes along x or y (`feature_nodes`); p_max always (UNBOUNDED); h_c
-and h_min of a solve without an outer loop whose pressure cycles left the film `drifting` one way without contracting
-(its iteration error has no bound); any figure whose iteration error e_it (`iteration_error_<name>` in the file, the
-reason) exceeds TUNING.max_iteration_error, as a loop ended at its floor can leave it (the full step no longer
-contracting at the smallest relaxation: e_it is the amplitude of its last window, `floor_error`); and dT_max where
-the film's compression, not its shear, sets its temperatures and the outlet spike's expansion cooling is unresolved
-(`compression_held`). docs/accuracy.md (error bounds) holds the
-calibration that chose these rules.
+above TUNING.asymptotic_estimate, or three grids along x whose differences change sign or fall slower than the lowest
+order F_s covers (outside the asymptotic range); an x-estimate of another model (a thermal solve without its coarse
+stage compares its isothermal start's levels: `estimated_in_model`); its feature (the lowest film's basin, the hot or
+the cold spot) spanning fewer than TUNING.feature_nodes nodes along x or y (`feature_nodes`); p_max always (UNBOUNDED);
+h_c and h_min of a solve without an outer loop whose pressure cycles left the film `drifting` one way without
+contracting (its iteration error has no bound); any figure whose iteration error e_it (`iteration_error_<name>` in the
+file, the reason) exceeds TUNING.max_iteration_error, as a loop ended at its floor can leave it (the full step no longer
+contracting at the smallest relaxation: e_it is the amplitude of its last window, `floor_error`); and dT_max where the
+film's compression, not its shear, sets its temperatures and the outlet spike's expansion cooling is unresolved
+(`compression_held`). docs/accuracy.md (error bounds) holds the calibration that chose these rules.
 """
 
 from __future__ import annotations
@@ -40,11 +45,13 @@ import numpy as np
 
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.convergence import drifting
+from facegear_tehl.ehl.grid import hierarchy_shapes
 from facegear_tehl.ehl.report import ORDER_DT_MAX, ORDER_MU, LevelSummary
 from facegear_tehl.ehl.richardson import ORDER
 from facegear_tehl.ehl.scaling import Scaling
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.lubricant import Lubricant
+from facegear_tehl.record import Stage
 from facegear_tehl.settings import OutletRefinement, SolverSettings
 from facegear_tehl.solution import Outcome, PointSolution
 
@@ -179,32 +186,70 @@ def floor_error(changes: np.ndarray, films: np.ndarray) -> tuple[float, float]:
     return amplitude, max(float(relative.max() - relative.min()), sensitivity * amplitude)
 
 
-def iteration_error(solution: PointSolution, name: str) -> float:
-    """Relative error the iteration left in a figure (remaining_error of its changes): of the outer loop where the
-    solve has one, of the largest layer temperature for the temperatures (K over |value|), of ln(eta*/eta) for mu of
-    an isothermal Ree-Eyring film, else of the central film, whose last change contracts as the loop's film state does;
-    at the loop's floor the amplitude of its last window instead (`floor_error`); without an outer loop, of the
-    pressure cycles for the film figures (`cycle_error`, inf where it cannot bound), else 0."""
-    history, value = solution.history, solution.scalar(name)
-    thermal = "thermal_change_history" in history
-    key, floor = ("thermal_change_history", "thermal_floor") if thermal else ("viscosity_change_history",
-                                                                                "viscosity_floor")
-    if key not in history:
-        return cycle_error(solution, name) if name in ("h_c", "h_min") else 0.0
-    changes = np.asarray(history[key].values, dtype=float)
-    floored = math.isfinite(solution.scalars.get(floor, (math.nan, "1"))[0])
-    h_c = np.asarray(history["thermal_h_c_history"].values if "thermal_h_c_history" in history else (), dtype=float)
-    state, film = floor_error(changes, h_c) if floored else (remaining_error(changes, False), math.nan)
+def loop_error(changes: np.ndarray, films: np.ndarray, floored: bool, name: str, value: float,
+               thermal: bool) -> float:
+    """Relative error an outer loop with these `changes` (of the largest layer temperature, K, where `thermal`, else of
+    ln(eta*/eta)) and central films `films` (m, one per change) left in figure `name` of value `value`
+    (`iteration_error`); `floored`: the loop ended at its floor (`floor_error`)."""
+    state, film = floor_error(changes, films) if floored else (remaining_error(changes, False), math.nan)
     if name in ("dT_max", "dT_min") and thermal:
         return state / abs(value) if value != 0.0 else 0.0
     if name == "mu" and not thermal:
         return state
     if floored:
         return film
-    if h_c.size < 2 or h_c[-1] == 0.0:
+    if films.size < 2 or films[-1] == 0.0:
         return 0.0
-    last = abs(h_c[-1] - h_c[-2]) / abs(h_c[-1])
+    last = abs(films[-1] - films[-2]) / abs(films[-1])
     return last if state == 0.0 or changes[-1] == 0.0 else last * state / float(changes[-1])
+
+
+def outer_loop(solution: PointSolution) -> tuple[np.ndarray, np.ndarray, bool, bool]:
+    """The outer loops' changes and central films over the whole solve (every stage's, in order), whether it is
+    thermal, and whether its last loop ended at its floor; empty without an outer loop."""
+    history = solution.history
+    thermal = "thermal_change_history" in history
+    key, floor = ("thermal_change_history", "thermal_floor") if thermal else ("viscosity_change_history",
+                                                                                "viscosity_floor")
+    if key not in history:
+        return np.empty(0), np.empty(0), thermal, False
+    changes = np.asarray(history[key].values, dtype=float)
+    floored = math.isfinite(solution.scalars.get(floor, (math.nan, "1"))[0])
+    h_c = np.asarray(history["thermal_h_c_history"].values if "thermal_h_c_history" in history else (), dtype=float)
+    return changes, h_c, thermal, floored
+
+
+def iteration_error(solution: PointSolution, name: str) -> float:
+    """Relative error the iteration left in a figure (remaining_error of its changes): of the outer loop where the
+    solve has one, of the largest layer temperature for the temperatures (K over |value|), of ln(eta*/eta) for mu of
+    an isothermal Ree-Eyring film, else of the central film, whose last change contracts as the loop's film state does;
+    at the loop's floor the amplitude of its last window instead (`floor_error`); without an outer loop, of the
+    pressure cycles for the film figures (`cycle_error`, inf where it cannot bound), else 0."""
+    changes, h_c, thermal, floored = outer_loop(solution)
+    if changes.size == 0:
+        return cycle_error(solution, name) if name in ("h_c", "h_min") else 0.0
+    return loop_error(changes, h_c, floored, name, solution.scalar(name), thermal)
+
+
+def reference_stage(solution: PointSolution, name: str) -> tuple[Stage, int]:
+    """The stage whose figure the x-estimate of `name` compares the reported one with, and the ratio of the x
+    spacings: the outlet patches' uniform grid for dT_max and mu of an outlet-refined solve (2^patches,
+    report._outlet_scalars), else the coarse stage (2)."""
+    patches = solution.scalars.get("outlet_patches", (0.0, "1"))[0]
+    if patches > 0.0 and name in ("dT_max", "mu"):
+        return Stage.FINEST, 2 ** int(patches)
+    return Stage.COARSE, 2
+
+
+def reference_error(solution: PointSolution, name: str) -> float:
+    """The share of the x-estimate of `name` the reference grid's own iteration error can take (`reference_stage`):
+    the loop error that grid's last outer loop left (`stage_error`: its remaining change, or a flicker's largest
+    change), over r^p - 1 as the estimate divides its difference (report.estimate, richardson.richardson_error).
+    A seeded coarse stage stops at its own tolerance from a state other than the cold start's, so that its figures,
+    and the x-estimate with them, carry its iteration error (docs/accuracy.md, error bounds). 0 without a coupled
+    reference stage (an isothermal solve's levels are the full-multigrid start's, on both grids of the estimate)."""
+    stage, ratio = reference_stage(solution, name)
+    return stage_error(solution, stage, name) / (ratio ** ORDERS[name] - 1.0)
 
 
 def runs(field: np.ndarray, inside: np.ndarray) -> tuple[int, int]:
@@ -257,6 +302,110 @@ def compression_held(solution: PointSolution, cold_unresolved: bool) -> bool:
     return cold_unresolved and rise > 0.0 and -cold >= rise
 
 
+def lowest_order(order: int) -> float:
+    """The lowest order q of a figure converging as C h^q at which F_s times its Richardson estimate at the assumed
+    `order` p still bounds its error: F_s/(2^p - 1) >= 1/(2^q - 1), q = log2(1 + (2^p - 1)/F_s) (1 for p = 2, 0.415
+    for p = 1 at F_s = 3)."""
+    return math.log2(1.0 + (2.0**order - 1.0) / TUNING.bound_safety)
+
+
+def observed_order(e_x: float, coarser: float) -> float:
+    """The order q of f = f* + C h^q read from three grids along x (Roache 1998, ch. 5; Celik et al. 2008, J. Fluids
+    Eng. 130: 078001, eq. 4 at the ratio 2): log2 of the ratio of the successive differences, from the x-estimates of
+    the finer pair `e_x` and of the next coarser pair `coarser` (both Richardson-scaled at the same order and in units
+    of the reported figure); NaN where the differences change sign (oscillatory convergence) or vanish."""
+    if not (math.isfinite(e_x) and math.isfinite(coarser)) or e_x * coarser <= 0.0:
+        return math.inf if e_x == 0.0 and coarser != 0.0 and math.isfinite(coarser) else math.nan
+    return math.log2(coarser / e_x)
+
+
+def three_grid_estimate(e_x: float, coarser: float, order: int, noise: float = 0.0) -> float:
+    """|e_x| checked against the next coarser pair along x (`coarser`, NaN: no third grid, |e_x| as it is); inf where
+    the three grids are outside the asymptotic range: the differences change sign, or do not fall at the observed order
+    `lowest_order` of the assumed `order` asks (Roache's asymptotic-range check of the grid convergence index, 1998,
+    ch. 5; the figures it concerns: docs/accuracy.md, error bounds), each beyond what the iterations' errors in the
+    two estimates, `noise` (in e_x's units), can make of them: two estimates within it of zero have no sign nor order
+    to read. Within it, the larger of |e_x| and the coarser pair's estimate carried one grid finer at the assumed order
+    over F_s, |coarser|/(2^p F_s): under f = f* + C h^q F_s |e_x| bounds the error of the finest figure for q from
+    lowest_order, |coarser|/2^p for q from p on; the second takes over where it exceeds the first (q above p + log2
+    F_s), as where the finest pair's difference vanishes by chance (an error crossing zero between its grids)."""
+    if not math.isfinite(coarser):
+        return abs(e_x)
+    oscillating = e_x * coarser < 0.0 and min(abs(e_x), abs(coarser)) > noise
+    slow = abs(coarser) + noise < 2.0 ** lowest_order(order) * (abs(e_x) - noise)
+    if oscillating or slow:
+        return math.inf
+    return max(abs(e_x), abs(coarser) / (2.0**order * TUNING.bound_safety))
+
+
+@dataclass(frozen=True)
+class CoarserPair:
+    """The next coarser pair's x-estimate of a figure (Richardson-scaled as report.estimate, in units of the reported
+    figure) and how far the iterations of its two grids can move it (same units)."""
+
+    estimate: float
+    noise: float = 0.0
+
+
+def stage_error(solution: PointSolution, stage: Stage, name: str) -> float:
+    """Relative error the last outer loop of `stage` left in figure `name` (`loop_error` over that stage's changes in
+    the solve's history, read at its place in the record); 0 where the stage has no loop on record."""
+    record = solution.record
+    ran = [s for s in (record.stages if record is not None else ()) if s.stage is stage and s.outer > 0]
+    changes, h_c, thermal, _ = outer_loop(solution)
+    if not ran or ran[-1].first_outer < 0 or changes.size == 0 or name not in solution.scalars:
+        return 0.0
+    window = slice(ran[-1].first_outer, ran[-1].first_outer + ran[-1].outer)
+    if changes[window].size < ran[-1].outer:
+        return 0.0
+    films = h_c[window] if h_c.size >= window.stop else np.empty(0)
+    return loop_error(changes[window], films, False, name, solution.scalar(name), thermal)
+
+
+def coarser_estimates(solution: PointSolution) -> dict[str, CoarserPair]:
+    """The next coarser pair's x-estimate of h_c and h_min from the solve's last three level summaries (`level_h_c`,
+    `level_h_min`), where they are one model on one refinement (the same rows, or all square): an isothermal Newtonian
+    solve's full-multigrid levels, or a coupled solve's seed stage, coarse stage and finest grid, with the two stages'
+    loop errors as its noise (the seed stage stops at 2 % of the rise). Empty elsewhere (a coupled solve without a seed
+    stage: its levels below the coarse stage are the isothermal start's)."""
+    history, record = solution.history, solution.record
+    if "level_nodes" not in history or "grid" not in solution.scalars or "grid_y" not in solution.scalars:
+        return {}
+    coupled = "thermal_change_history" in history or "viscosity_change_history" in history
+    # a seed stage's level is in the summaries unless a later failure began the hierarchy again (its place -1)
+    if coupled and (record is None or not any(s.stage is Stage.SEED and s.first_outer >= 0 for s in record.stages)):
+        return {}
+    nodes = [int(n) for n in history["level_nodes"].values[-3:]]
+    coarsest = int(solution.scalars.get("coarsest_grid", (17.0, "1"))[0])
+    shapes = hierarchy_shapes(int(solution.scalar("grid")), int(solution.scalar("grid_y")), coarsest)[-3:]
+    same_rows = len({ny for _, ny in shapes}) == 1 or all(nx == ny for nx, ny in shapes)
+    if len(nodes) < 3 or len(shapes) < 3 or nodes != [nx for nx, _ in shapes] or not same_rows:
+        return {}
+    out = {}
+    for name in ("h_c", "h_min"):
+        key = f"level_{name}"
+        if key in history and history[key].values.size >= 3:
+            third, second, first = (float(v) for v in history[key].values[-3:])
+            scale = 2.0 ** ORDERS[name] - 1.0
+            noise = (stage_error(solution, Stage.SEED, name) + stage_error(solution, Stage.COARSE, name)) / scale
+            if first != 0.0:
+                out[name] = CoarserPair((second - third) / scale / first, noise)
+    return out
+
+
+def estimated_in_model(solution: PointSolution) -> bool:
+    """Whether the solve's x-estimates compare two grids of its own model: not a thermal solve without its coarse stage
+    in the record (below 129 nodes along x, or coupled on its finest grid alone after the coarse stage ran away or
+    closed its film), whose level summaries are the isothermal start's: an isothermal film's grid convergence says
+    nothing of the thermal one's (the envelope's ab30_ph1.5_u0.5_srr0.5_th coupled on 513 x 513 alone: its isothermal
+    start's h_min on 257 and 513 gives e_x 15 %, its thermal h_min grows from 0.111 to 0.123 and 0.139 um on 129, 257
+    and 513)."""
+    record = solution.record
+    if "thermal_change_history" not in solution.history or record is None:
+        return True
+    return any(s.stage is Stage.COARSE and s.first_outer >= 0 for s in record.stages)
+
+
 def unresolved_figure(solution: PointSolution, name: str, e_x: float, along_y: float, nodes: int) -> bool:
     """A figure no bound can be given (module docstring), from its estimates along x and y and the nodes across its
     feature."""
@@ -265,28 +414,62 @@ def unresolved_figure(solution: PointSolution, name: str, e_x: float, along_y: f
             or max(abs(e_x), abs(along_y)) > TUNING.asymptotic_estimate or nodes < TUNING.feature_nodes)
 
 
-def bounds(solution: PointSolution, e_y: dict[str, float],
-           nodes: dict[str, int] | None = None) -> dict[str, tuple[float, str]]:
+def bounds(solution: PointSolution, e_y: dict[str, float], nodes: dict[str, int] | None = None,
+           coarser: dict[str, CoarserPair] | None = None) -> dict[str, tuple[float, str]]:
     """`error_bound_<name>` (relative, >= 0) of every reported figure it can bound and `unresolved_<name>` (1 or 0)
-    of every reported figure (module docstring); `nodes`: feature_nodes of the solution."""
-    nodes = nodes or {}
-    estimates = {name: (solution.scalars.get(f"error_estimate_{name}", (math.nan, "1"))[0], e_y.get(name, math.nan))
-                 for name in FIGURES if name in solution.scalars}
+    of every reported figure (module docstring); `nodes`: feature_nodes of the solution; `coarser`: the next coarser
+    pair along x of a figure (`three_grid_estimate`, whose noise adds this solve's e_ref and e_it/(2^p - 1) to the
+    pair's; `observed_order_<name>` in the file)."""
+    nodes, coarser = nodes or {}, coarser or {}
+    in_model = estimated_in_model(solution)
+    estimates = {name: (solution.scalars.get(f"error_estimate_{name}", (math.nan, "1"))[0] if in_model else math.nan,
+                        e_y.get(name, math.nan)) for name in FIGURES if name in solution.scalars}
     unresolved = {name: unresolved_figure(solution, name, *estimates[name], nodes.get(name, TUNING.feature_nodes))
                   for name in estimates}
     if "dT_max" in unresolved and compression_held(solution, unresolved.get("dT_min", True)):
         unresolved["dT_max"] = True
     out: dict[str, tuple[float, str]] = {}
     for name, (e_x, along_y) in estimates.items():
-        left = iteration_error(solution, name) if solution.outcome is Outcome.CONVERGED else math.inf
+        converged = solution.outcome is Outcome.CONVERGED
+        left = iteration_error(solution, name) if converged else math.inf
+        reference = reference_error(solution, name) if converged else 0.0
+        pair = coarser.get(name, CoarserPair(math.nan))
+        noise = pair.noise + reference + (left / (2.0 ** ORDERS[name] - 1.0) if math.isfinite(left) else 0.0)
+        along_x = three_grid_estimate(e_x, pair.estimate, ORDERS[name], noise) + reference
         bound = math.inf if unresolved[name] or left > TUNING.max_iteration_error else (
-            TUNING.bound_safety * (abs(e_x) + abs(along_y)) + left)
+            TUNING.bound_safety * (along_x + abs(along_y)) + left)
         if math.isfinite(bound):
             out[f"error_bound_{name}"] = (bound, "1")
         if math.isfinite(left):
             out[f"iteration_error_{name}"] = (left, "1")
+        order = observed_order(e_x, pair.estimate)
+        if math.isfinite(order):  # (none where the differences change sign or one vanishes: no order to read)
+            out[f"observed_order_{name}"] = (order, "1")
         out[f"unresolved_{name}"] = (float(not math.isfinite(bound)), "1")
     return out
+
+
+def with_coarser_pair(solution: PointSolution, coarser: PointSolution, t_inlet: float) -> PointSolution:
+    """`solution`'s bounds again with the x-estimates of `coarser`, the same point and model solved converged on the
+    grid its coarse stage lies on (the accuracy target's last grid), as the next coarser pair along x
+    (`three_grid_estimate`; in units of `solution`'s figures, its noise the coarser solve's e_ref and e_it/(2^p - 1)),
+    for the figures whose estimates both solves take at the ratio 2 (not dT_max and mu of an outlet-refined solve,
+    report._outlet_scalars); t_inlet in K."""
+    if not (solution.converged and coarser.converged) or "film_thickness" not in solution.fields:
+        return solution
+    pairs = coarser_estimates(solution)
+    for name in FIGURES:
+        patched = any(s.scalars.get("outlet_patches", (0.0, "1"))[0] > 0.0 for s in (solution, coarser))
+        value, before = solution.scalars.get(name, (0.0, "1"))[0], coarser.scalars.get(name, (0.0, "1"))[0]
+        estimate = coarser.scalars.get(f"error_estimate_{name}", (math.nan, "1"))[0]
+        if value != 0.0 and math.isfinite(estimate) and not (patched and name in ("dT_max", "mu")):
+            left = coarser.scalars.get(f"iteration_error_{name}", (0.0, "1"))[0] / (2.0 ** ORDERS[name] - 1.0)
+            noise = (reference_error(coarser, name) + left) * before / value
+            pairs[name] = CoarserPair(estimate * before / value, noise)
+    e_y = {name: solution.scalars.get(f"error_estimate_y_{name}", (math.nan, "1"))[0] for name in FIGURES}
+    kept = {k: v for k, v in solution.scalars.items() if not k.startswith(("error_bound_", "observed_order_"))}
+    extra = bounds(solution, e_y, feature_nodes(solution, t_inlet), pairs)
+    return replace(solution, scalars={**kept, **extra})
 
 
 def with_error_bounds(solution: PointSolution, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
@@ -300,7 +483,8 @@ def with_error_bounds(solution: PointSolution, point: ContactPoint, lubricant: L
     e_y = {}
     if solution.outcome is Outcome.CONVERGED:
         e_y = y_estimates(solution, point, lubricant, settings, solve, coarse)
-    extra = bounds(solution, e_y, feature_nodes(solution, lubricant.inlet_temperature))
+    nodes = feature_nodes(solution, lubricant.inlet_temperature)
+    extra = bounds(solution, e_y, nodes, coarser_estimates(solution))
     extra |= {f"error_estimate_y_{k}": (v, "1") for k, v in e_y.items() if math.isfinite(v)}
     extra["error_check_time"] = (time.perf_counter() - clock, "s")
     extra["error_check_cpu_time"] = (time.process_time() - cpu, "s")
