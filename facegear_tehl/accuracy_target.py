@@ -26,7 +26,7 @@ Per point, on a start grid of TUNING.accuracy_start_grid nodes along x (the case
 A figure's bound (`figure_bound`) is the solve's own `error_bound_<name>` (ehl/error_bounds.py: every converged solve
 with a film reports it, with its y-check, or `unresolved_<name>`); after one doubling along x it is checked
 against the last grid's x-estimates, the next coarser pair along x (`three_grid_checked`: Roache's asymptotic-range
-check, error_bounds.three_grid_estimate); a figure the solve reports unresolved, or without a bound, has none and is
+check, asymptotic_range.three_grid_estimate); a figure the solve reports unresolved, or without a bound, has none and is
 refined for while the grid and the time allow. The axis to refine is read from the solve's
 estimates along x (`error_estimate_<name>`) and y (`error_estimate_y_<name>`). p_max is never bounded: the pressure
 maximum is the outlet spike, which grows with every refinement on practical grids (Venner & Lubrecht 2000, ch. 8): it

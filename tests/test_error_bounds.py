@@ -10,18 +10,16 @@ import pytest
 
 from facegear_tehl.case import SolverSettings
 from facegear_tehl.cli import summary_table
+from facegear_tehl.ehl.asymptotic_range import lowest_order, observed_order, three_grid_estimate
 from facegear_tehl.ehl.error_bounds import (
     CoarseStage,
     bounds,
     coarser_estimates,
     feature_nodes,
     iteration_error,
-    lowest_order,
-    observed_order,
     reference_error,
     remaining_error,
     runs,
-    three_grid_estimate,
     with_coarser_pair,
     y_estimates,
 )
