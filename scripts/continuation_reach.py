@@ -34,7 +34,7 @@ from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem
 from facegear_tehl.ehl.pressure import accelerate
 from facegear_tehl.ehl.retry import ATTEMPTS
 from facegear_tehl.ehl.solve import PointSolve
-from facegear_tehl.ehl.start import FILM_LOAD_EXPONENT
+from facegear_tehl.ehl.start import FILM_LOAD_EXPONENT, semi_coarsened_shapes
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.suites.wide_envelope import wide_envelope_contact
 
@@ -153,10 +153,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--tolerance", type=float, default=1e-3)
     parser.add_argument("--cycles", type=int, default=12, help="V-cycles per step at most")
     parser.add_argument("--anderson", type=int, default=0, help="Anderson columns on the V-cycle map (0: bare)")
+    parser.add_argument("--semi", action="store_true", help="coarse grids with all the rows (coarsened along x)")
     args = parser.parse_args(argv)
     case = args.case
     solve = PointSolve(case.point(), case.lubricant(), case.settings(args.grid, args.grid_y),
                        ATTEMPTS[args.attempt - 1].relaxation, attempt=args.attempt)
+    if args.semi:
+        finest = solve.solver.levels[-1]
+        solve.new_hierarchy(semi_coarsened_shapes(finest.nx, finest.ny, solve.settings.coarsest_grid))
     run = Continuation(solve, args.tolerance, args.cycles, args.phase_means, args.anderson)
     run.raise_load()
     level = run.level
