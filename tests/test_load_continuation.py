@@ -3,6 +3,7 @@ of its load) and the retry policy that leads to it (issue 14)."""
 
 from __future__ import annotations
 
+from dataclasses import replace
 import math
 
 import numpy as np
@@ -270,3 +271,39 @@ def test_a_load_step_whose_film_closes_is_taken_back_and_the_step_shortened(limi
     assert f"the film closes raising the load of the full-multigrid start past {reached:.3g}" in status.message
     assert limit / TUNING.min_load_step**2 < reached <= limit
     assert solver.fraction() == pytest.approx(reached, rel=1e-9) and solver.level.film.min() > 0.0
+
+
+def test_the_continued_hierarchy_coarsens_an_axis_only_where_its_nodes_are_coupled():
+    """start.continued_shapes: the Reynolds operator couples rows by eps/(k h_y)^2 against eps/h_x^2 along a row. A
+    circle's rows are coupled like its columns once the cells are square: its hierarchy is the one coarsened along
+    both axes (grid.hierarchy_shapes, built independently), from the continued attempt's coarsest columns; an a/b = 74.5
+    ellipse's rows are 10^-5 as coupled on (257, 65): every coarse grid keeps them."""
+    from facegear_tehl.ehl import grid
+    from facegear_tehl.ehl.start import continued_shapes
+
+    columns = TUNING.semi_coarsest_columns
+    for nodes in ((257, 65), (129, 129), (513, 513)):
+        circle = problem_for(_point(4e4), OIL, SolverSettings(grid=nodes[0], grid_y=nodes[1], thermal="off"),
+                             scaling_for(_point(4e4), OIL))
+        circle = replace(circle, ellipticity=1.0, domain_x=(-4.5, 1.5), domain_y=(-3.0, 3.0))
+        assert continued_shapes(*nodes, circle, columns) == grid.hierarchy_shapes(*nodes, columns)
+    ellipse = replace(circle, ellipticity=74.5)
+    assert continued_shapes(257, 65, ellipse, columns) == [(33, 65), (65, 65), (129, 65), (257, 65)]
+
+
+@pytest.mark.slow
+def test_a_heavy_thermal_long_ellipse_converges_from_the_continued_start():
+    """The wide envelope's w24 (a/b 74.5, 2.3 GPa, 34.6 m/s, Ree-Eyring, thermal full, M = 7.7e4), whose starts on
+    the hierarchy coarsened along both axes run away on every attempt: its load-continued attempt on 257 x 65
+    converges with an open film, its load balanced (the integral of the pressure against the load) and its energy
+    balanced (heat conducted into the solids and convected out against the heat generated, energy.py) within 1 %."""
+    from facegear_tehl.ehl.staged import StagedSolver
+    from facegear_tehl.suites.wide_envelope import wide_envelope_contact
+
+    case = wide_envelope_contact("w24")
+    solve = PointSolve(case.point(), case.lubricant(), case.settings(257, 65), ATTEMPTS[3].relaxation, attempt=4,
+                       escalate_start=True, load_continuation=True)
+    solution = StagedSolver(bounded=False).finish(solve.begin())
+    assert solution.converged, solution.message
+    assert solution.scalar("h_min") > 0.0 and abs(solution.scalar("load_error")) < 1e-3
+    assert abs(solution.scalar("energy_balance_error")) < 1e-2

@@ -97,10 +97,10 @@ class PointSolve:
         self.coarsest = settings.coarsest_grid  # nodes of the coarsest grid's shorter side (start.py)
         fraction = TUNING.continuation_moes_m / self.scaling.moes_m
         self.start_load_fraction = min(1.0, fraction) if load_continuation else 1.0
-        shapes = self.hierarchy(self.coarsest)
-        self.pressure = PressureIteration(
-            MultigridSolver(problem_for(point, lubricant, settings, self.scaling), shapes, relaxation), settings,
-            History(cycles=settings.cycles_per_level))
+        problem = problem_for(point, lubricant, settings, self.scaling)
+        shapes = hierarchy_shapes(settings, self.coarsest, problem, self.start_load_fraction < 1.0)
+        self.pressure = PressureIteration(MultigridSolver(problem, shapes, relaxation), settings,
+                                          History(cycles=settings.cycles_per_level))
         self.plan: SolvePlan = plan_for(shapes, self.mode, self.coupled, settings, point.entrainment_angle)
         self.summaries: list[LevelSummary] = []
         self.coarse_state: FilmState | None = None  # the film state of the coarse thermal stage
@@ -274,9 +274,9 @@ class PointSolve:
         return index, status
 
     def hierarchy(self, coarsest: int) -> list[tuple[int, int]]:
-        """The grids of the solve from `coarsest` nodes up, coarsest first (start.hierarchy_shapes: along x alone for a
-        start at a fraction of the load)."""
-        return hierarchy_shapes(self.settings, coarsest, self.start_load_fraction < 1.0)
+        """The grids of the solve from `coarsest` nodes up, coarsest first (start.hierarchy_shapes: along the strongly
+        coupled axes alone for a start at a fraction of the load)."""
+        return hierarchy_shapes(self.settings, coarsest, self.solver.problem, self.start_load_fraction < 1.0)
 
     def new_hierarchy(self, shapes: list[tuple[int, int]]) -> None:
         """A new multigrid solver on `shapes` (coarsest first), summaries and history begun again; the work done so

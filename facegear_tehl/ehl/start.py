@@ -4,7 +4,8 @@ of the one below with `cycles_per_level` V-cycles.
 
 Two remedies of the retry policy (retry.py) act here: a start that runs away is begun again from a coarsest grid
 twice as fine (`escalate_start`), and the last attempt at a heavily loaded point starts at a fraction of its load
-and raises it step by step one grid below the finest (load continuation).
+and raises it step by step on the start's last level, each step held only where the pressure iteration converges it
+(load continuation), on a hierarchy coarsened along the strongly coupled axes alone (`continued_shapes`).
 """
 
 from __future__ import annotations
@@ -31,11 +32,22 @@ from facegear_tehl.solution import CONVERGED, Outcome, Status
 FILM_LOAD_EXPONENT = -0.067 - 2.0 / 3.0
 
 
-def semi_coarsened_shapes(nx: int, ny: int, coarsest: int) -> list[tuple[int, int]]:
-    """(nx, ny) per level, coarsest first, of a hierarchy coarsened along x alone down to `coarsest` columns: every
-    coarse grid keeps all ny rows (semi-coarsening of anisotropic problems, Brandt 1977; Trottenberg, Oosterlee &
-    Schüller 2001, §5.1), e.g. (257, 65, 17) -> [(17, 65), (33, 65), (65, 65), (129, 65), (257, 65)]."""
-    return [(size, ny) for size in grid.hierarchy_sizes(nx, coarsest)]
+def continued_shapes(nx: int, ny: int, problem: Problem, columns: int) -> list[tuple[int, int]]:
+    """(nx, ny) per level, coarsest first, of a hierarchy coarsened along x down to `columns` columns and along y only
+    where the rows are coupled at least row_coupling times as strongly as the columns: the Reynolds operator's
+    coefficients along Y and X stand as (h_x/(k h_y))^2 (k = a/b; reynolds.py), and an axis whose coupling is weak is
+    not coarsened (semi-coarsening of anisotropic problems: Brandt 1977; Trottenberg, Oosterlee & Schüller 2001,
+    §5.1). A circle's hierarchy is the one coarsened along both axes (grid.hierarchy_shapes); a long ellipse's keeps
+    every row, e.g. a/b = 74.5 on (257, 65): [(33, 65), (65, 65), (129, 65), (257, 65)]."""
+    length_x = problem.domain_x[1] - problem.domain_x[0]
+    length_y = problem.domain_y[1] - problem.domain_y[0]
+    shapes = [(nx, ny)]
+    while nx > columns:
+        coupling = (length_x / (nx - 1) / (problem.ellipticity * length_y / (ny - 1))) ** 2
+        ny = (ny - 1) // 2 + 1 if coupling >= TUNING.row_coupling and ny > columns else ny
+        nx = (nx - 1) // 2 + 1
+        shapes.insert(0, (nx, ny))
+    return shapes
 
 
 class Starting(Protocol):
@@ -79,12 +91,13 @@ def start(solve: Starting, below_top: int) -> tuple[int, Status]:
         solve.coarsest = finer
 
 
-def hierarchy_shapes(settings: SolverSettings, coarsest: int, continued: bool) -> list[tuple[int, int]]:
+def hierarchy_shapes(settings: SolverSettings, coarsest: int, problem: Problem,
+                     continued: bool) -> list[tuple[int, int]]:
     """The grids of a point solve, coarsest first: coarsened along both axes down to `coarsest` nodes on the shorter
-    side (grid.hierarchy_shapes), or, for a solve `continued` from a fraction of the load, along x alone down to
-    `coarsest` columns, semi_coarsest_columns at least (`semi_coarsened_shapes`)."""
+    side (grid.hierarchy_shapes), or, for a solve `continued` from a fraction of the load, along the axes whose
+    coupling is strong down to `coarsest` columns, semi_coarsest_columns at least (`continued_shapes`)."""
     if continued:
-        return semi_coarsened_shapes(settings.grid, settings.nodes_y, max(coarsest, TUNING.semi_coarsest_columns))
+        return continued_shapes(settings.grid, settings.nodes_y, problem, max(coarsest, TUNING.semi_coarsest_columns))
     return grid.hierarchy_shapes(settings.grid, settings.nodes_y, coarsest)
 
 
@@ -116,11 +129,10 @@ def _hertz_start(solver: MultigridSolver, scaling: Scaling, cycles: int, fractio
 
 def _continued(solve: Starting, last: int) -> tuple[int, Status]:
     """Full multigrid at start_load_fraction of the load up to level `last`, then its load raised there to the full
-    load (_raise_load). The solve's hierarchy is then coarsened along x alone (`hierarchy_shapes`): the coarse grids
-    coarsened along both axes do not carry a heavy long ellipse, their V-cycles fall into a period-2 limit cycle at
-    the end of the major axis, where the rows are coupled through the deflection alone, or run away from its
-    converged start (docs/envelope.md); those that keep every row converge there (semi-coarsening of anisotropic
-    problems). The summary of level `last` is the start's only one (no coarser level of the start is at the full
+    load (_raise_load). The solve's hierarchy is then coarsened along the strongly coupled axes alone
+    (`continued_shapes`): the coarse grids coarsened along both axes do not carry a heavy long ellipse, their V-cycles
+    fall into a period-2 limit cycle at the end of the major axis, where the rows are coupled through the deflection
+    alone, or run away from its converged start (docs/envelope.md); those that keep every row converge there. The summary of level `last` is the start's only one (no coarser level of the start is at the full
     load)."""
     solver, problem, fraction = solve.solver, solve.solver.problem, solve.start_load_fraction
     solver.problem = at_load_fraction(problem, fraction)
