@@ -9,11 +9,11 @@ current factor (at most TUNING.load_step), moves H_0 by the predicted change of 
 taken back and the logarithm of its factor halved, down to TUNING.min_load_step. With --phase-means a V-cycle
 whose pressure change runs against the previous one (correlation below -0.8: a period-2 limit cycle) is replaced by
 the mean of its two phases; with --anderson M each step's V-cycles are accelerated by Anderson's method with M
-columns (pressure.accelerate, as the pressure iteration does); with --semi the coarse grids keep every row
-(coarsened along the strongly coupled axes, start.hierarchy_shapes: the hierarchy of the load-continued attempt). Prints per step the
-load fraction, the cycles, the change, the load error, h_min and where it lies; at the end the fraction reached,
-Moes M there, and where the pressure change of the next V-cycles concentrates with the correlation of successive
-changes (-1: a period-2 limit cycle).
+columns (pressure.accelerate, as the pressure iteration does); with --semi the coarse grids are the load-continued
+attempt's (start.hierarchy_shapes: coarsened along the strongly coupled axes alone, a long ellipse's keep every row).
+Prints per step the load fraction, the cycles, the change, the load error, h_min and where it lies; at the end the
+fraction reached, Moes M there, and where the pressure change of the next V-cycles concentrates with the correlation
+of successive changes (-1: a period-2 limit cycle).
 
     python scripts/continuation_reach.py w01 [--grid 257] [--grid-y 65] [--attempt 3] [--phase-means]
                                              [--anderson M] [--semi] [--tolerance 1e-3] [--cycles 12]

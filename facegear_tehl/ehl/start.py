@@ -128,35 +128,44 @@ def _hertz_start(solver: MultigridSolver, scaling: Scaling, cycles: int, fractio
 
 
 def _continued(solve: Starting, last: int) -> tuple[int, Status]:
-    """Full multigrid at start_load_fraction of the load up to level `last`, then its load raised there to the full
-    load (_raise_load). The solve's hierarchy is then coarsened along the strongly coupled axes alone
-    (`continued_shapes`): the coarse grids coarsened along both axes do not carry a heavy long ellipse, their V-cycles
-    fall into a period-2 limit cycle at the end of the major axis, where the rows are coupled through the deflection
-    alone, or run away from its converged start (docs/envelope.md); those that keep every row converge there. The summary of level `last` is the start's only one (no coarser level of the start is at the full
-    load)."""
+    """Full multigrid at start_load_fraction of the load up to the level below `last`, its load raised there to the
+    full load (_raise_load), then the full-multigrid step to `last` (_climb); where a level does not carry the full
+    load, the raise goes on from the load it reached on the next finer one, up to `last`. The summaries are those of
+    the levels at the full load (no error estimate compares levels at different loads). The solve's hierarchy is
+    coarsened along the strongly coupled axes alone (`continued_shapes`): the coarse grids coarsened along both axes
+    do not carry a heavy long ellipse, their V-cycles fall into a period-2 limit cycle at the end of the major axis,
+    where the rows are coupled through the deflection alone, or run away from its converged start
+    (docs/envelope.md); those that keep every row converge there."""
     solver, problem, fraction = solve.solver, solve.solver.problem, solve.start_load_fraction
-    solver.problem = at_load_fraction(problem, fraction)
-    level = solver.levels[last]
     iteration = PressureIteration(solver, _step_settings(solve.settings), History(cycles=0))
+    index = max(last - 1, 0)
+    solver.problem = at_load_fraction(problem, fraction)
     try:
         _hertz_start(solver, solve.scaling, solve.settings.cycles_per_level, fraction)
-        for index in range(1, last + 1):
-            solver.interpolate_up(index)
-            for _ in range(solve.settings.cycles_per_level):
-                solver.cycle(index)
-        if _ran_away(solver, level):
-            reached, status = fraction, Status(Outcome.DIVERGED, f"diverged during the full-multigrid start at "
-                                                                 f"{fraction:.3g} of the load on the {level.nx} x "
-                                                                 f"{level.ny} grid")
-        else:
-            reached, status = _raise_load(iteration, last, problem, fraction)
+        _interpolated(solver, 1, index, solve.settings.cycles_per_level)
+        while True:
+            fraction, status = _raise_load(iteration, index, problem, fraction)
+            if status.converged or index == last:
+                break
+            index += 1
+            solver.problem = at_load_fraction(problem, fraction)
+            _interpolated(solver, index, index, solve.settings.cycles_per_level)
     finally:
         solver.problem = problem
-        solver.update_film(level)
-    solve.load_reached = reached
+        solver.update_film(solver.levels[index])
+    solve.load_reached = fraction
     solve.history.cycles += iteration.history.cycles
-    solve.summaries.append(_at_load(summarise(level), reached))
-    return last, status
+    solve.summaries.append(_at_load(summarise(solver.levels[index]), fraction))
+    return _climb(solve, index + 1, last) if status.converged else (index, status)
+
+
+def _interpolated(solver: MultigridSolver, first: int, last: int, cycles: int) -> None:
+    """Full-multigrid steps from level `first - 1` up to level `last`, `cycles` V-cycles each (a level that runs away
+    is the load steps' to judge)."""
+    for index in range(first, last + 1):
+        solver.interpolate_up(index)
+        for _ in range(cycles):
+            solver.cycle(index)
 
 
 def _step_settings(settings: SolverSettings) -> SolverSettings:
@@ -202,9 +211,12 @@ def _raise_load(iteration: PressureIteration, index: int, problem: Problem, frac
     not a film of the smooth-film equations, which is open at any load) is taken back and the logarithm of its factor
     halved; one that holds doubles it again, up to load_step. Returns the fraction reached and the status: how the
     last step failed when the factor falls below min_load_step (the grid does not carry a heavier load, or does not
-    resolve its film)."""
+    resolve its film), diverged at once when the level's start ran away."""
     solver = iteration.solver
     level, step = solver.levels[index], TUNING.load_step
+    if _ran_away(solver, level):
+        return fraction, Status(Outcome.DIVERGED, f"diverged during the full-multigrid start at {fraction:.3g} of the "
+                                                  f"load on the {level.nx} x {level.ny} grid")
     while fraction < 1.0:
         saved, previous = solver.snapshot(index), fraction
         fraction = min(step * fraction, 1.0)
