@@ -227,16 +227,18 @@ def test_a_load_step_whose_cycles_do_not_converge_is_taken_back():
     assert solver.fraction() == pytest.approx(reached, rel=1e-9)
 
 
-def test_a_start_short_of_the_load_reports_no_film():
-    """A solve whose start ended at a fraction of the load (start.py: its continuation could not go on) reports no
-    film: the film of its iterate is a lighter contact's. Only the share of the load and where its lowest film lies
-    (the way a finer grid must resolve it) are reported, and the refinement takes it as unresolved."""
+@pytest.mark.parametrize("outcome", [Outcome.DIVERGED, Outcome.NOT_CONVERGED, Outcome.FILM_CLOSED])
+def test_a_start_short_of_the_load_reports_no_film(outcome):
+    """A solve whose start ended at a fraction of the load (start.py: its continuation could not go on, whichever way
+    its last step failed) reports no film: the film of its iterate is a lighter contact's. Only the share of the load
+    and where its lowest film lies (the way a finer grid must resolve it) are reported, and the refinement takes it as
+    unresolved."""
     from facegear_tehl.solution import Status
 
     solve = PointSolve(_point(1e3, speed=2.0), OIL, SolverSettings(grid=65, thermal="off"))
     index, _ = solve.start(below_top=0)
     solve.load_reached = 0.4
-    solution = solve.report(index, Status(Outcome.DIVERGED, "diverged raising the load"), None)
+    solution = solve.report(index, Status(outcome, "raising the load failed"), None)
     assert "carries 0.4 of the load: no film is reported" in solution.message
     assert not solution.fields and "h_min" not in solution.scalars and "h_c" not in solution.scalars
     assert "y_film_closed" in solution.scalars and POLICY.unresolved(solution)
