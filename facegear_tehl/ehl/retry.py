@@ -13,11 +13,13 @@ In the order a failing solve meets them:
    convergence; a stage that fails for good is dropped and the solution below it reported (outlet.py);
 5. the whole attempt runs away, stalls short of its tolerances or closes its film: the next of ATTEMPTS
    (`next_attempt`): the ellipse-scaled Gauss-Seidel / Jacobi switch, Venner's switch, that damped, and for a
-   heavily loaded point that damped from a start at a fraction of its load (load continuation); an attempt whose
-   coarse stage converged and whose finest grid failed has that grid solved again from its coarse stage with the next
-   attempt's relaxation first (`finest_again`);
-6. the grid does not resolve the film (it closes, or an estimate exceeds its bound): the point is solved again on
-   a finer grid, up to a cap (`finer_settings`, run.py), twice the rows alone where the film closes in a side lobe;
+   heavily loaded point that damped from a start at a fraction of its load, raised in steps the pressure iteration
+   converges, on a hierarchy that coarsens only the strongly coupled axes (load continuation, start.py); an attempt
+   whose coarse stage converged and whose finest grid failed has that grid solved again from its coarse stage with
+   the next attempt's relaxation first (`finest_again`);
+6. the grid does not resolve the film (it closes, a start's load continuation stops short of the load, or an
+   estimate exceeds its bound): the point is solved again on a finer grid, up to a cap (`finer_settings`, run.py),
+   twice the rows alone where the film closes in a side lobe;
    of a point whose attempts all failed, where it closes is read on the finest grid an attempt was reported on
    (`closure_place`), not on a runaway start's coarse level.
 The measurements behind each choice are in docs/tuning.md.
