@@ -151,8 +151,17 @@ class RetryPolicy:
 
     def coarse(self, solution: PointSolution) -> bool:
         """The solve converged but estimates its own h_min or h_c error above coarse_estimate (the two grids then
-        differ by more than the asymptotic range the estimate assumes)."""
-        return solution.converged and any(abs(e) > TUNING.coarse_estimate for e in estimates(solution))
+        differ by more than the asymptotic range the estimate assumes), or has no estimate of h_min after a load
+        continuation (`unestimated`)."""
+        return solution.converged and (any(abs(e) > TUNING.coarse_estimate for e in estimates(solution))
+                                       or self.unestimated(solution))
+
+    def unestimated(self, solution: PointSolution) -> bool:
+        """A solve of the load-continued attempt without an error estimate of h_min: its start's grid one coarser
+        did not carry the full load and the load was raised on its finest grid (start.py); nothing bounds its film
+        (w35 of the wide envelope converged so on 257 x 129 at h_min 0.16 nm, against 0.18 um on 513^2)."""
+        attempt = int(solution.scalars.get("attempts", (1.0, "1"))[0])
+        return self.attempts[attempt - 1].load_continuation and "error_estimate_h_min" not in solution.scalars
 
     def finer_settings(self, settings: SolverSettings, solution: PointSolution) -> SolverSettings | None:
         """The settings on the next finer grid for a film that `solution` did not resolve: twice the rows alone when

@@ -129,14 +129,13 @@ def _hertz_start(solver: MultigridSolver, scaling: Scaling, cycles: int, fractio
 
 def _continued(solve: Starting, last: int) -> tuple[int, Status]:
     """Full multigrid at start_load_fraction of the load up to the level below `last`, its load raised there to the
-    full load (_raise_load), then the full-multigrid step to `last` (_climb). A start whose level below `last` does
-    not carry the full load ends there, short of it (its film is a lighter contact's: the point goes to a finer grid);
-    raised on `last` itself, the solution would have no level one grid coarser at the full load to estimate its error
-    against (w35 of the wide envelope converged so on 257 x 129 at h_min 0.16 nm, unresolved, where 513^2 gives
-    0.18 um). The solve's hierarchy is coarsened along the strongly coupled axes alone (`continued_shapes`): the
-    coarse grids coarsened along both axes do not carry a heavy long ellipse, their V-cycles fall into a period-2
-    limit cycle at the end of the major axis, where the rows are coupled through the deflection alone, or run away
-    from its converged start (docs/envelope.md); those that keep every row converge there."""
+    full load (_raise_load), then the full-multigrid step to `last` (_climb); where a level does not carry the full
+    load, the raise goes on from the load it reached on the next finer one, up to `last` (a solution raised on `last`
+    has no level one grid coarser at the full load to estimate its error against: retry.RetryPolicy.coarse sends it
+    to a finer grid). The solve's hierarchy is coarsened along the strongly coupled axes alone
+    (`continued_shapes`): the coarse grids coarsened along both axes do not carry a heavy long ellipse, their V-cycles
+    fall into a period-2 limit cycle at the end of the major axis, where the rows are coupled through the deflection
+    alone, or run away from its converged start (docs/envelope.md); those that keep every row converge there."""
     solver, problem, fraction = solve.solver, solve.solver.problem, solve.start_load_fraction
     iteration = PressureIteration(solver, _step_settings(solve.settings), History(cycles=0))
     index = max(last - 1, 0)
@@ -144,7 +143,13 @@ def _continued(solve: Starting, last: int) -> tuple[int, Status]:
     try:
         _hertz_start(solver, solve.scaling, solve.settings.cycles_per_level, fraction)
         _interpolated(solver, 1, index, solve.settings.cycles_per_level)
-        fraction, status = _raise_load(iteration, index, problem, fraction)
+        while True:
+            fraction, status = _raise_load(iteration, index, problem, fraction)
+            if status.converged or index == last:
+                break
+            index += 1
+            solver.problem = at_load_fraction(problem, fraction)
+            _interpolated(solver, index, index, solve.settings.cycles_per_level)
     finally:
         solver.problem = problem
         solver.update_film(solver.levels[index])
