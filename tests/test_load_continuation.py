@@ -310,3 +310,22 @@ def test_a_heavy_thermal_long_ellipse_converges_from_the_continued_start():
     assert solution.converged, solution.message
     assert solution.scalar("h_min") > 0.0 and abs(solution.scalar("load_error")) < 1e-3
     assert abs(solution.scalar("energy_balance_error")) < 1e-2
+
+
+def test_a_continued_solve_without_an_estimate_is_refined_like_a_coarse_one():
+    """retry.RetryPolicy.unestimated: a converged solve of the load-continued attempt whose load was raised on its
+    finest grid has no level one grid coarser at the full load and so no error estimate of h_min; nothing bounds its
+    film, and the refinement takes it as one whose estimate exceeds its bound. Another attempt's solve without an
+    estimate (a trial grid's) is left as it is."""
+    from dataclasses import replace as replaced
+
+    from facegear_tehl.solution import CONVERGED as DONE
+
+    solve = PointSolve(_point(1e3, speed=2.0), OIL, SolverSettings(grid=65, thermal="off"), attempt=4)
+    index, _ = solve.start(below_top=0)
+    solution = solve.report(index, DONE, None)
+    bare = replaced(solution, scalars={k: v for k, v in solution.scalars.items() if not k.startswith("error_")})
+    assert solution.converged and "error_estimate_h_min" in solution.scalars and not POLICY.unestimated(solution)
+    assert POLICY.unestimated(bare) and POLICY.coarse(bare)
+    first = replaced(bare, scalars={**bare.scalars, "attempts": (1.0, "1")})
+    assert not POLICY.unestimated(first) and not POLICY.coarse(first)
