@@ -144,7 +144,8 @@ class RetryPolicy:
         """The grid could not resolve the film: none was reported (it closed, the solve ran away with it closed, or
         the start's load continuation did not carry the full load: the V-cycles of its steps stopped converging),
         or the solve did not converge and estimates its own h_min error above unresolved_h_min."""
-        if not solution.converged and "h_min" not in solution.scalars:
+        no_film = (Outcome.FILM_CLOSED, Outcome.DIVERGED, Outcome.NOT_CONVERGED)
+        if solution.outcome in no_film and "h_min" not in solution.scalars:  # (a failed solve has no data at all)
             return True
         estimate = solution.scalars.get("error_estimate_h_min", (0.0, "1"))[0]
         return solution.outcome is Outcome.NOT_CONVERGED and abs(estimate) > TUNING.unresolved_h_min
