@@ -244,9 +244,12 @@ def refinement_note(name: str, refinement: Refinement, solution: PointSolution) 
 
 
 def _coarse_reason(solution: PointSolution) -> str:
-    """The error estimates of a converged solve, against coarse_estimate ("" for a solve that did not converge)."""
+    """The error estimates of a converged solve, against coarse_estimate, or that it has none after a load
+    continuation ("" for a solve that did not converge)."""
     if not solution.converged:
         return ""
+    if POLICY.unestimated(solution):
+        return "converged from a load continuation raised on its finest grid, without an error estimate"
     h_c, h_min = (100 * e for e in estimates(solution))
     bound = 100 * TUNING.coarse_estimate
     return f"converged with h_c estimated {h_c:.2g} % and h_min {h_min:.2g} % off, bound {bound:.0f} %"

@@ -9,13 +9,14 @@ current factor (at most TUNING.load_step), moves H_0 by the predicted change of 
 taken back and the logarithm of its factor halved, down to TUNING.min_load_step. With --phase-means a V-cycle
 whose pressure change runs against the previous one (correlation below -0.8: a period-2 limit cycle) is replaced by
 the mean of its two phases; with --anderson M each step's V-cycles are accelerated by Anderson's method with M
-columns (pressure.accelerate, as the pressure iteration does). Prints per step the load fraction, the cycles, the
-change, the load error, h_min and where it lies; at the end the fraction reached, Moes M there, and where the
-pressure change of the next V-cycles concentrates with the correlation of successive changes (-1: a period-2 limit
-cycle).
+columns (pressure.accelerate, as the pressure iteration does); with --semi the coarse grids are the load-continued
+attempt's (start.hierarchy_shapes: coarsened along the strongly coupled axes alone, a long ellipse's keep every row).
+Prints per step the load fraction, the cycles, the change, the load error, h_min and where it lies; at the end the
+fraction reached, Moes M there, and where the pressure change of the next V-cycles concentrates with the correlation
+of successive changes (-1: a period-2 limit cycle).
 
     python scripts/continuation_reach.py w01 [--grid 257] [--grid-y 65] [--attempt 3] [--phase-means]
-                                             [--anderson M] [--tolerance 1e-3] [--cycles 12]
+                                             [--anderson M] [--semi] [--tolerance 1e-3] [--cycles 12]
 """
 
 from __future__ import annotations
@@ -34,7 +35,7 @@ from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem
 from facegear_tehl.ehl.pressure import accelerate
 from facegear_tehl.ehl.retry import ATTEMPTS
 from facegear_tehl.ehl.solve import PointSolve
-from facegear_tehl.ehl.start import FILM_LOAD_EXPONENT
+from facegear_tehl.ehl.start import FILM_LOAD_EXPONENT, hierarchy_shapes
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.suites.wide_envelope import wide_envelope_contact
 
@@ -153,10 +154,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--tolerance", type=float, default=1e-3)
     parser.add_argument("--cycles", type=int, default=12, help="V-cycles per step at most")
     parser.add_argument("--anderson", type=int, default=0, help="Anderson columns on the V-cycle map (0: bare)")
+    parser.add_argument("--semi", action="store_true",
+                        help="the load-continued attempt's hierarchy: coarse grids with every row (along x alone)")
     args = parser.parse_args(argv)
     case = args.case
     solve = PointSolve(case.point(), case.lubricant(), case.settings(args.grid, args.grid_y),
                        ATTEMPTS[args.attempt - 1].relaxation, attempt=args.attempt)
+    if args.semi:
+        solve.new_hierarchy(hierarchy_shapes(solve.settings, solve.coarsest, solve.solver.problem, continued=True))
     run = Continuation(solve, args.tolerance, args.cycles, args.phase_means, args.anderson)
     run.raise_load()
     level = run.level

@@ -13,11 +13,13 @@ In the order a failing solve meets them:
    convergence; a stage that fails for good is dropped and the solution below it reported (outlet.py);
 5. the whole attempt runs away, stalls short of its tolerances or closes its film: the next of ATTEMPTS
    (`next_attempt`): the ellipse-scaled Gauss-Seidel / Jacobi switch, Venner's switch, that damped, and for a
-   heavily loaded point that damped from a start at a fraction of its load (load continuation); an attempt whose
-   coarse stage converged and whose finest grid failed has that grid solved again from its coarse stage with the next
-   attempt's relaxation first (`finest_again`);
-6. the grid does not resolve the film (it closes, or an estimate exceeds its bound): the point is solved again on
-   a finer grid, up to a cap (`finer_settings`, run.py), twice the rows alone where the film closes in a side lobe;
+   heavily loaded point that damped from a start at a fraction of its load, raised in steps the pressure iteration
+   converges, on a hierarchy that coarsens only the strongly coupled axes (load continuation, start.py); an attempt
+   whose coarse stage converged and whose finest grid failed has that grid solved again from its coarse stage with
+   the next attempt's relaxation first (`finest_again`);
+6. the grid does not resolve the film (it closes, a start's load continuation stops short of the load, or an
+   estimate exceeds its bound): the point is solved again on a finer grid, up to a cap (`finer_settings`, run.py),
+   twice the rows alone where the film closes in a side lobe;
    of a point whose attempts all failed, where it closes is read on the finest grid an attempt was reported on
    (`closure_place`), not on a runaway start's coarse level.
 The measurements behind each choice are in docs/tuning.md.
@@ -139,17 +141,28 @@ class RetryPolicy:
 
     # --- between grids
     def unresolved(self, solution: PointSolution) -> bool:
-        """The grid could not resolve the film: none was reported (it closed, or the solve ran away with it closed),
+        """The grid could not resolve the film: none was reported (it closed, the solve ran away with it closed, or
+        the start's load continuation did not carry the full load: the V-cycles of its steps stopped converging),
         or the solve did not converge and estimates its own h_min error above unresolved_h_min."""
-        if solution.outcome in (Outcome.FILM_CLOSED, Outcome.DIVERGED) and "h_min" not in solution.scalars:
+        no_film = (Outcome.FILM_CLOSED, Outcome.DIVERGED, Outcome.NOT_CONVERGED)
+        if solution.outcome in no_film and "h_min" not in solution.scalars:  # (a failed solve has no data at all)
             return True
         estimate = solution.scalars.get("error_estimate_h_min", (0.0, "1"))[0]
         return solution.outcome is Outcome.NOT_CONVERGED and abs(estimate) > TUNING.unresolved_h_min
 
     def coarse(self, solution: PointSolution) -> bool:
         """The solve converged but estimates its own h_min or h_c error above coarse_estimate (the two grids then
-        differ by more than the asymptotic range the estimate assumes)."""
-        return solution.converged and any(abs(e) > TUNING.coarse_estimate for e in estimates(solution))
+        differ by more than the asymptotic range the estimate assumes), or has no estimate of h_min after a load
+        continuation (`unestimated`)."""
+        return solution.converged and (any(abs(e) > TUNING.coarse_estimate for e in estimates(solution))
+                                       or self.unestimated(solution))
+
+    def unestimated(self, solution: PointSolution) -> bool:
+        """A solve of the load-continued attempt without an error estimate of h_min: its start's grid one coarser
+        did not carry the full load and the load was raised on its finest grid (start.py); nothing bounds its film
+        (w35 of the wide envelope converged so on 257 x 129 at h_min 0.16 nm, against 0.18 um on 513^2)."""
+        attempt = int(solution.scalars.get("attempts", (1.0, "1"))[0])
+        return self.attempts[attempt - 1].load_continuation and "error_estimate_h_min" not in solution.scalars
 
     def finer_settings(self, settings: SolverSettings, solution: PointSolution) -> SolverSettings | None:
         """The settings on the next finer grid for a film that `solution` did not resolve: twice the rows alone when

@@ -31,7 +31,7 @@ from facegear_tehl.ehl.pressure import Best, PressureIteration
 from facegear_tehl.ehl.report import FILM_SCALARS, LevelSummary, point_solution, summarise, with_film_state
 from facegear_tehl.ehl.retry import POLICY
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
-from facegear_tehl.ehl.start import start
+from facegear_tehl.ehl.start import hierarchy_shapes, start
 from facegear_tehl.ehl.stopwatch import NOTHING_SPENT, Spent, Stopwatch
 from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel, thermal_choice
 from facegear_tehl.ehl.tuning import TUNING
@@ -95,17 +95,17 @@ class PointSolve:
         mode, self.reason = thermal_choice(settings.thermal, point, lubricant)
         self.mode = ThermalMode(mode)
         self.coarsest = settings.coarsest_grid  # nodes of the coarsest grid's shorter side (start.py)
-        shapes = grid.hierarchy_shapes(settings.grid, settings.nodes_y, self.coarsest)
-        self.pressure = PressureIteration(
-            MultigridSolver(problem_for(point, lubricant, settings, self.scaling), shapes, relaxation), settings,
-            History(cycles=settings.cycles_per_level))
+        fraction = TUNING.continuation_moes_m / self.scaling.moes_m
+        self.start_load_fraction = min(1.0, fraction) if load_continuation else 1.0
+        problem = problem_for(point, lubricant, settings, self.scaling)
+        shapes = hierarchy_shapes(settings, self.coarsest, problem, self.start_load_fraction < 1.0)
+        self.pressure = PressureIteration(MultigridSolver(problem, shapes, relaxation), settings,
+                                          History(cycles=settings.cycles_per_level))
         self.plan: SolvePlan = plan_for(shapes, self.mode, self.coupled, settings, point.entrainment_angle)
         self.summaries: list[LevelSummary] = []
         self.coarse_state: FilmState | None = None  # the film state of the coarse thermal stage
         self.loop_ending: Ending | None = None  # how the last coupled loop (`couple`) ended
         self.escalate_start, self.attempt = escalate_start, attempt
-        fraction = TUNING.continuation_moes_m / self.scaling.moes_m
-        self.start_load_fraction = min(1.0, fraction) if load_continuation else 1.0
         self.load_reached = 1.0  # of the load, by the start's last level (start.py: below 1 if its continuation failed)
         self.stages: list[StageRecord] = []
         self.retries: list[RetryRecord] = []
@@ -232,7 +232,7 @@ class PointSolve:
                     return frozen, coarse_mark
         reason = Reason.SEED_FILM_CLOSED if status.outcome is Outcome.FILM_CLOSED else Reason.SEED_RAN_AWAY
         self.retries.append(RetryRecord(reason, Action.COARSEST_GRID_AGAIN, self.attempt, status.message))
-        self.new_hierarchy(grid.hierarchy_shapes(self.settings.grid, self.settings.nodes_y, self.coarsest))
+        self.new_hierarchy(self.hierarchy(self.coarsest))
         return None
 
     def _couple_on_finest(self, status: Status) -> PointSolution:
@@ -244,7 +244,7 @@ class PointSolve:
                   else Reason.COARSE_STAGE_RAN_AWAY)
         self.retries.append(RetryRecord(reason, Action.COUPLED_ON_FINEST, self.attempt,
                                         f"{level.nx} x {level.ny}: {status.message}"))
-        self.new_hierarchy(grid.hierarchy_shapes(self.settings.grid, self.settings.nodes_y, self.coarsest))
+        self.new_hierarchy(self.hierarchy(self.coarsest))
         return self._solve_finest()
 
     def _solve_finest(self) -> PointSolution:
@@ -272,6 +272,11 @@ class PointSolve:
         index, status = start(self, below_top)
         self._stage_done(Stage.START, index, status, mark)
         return index, status
+
+    def hierarchy(self, coarsest: int) -> list[tuple[int, int]]:
+        """The grids of the solve from `coarsest` nodes up, coarsest first (start.hierarchy_shapes: along the strongly
+        coupled axes alone for a start at a fraction of the load)."""
+        return hierarchy_shapes(self.settings, coarsest, self.solver.problem, self.start_load_fraction < 1.0)
 
     def new_hierarchy(self, shapes: list[tuple[int, int]]) -> None:
         """A new multigrid solver on `shapes` (coarsest first), summaries and history begun again; the work done so

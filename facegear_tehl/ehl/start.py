@@ -4,7 +4,8 @@ of the one below with `cycles_per_level` V-cycles.
 
 Two remedies of the retry policy (retry.py) act here: a start that runs away is begun again from a coarsest grid
 twice as fine (`escalate_start`), and the last attempt at a heavily loaded point starts at a fraction of its load
-and raises it step by step one grid below the finest (load continuation).
+and raises it step by step on the start's last level, each step held only where the pressure iteration converges it
+(load continuation), on a hierarchy coarsened along the strongly coupled axes alone (`continued_shapes`).
 """
 
 from __future__ import annotations
@@ -14,10 +15,11 @@ import math
 from typing import Protocol
 
 from facegear_tehl.ehl import grid
-from facegear_tehl.ehl.convergence import finite
+from facegear_tehl.ehl.convergence import History, finite
 from facegear_tehl.ehl.coupled import film_closed
 from facegear_tehl.ehl.domain import predicted_central_film
 from facegear_tehl.ehl.multigrid import Level, MultigridSolver, Problem, at_load_fraction
+from facegear_tehl.ehl.pressure import PressureIteration
 from facegear_tehl.ehl.report import LevelSummary, summarise
 from facegear_tehl.ehl.scaling import Scaling
 from facegear_tehl.ehl.tuning import TUNING
@@ -30,10 +32,29 @@ from facegear_tehl.solution import CONVERGED, Outcome, Status
 FILM_LOAD_EXPONENT = -0.067 - 2.0 / 3.0
 
 
+def continued_shapes(nx: int, ny: int, problem: Problem, columns: int) -> list[tuple[int, int]]:
+    """(nx, ny) per level, coarsest first, of a hierarchy coarsened along x down to `columns` columns and along y only
+    where the rows are coupled at least row_coupling times as strongly as the columns: the Reynolds operator's
+    coefficients along Y and X stand as (h_x/(k h_y))^2 (k = a/b; reynolds.py), and an axis whose coupling is weak is
+    not coarsened (semi-coarsening of anisotropic problems: Brandt 1977; Trottenberg, Oosterlee & Schüller 2001,
+    §5.1). A circle's hierarchy is the one coarsened along both axes (grid.hierarchy_shapes); a long ellipse's keeps
+    every row, e.g. a/b = 74.5 on (257, 65): [(33, 65), (65, 65), (129, 65), (257, 65)]."""
+    length_x = problem.domain_x[1] - problem.domain_x[0]
+    length_y = problem.domain_y[1] - problem.domain_y[0]
+    shapes = [(nx, ny)]
+    while nx > columns:
+        coupling = (length_x / (nx - 1) / (problem.ellipticity * length_y / (ny - 1))) ** 2
+        ny = (ny - 1) // 2 + 1 if coupling >= TUNING.row_coupling and ny > columns else ny
+        nx = (nx - 1) // 2 + 1
+        shapes.insert(0, (nx, ny))
+    return shapes
+
+
 class Starting(Protocol):
     """What the start needs of a point solve (solve.PointSolve)."""
 
     solver: MultigridSolver
+    history: History
     settings: SolverSettings
     scaling: Scaling
     summaries: list[LevelSummary]
@@ -48,6 +69,8 @@ class Starting(Protocol):
 
     def new_hierarchy(self, shapes: list[tuple[int, int]]) -> None: ...
 
+    def hierarchy(self, coarsest: int) -> list[tuple[int, int]]: ...
+
 
 def start(solve: Starting, below_top: int) -> tuple[int, Status]:
     """Full multigrid from the Hertz start up to `below_top` levels below the finest. With `escalate_start`, a start
@@ -58,63 +81,103 @@ def start(solve: Starting, below_top: int) -> tuple[int, Status]:
     while True:
         index, status = _full_multigrid(solve, len(solve.solver.levels) - 1 - below_top)
         finer = 2 * solve.coarsest - 1
-        shapes = grid.hierarchy_shapes(settings.grid, settings.nodes_y, finer)
+        shapes = solve.hierarchy(finer)
         if (not (status.diverged and solve.escalate_start) or finer > min(settings.grid, settings.nodes_y)
                 or len(shapes) <= below_top):
             return index, status
         solve.new_hierarchy(shapes)
         solve.retries.append(RetryRecord(Reason.START_RAN_AWAY, Action.FINER_COARSEST_GRID, solve.attempt,
                                          f"from {solve.coarsest} x {solve.coarsest}: {status.message}"))
-        solve.coarsest = min(shapes[0])
+        solve.coarsest = finer
+
+
+def hierarchy_shapes(settings: SolverSettings, coarsest: int, problem: Problem,
+                     continued: bool) -> list[tuple[int, int]]:
+    """The grids of a point solve, coarsest first: coarsened along both axes down to `coarsest` nodes on the shorter
+    side (grid.hierarchy_shapes), or, for a solve `continued` from a fraction of the load, along the axes whose
+    coupling is strong down to `coarsest` columns, semi_coarsest_columns at least (`continued_shapes`)."""
+    if continued:
+        return continued_shapes(settings.grid, settings.nodes_y, problem, max(coarsest, TUNING.semi_coarsest_columns))
+    return grid.hierarchy_shapes(settings.grid, settings.nodes_y, coarsest)
 
 
 def _full_multigrid(solve: Starting, last: int) -> tuple[int, Status]:
     """Full multigrid from the Hertz start on the coarsest grid up to level `last`; appends a summary per level.
-    With a start_load_fraction below 1 the levels up to the one below `last` are solved at that fraction of the
-    load, raised to the full load there or, where a grid does not carry it, on the finer ones (_continued)."""
-    solver, problem, fraction = solve.solver, solve.solver.problem, solve.start_load_fraction
-    ramp = max(last - 1, 0) if fraction < 1.0 else last  # the level whose load is raised
-    solver.problem = at_load_fraction(problem, fraction)
-    solve.load_reached, index = fraction, 0
+    With a start_load_fraction below 1, level `last` is started at that fraction of the load and its load raised to
+    the full load (_continued)."""
+    if solve.start_load_fraction < 1.0:
+        return _continued(solve, last)
+    solver, index = solve.solver, 0
+    solve.load_reached = 1.0
     try:
-        central = predicted_central_film(solve.scaling) / solve.scaling.film_scale
-        solver.start_from_hertz(central * fraction ** FILM_LOAD_EXPONENT)
-        for _ in range(solve.settings.cycles_per_level):
-            solver.cycle(0)
-        solve.summaries.append(_at_load(summarise(solver.levels[0]), fraction))
-        index, status = _climb(solve, 1, ramp, fraction)
-        if status.converged and fraction < 1.0:
-            index, status = _continued(solve, index, last, problem, fraction)
+        _hertz_start(solver, solve.scaling, solve.settings.cycles_per_level, 1.0)
+        solve.summaries.append(summarise(solver.levels[0]))
+        index, status = _climb(solve, 1, last)
     finally:
-        solver.problem = problem
         solver.update_film(solver.levels[index])
     return index, status
 
 
-def _continued(solve: Starting, index: int, last: int, problem: Problem, fraction: float) -> tuple[int, Status]:
-    """Raise the load of level `index` from `fraction` (_raise_load); where that grid does not carry a heavier load,
-    go on from the fraction it reached on the next finer level, up to `last` (the summaries of the levels below are
-    then at other loads than the finer ones': dropped, so that no error estimate compares them), then climb to
-    `last` at the full load."""
-    solver = solve.solver
-    while True:
-        fraction, status = _raise_load(solver, index, problem, fraction, open_film=index == last)
-        solve.load_reached = fraction
-        if status.converged:
-            solve.summaries[-1] = summarise(solver.levels[index])
-            return _climb(solve, index + 1, last, 1.0)
-        if index >= last:
-            return index, status
-        solve.summaries.clear()
-        solver.problem = at_load_fraction(problem, fraction)
-        index, status = _climb(solve, index + 1, index + 1, fraction)
-        if not status.converged:
-            return index, status
+def _hertz_start(solver: MultigridSolver, scaling: Scaling, cycles: int, fraction: float) -> None:
+    """The coarsest grid of `solver` from the Hertz pressure at `fraction` of the load (H_0 for the predicted central
+    film there) and `cycles` V-cycles on it; `solver.problem` is that load's."""
+    central = predicted_central_film(scaling) / scaling.film_scale
+    solver.start_from_hertz(central * fraction ** FILM_LOAD_EXPONENT)
+    for _ in range(cycles):
+        solver.cycle(0)
 
 
-def _climb(solve: Starting, first: int, last: int, fraction: float) -> tuple[int, Status]:
-    """Full-multigrid steps from level `first - 1` (solved) up to level `last` at `fraction` of the load (the
-    solver's problem); returns the finest sound level and the status."""
+def _continued(solve: Starting, last: int) -> tuple[int, Status]:
+    """Full multigrid at start_load_fraction of the load up to the level below `last`, its load raised there to the
+    full load (_raise_load), then the full-multigrid step to `last` (_climb); where a level does not carry the full
+    load, the raise goes on from the load it reached on the next finer one, up to `last` (a solution raised on `last`
+    has no level one grid coarser at the full load to estimate its error against: retry.RetryPolicy.coarse sends it
+    to a finer grid). The solve's hierarchy is coarsened along the strongly coupled axes alone
+    (`continued_shapes`): the coarse grids coarsened along both axes do not carry a heavy long ellipse, their V-cycles
+    fall into a period-2 limit cycle at the end of the major axis, where the rows are coupled through the deflection
+    alone, or run away from its converged start (docs/envelope.md); those that keep every row converge there."""
+    solver, problem, fraction = solve.solver, solve.solver.problem, solve.start_load_fraction
+    iteration = PressureIteration(solver, _step_settings(solve.settings), History(cycles=0))
+    index = max(last - 1, 0)
+    solver.problem = at_load_fraction(problem, fraction)
+    try:
+        _hertz_start(solver, solve.scaling, solve.settings.cycles_per_level, fraction)
+        _interpolated(solver, 1, index, solve.settings.cycles_per_level)
+        while True:
+            fraction, status = _raise_load(iteration, index, problem, fraction)
+            if status.converged or index == last:
+                break
+            index += 1
+            solver.problem = at_load_fraction(problem, fraction)
+            _interpolated(solver, index, index, solve.settings.cycles_per_level)
+    finally:
+        solver.problem = problem
+        solver.update_film(solver.levels[index])
+    solve.load_reached = fraction
+    solve.history.cycles += iteration.history.cycles
+    solve.summaries.append(_at_load(summarise(solver.levels[index]), fraction))
+    return _climb(solve, index + 1, last) if status.converged else (index, status)
+
+
+def _interpolated(solver: MultigridSolver, first: int, last: int, cycles: int) -> None:
+    """Full-multigrid steps from level `first - 1` up to level `last`, `cycles` V-cycles each (a level that runs away
+    is the load steps' to judge)."""
+    for index in range(first, last + 1):
+        solver.interpolate_up(index)
+        for _ in range(cycles):
+            solver.cycle(index)
+
+
+def _step_settings(settings: SolverSettings) -> SolverSettings:
+    """The tolerances a load step's V-cycles must meet (continuation_tolerance, of the pressure change and the load
+    error) within cycles_per_load_step cycles."""
+    return replace(settings, tolerance=TUNING.continuation_tolerance, load_tolerance=TUNING.continuation_tolerance,
+                   max_cycles=TUNING.cycles_per_load_step)
+
+
+def _climb(solve: Starting, first: int, last: int) -> tuple[int, Status]:
+    """Full-multigrid steps from level `first - 1` (solved) up to level `last`; returns the finest sound level and
+    the status."""
     solver = solve.solver
     saved = solver.snapshot(first - 1)
     for index in range(first, last + 1):
@@ -129,7 +192,7 @@ def _climb(solve: Starting, first: int, last: int, fraction: float) -> tuple[int
             message = f"diverged during the full-multigrid start on the {level.nx} x {level.ny} grid"
             return index - 1, Status(Outcome.DIVERGED, message)
         saved = solver.snapshot(index)
-        solve.summaries.append(_at_load(summarise(level), fraction))
+        solve.summaries.append(summarise(level))
     return max(last, first - 1), CONVERGED
 
 
@@ -139,18 +202,21 @@ def _ran_away(solver: MultigridSolver, level: Level) -> bool:
     return not finite(level) or abs(solver.force_error(level)) > bound
 
 
-def _raise_load(solver: MultigridSolver, index: int, problem: Problem, fraction: float,
-                open_film: bool) -> tuple[float, Status]:
-    """Raise the load of level `index` from `fraction` to the full load of `problem` under step control: each step
-    multiplies the load by the current factor (load_step at most), moves H_0 by the predicted change of the central
-    film (FILM_LOAD_EXPONENT) and takes cycles_per_load_step V-cycles. A step that runs away (`_ran_away`), or with
-    `open_film` (the finest level of the start, whose film is the result's) one whose film closes (h_min <= 0: not a
-    film of the smooth-film equations, which is open at any load), is taken back and the logarithm of its factor
-    halved; one that holds doubles it again, up to load_step. Returns the fraction reached and the status: diverged,
-    or film closed, when the factor falls below min_load_step (the grid does not carry a heavier load, or does not
-    resolve its film). A coarser level's closed film goes on: it is that grid's, and the finer grids, which start
-    from it, may resolve it (docs/envelope.md, ab1_ph2.5_u0.5_eta0.01_iso and w08)."""
+def _raise_load(iteration: PressureIteration, index: int, problem: Problem, fraction: float) -> tuple[float, Status]:
+    """Raise the load of level `index` of `iteration`'s solver from `fraction` to the full load of `problem` under
+    step control by the convergence monitor: each step multiplies the load by the current factor (load_step at most),
+    moves H_0 by the predicted change of the central film (FILM_LOAD_EXPONENT) and cycles the pressure
+    (pressure.PressureIteration: phase means and Anderson's acceleration where the V-cycles stall) to the step's
+    tolerances (_step_settings). A step whose cycles do not converge, run away, or leave the film closed (h_min <= 0:
+    not a film of the smooth-film equations, which is open at any load) is taken back and the logarithm of its factor
+    halved; one that holds doubles it again, up to load_step. Returns the fraction reached and the status: how the
+    last step failed when the factor falls below min_load_step (the grid does not carry a heavier load, or does not
+    resolve its film), diverged at once when the level's start ran away."""
+    solver = iteration.solver
     level, step = solver.levels[index], TUNING.load_step
+    if _ran_away(solver, level):
+        return fraction, Status(Outcome.DIVERGED, f"diverged during the full-multigrid start at {fraction:.3g} of the "
+                                                  f"load on the {level.nx} x {level.ny} grid")
     while fraction < 1.0:
         saved, previous = solver.snapshot(index), fraction
         fraction = min(step * fraction, 1.0)
@@ -158,9 +224,7 @@ def _raise_load(solver: MultigridSolver, index: int, problem: Problem, fraction:
         solver.problem = at_load_fraction(problem, fraction)
         solver.h0 += h_c * ((fraction / previous) ** FILM_LOAD_EXPONENT - 1.0)
         solver.update_film(level)
-        for _ in range(TUNING.cycles_per_load_step):
-            solver.cycle(index)
-        failure = _failed_step(solver, level, open_film)
+        failure = _failed_step(level, iteration.cycle(index, TUNING.cycles_per_load_step))
         if failure is None:
             step = min(step * step, TUNING.load_step)
             continue
@@ -168,20 +232,20 @@ def _raise_load(solver: MultigridSolver, index: int, problem: Problem, fraction:
         solver.restore(index, saved)
         fraction, step = previous, math.sqrt(step)
         if step < TUNING.min_load_step:
-            what = "diverged" if failure is Outcome.DIVERGED else "the film closes"
-            return fraction, Status(failure, f"{what} raising the load of the full-multigrid start past "
-                                             f"{fraction:.3g} on the {level.nx} x {level.ny} grid")
+            return fraction, Status(failure, f"{STEP_FAILURES[failure]} raising the load of the full-multigrid start "
+                                             f"past {fraction:.3g} on the {level.nx} x {level.ny} grid")
     return fraction, CONVERGED
 
 
-def _failed_step(solver: MultigridSolver, level: Level, open_film: bool) -> Outcome | None:
-    """How a load step failed: it ran away (`_ran_away`), or, with `open_film`, its film closed (h_min <= 0, the film
-    of the iterate after its cycles); None when it holds."""
-    if _ran_away(solver, level):
-        return Outcome.DIVERGED
-    if not open_film:
-        return None
-    solver.update_film(level)
+STEP_FAILURES = {Outcome.DIVERGED: "diverged", Outcome.FILM_CLOSED: "the film closes",
+                 Outcome.NOT_CONVERGED: "the V-cycles do not converge"}
+
+
+def _failed_step(level: Level, status: Status) -> Outcome | None:
+    """How a load step failed: its V-cycles ran away or did not converge (`status`), or its film closed (h_min <= 0,
+    the film of the iterate after its cycles); None when it holds."""
+    if not status.converged:
+        return status.outcome
     return Outcome.FILM_CLOSED if film_closed(level.film) else None
 
 

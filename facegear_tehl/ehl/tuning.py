@@ -27,7 +27,10 @@ class Tuning:
     eyring_start_cycles: int = 1  # V-cycles of an isothermal Ree-Eyring film's finest start grid: its loop follows
     continuation_moes_m: float = 1000.0  # Moes M from which the last attempt starts at a fraction of the load
     load_step: float = 1.25  # the largest load factor of a continuation step (2 ran away at once)
-    cycles_per_load_step: int = 3  # V-cycles per continuation step
+    cycles_per_load_step: int = 12  # V-cycles a continuation step may take to its tolerance
+    continuation_tolerance: float = 1e-3  # pressure change and load error a continuation step's V-cycles must reach
+    semi_coarsest_columns: int = 33  # columns of the load-continued attempt's coarsest grid (17 ran w24's cycles away)
+    row_coupling: float = 0.5  # ... whose rows are coarsened only where coupled at least this much as the columns
     min_load_step: float = 1.01  # a grid whose step factor falls below this does not carry a heavier load
     # --- the pressure iteration on a frozen film state
     floor_stall: float = 0.8  # stalled: the change per cycle fell by less than 20 % over two cycles ...
