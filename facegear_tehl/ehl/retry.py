@@ -160,7 +160,7 @@ class RetryPolicy:
     def unestimated(self, solution: PointSolution) -> bool:
         """A solve of the load-continued attempt without an error estimate of h_min: its start's grid one coarser
         did not carry the full load and the load was raised on its finest grid (start.py); nothing bounds its film
-        (w35 of the wide envelope converged so on 257 x 129 at h_min 0.16 nm, against 0.18 um on 513^2)."""
+        (docs/envelope.md, the heavy ellipses of the wide envelope)."""
         attempt = int(solution.scalars.get("attempts", (1.0, "1"))[0])
         return self.attempts[attempt - 1].load_continuation and "error_estimate_h_min" not in solution.scalars
 
