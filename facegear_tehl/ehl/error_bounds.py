@@ -414,8 +414,8 @@ def with_coarser_pair(solution: PointSolution, coarser: PointSolution, t_inlet: 
     if not (solution.converged and coarser.converged) or "film_thickness" not in solution.fields:
         return solution
     pairs = coarser_estimates(solution)
+    patched = any(s.scalars.get("outlet_patches", (0.0, "1"))[0] > 0.0 for s in (solution, coarser))
     for name in FIGURES:
-        patched = any(s.scalars.get("outlet_patches", (0.0, "1"))[0] > 0.0 for s in (solution, coarser))
         value, before = solution.scalars.get(name, (0.0, "1"))[0], coarser.scalars.get(name, (0.0, "1"))[0]
         estimate = coarser.scalars.get(f"error_estimate_{name}", (math.nan, "1"))[0]
         if value != 0.0 and math.isfinite(estimate) and not (patched and name in ("dT_max", "mu")):
