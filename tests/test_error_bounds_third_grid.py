@@ -9,6 +9,7 @@ the figure is unresolved where its two-grid bound would have understated it."""
 from __future__ import annotations
 
 from dataclasses import replace
+
 import numpy as np
 import pytest
 
