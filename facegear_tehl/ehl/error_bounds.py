@@ -6,7 +6,8 @@ A reported error estimate is a promise: the bound of a figure f solved on nx x n
 
 e_x the Richardson estimate of the solve from the grid one coarser along x alone (report.estimate), checked against the
 next coarser pair along x where a third grid is at hand (`three_grid_estimate`: Roache's asymptotic-range check; the
-solve's own levels, `coarser_estimates`, or the accuracy target's last grid, `with_coarser_pair`), e_ref the iteration
+solve's own levels, `coarser_estimates`, the seed stage's film state among them, or the grid the solve was refined from,
+`with_coarser_pair`: the accuracy target's last grid, run.py's refinement's), e_ref the iteration
 error of the grid e_x compares with (`reference_error`: the coarse stage's loop stops at its own tolerance), e_y the
 Richardson
 estimate along y (`y_estimates`), e_it the error the iteration left, from its last changes and contraction rate
