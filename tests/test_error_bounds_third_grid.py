@@ -160,3 +160,23 @@ def test_the_grid_refined_from_checks_the_refined_solve(q):
     unbounded = replace(fine, scalars={k: v for k, v in fine.scalars.items() if not k.startswith(("error_bound_",
                                                                                                   "unresolved_"))})
     assert with_coarser_pair(unbounded, coarser, 300.0) is unbounded  # a solve without bounds gets none
+
+
+def test_the_grid_refined_from_never_clears_what_the_solves_own_levels_flag():
+    """A refined 257 x 65 whose own full-multigrid levels 65, 129, 257 (x alone on 65 rows) carry h_c growing from
+    pair to pair (0.111, 0.123, 0.139 um: outside the asymptotic range) stays unresolved after the check against the
+    grid it was refined from, though that pair alone (second order below it) would accept it: the stricter of the two
+    third grids holds."""
+    first, second = 0.139e-6, 0.123e-6
+    fine = _refined(257, 65, first, (first - second) / 3.0 / first)
+    fine = replace(fine, scalars=fine.scalars | {"grid": (257.0, "1"), "grid_y": (65.0, "1"),
+                                                 "coarsest_grid": (17.0, "1")},
+                   history={"level_nodes": Field(np.array([33.0, 65.0, 129.0, 257.0]), "1", ""),
+                            "level_h_c": Field(np.array([0.07e-6, 0.111e-6, second, first]), "m", ""),
+                            "level_h_min": Field(np.array([0.07e-6, 0.111e-6, second, first]), "m", "")})
+    accepting = 4.0 * (first - second) / 3.0 / second  # the coarser pair of a second-order fall
+    coarser = _refined(129, 33, second, accepting)
+    alone = with_coarser_pair(replace(fine, history={}), coarser, 300.0)
+    assert alone.scalar("unresolved_h_c") == 0.0 and alone.scalar("observed_order_h_c") == pytest.approx(2.0)
+    checked = with_coarser_pair(fine, coarser, 300.0)
+    assert checked.scalar("unresolved_h_c") == 1.0 and "error_bound_h_c" not in checked.scalars

@@ -449,12 +449,13 @@ def with_coarser_pair(solution: PointSolution, coarser: PointSolution, t_inlet: 
     grid its coarse stage lies on (`one_doubling_coarser`: the accuracy target's last grid, or the grid run.py refined
     from), as the next coarser pair along x (`three_grid_estimate`; in units of `solution`'s figures, its noise the
     coarser solve's e_ref and e_it/(2^p - 1)), for the figures whose estimates both solves take at the ratio 2 (not
-    dT_max and mu of an outlet-refined solve, report._outlet_scalars); t_inlet in K. As it is where `coarser` is not
-    that grid, either did not converge, or `solution` carries no film or no bounds."""
+    dT_max and mu of an outlet-refined solve, report._outlet_scalars), beside the third grid of its own levels
+    (`coarser_estimates`): the stricter of the two (`stricter`); t_inlet in K. As it is where `coarser` is not that
+    grid, either did not converge, or `solution` carries no film or no bounds."""
     if (not (solution.converged and coarser.converged) or "film_thickness" not in solution.fields
             or "unresolved_h_min" not in solution.scalars or not one_doubling_coarser(coarser, solution)):
         return solution
-    pairs = coarser_estimates(solution)
+    pairs = {}
     patched = any(s.scalars.get("outlet_patches", (0.0, "1"))[0] > 0.0 for s in (solution, coarser))
     for name in FIGURES:
         value, before = solution.scalars.get(name, (0.0, "1"))[0], coarser.scalars.get(name, (0.0, "1"))[0]
@@ -465,8 +466,24 @@ def with_coarser_pair(solution: PointSolution, coarser: PointSolution, t_inlet: 
             pairs[name] = CoarserPair(estimate * before / value, noise)
     e_y = {name: solution.scalars.get(f"error_estimate_y_{name}", (math.nan, "1"))[0] for name in FIGURES}
     kept = {k: v for k, v in solution.scalars.items() if not k.startswith(("error_bound_", "observed_order_"))}
-    extra = bounds(solution, e_y, feature_nodes(solution, t_inlet), pairs)
+    nodes = feature_nodes(solution, t_inlet)
+    extra = stricter(bounds(solution, e_y, nodes, coarser_estimates(solution)), bounds(solution, e_y, nodes, pairs))
     return replace(solution, scalars={**kept, **extra})
+
+
+def stricter(first: dict[str, tuple[float, str]], second: dict[str, tuple[float, str]]) -> dict[str, tuple[float, str]]:
+    """Two `bounds` of one solve from two third grids (its own levels, `first`; another solve, `second`) as one: a
+    figure unresolved by either is unresolved, else its bound is the larger; the observed order is the second's where
+    it has one."""
+    out = {**first, **second}
+    for key in (k for k in first if k.startswith("unresolved_")):
+        bound = f"error_bound_{key.removeprefix('unresolved_')}"
+        if first[key][0] == 1.0 or second.get(key, (0.0, "1"))[0] == 1.0:
+            out[key] = (1.0, "1")
+            out.pop(bound, None)
+        elif bound in first and bound in second:
+            out[bound] = (max(first[bound][0], second[bound][0]), "1")
+    return out
 
 
 def with_error_bounds(solution: PointSolution, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
