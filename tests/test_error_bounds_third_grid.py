@@ -180,3 +180,30 @@ def test_the_grid_refined_from_never_clears_what_the_solves_own_levels_flag():
     assert alone.scalar("unresolved_h_c") == 0.0 and alone.scalar("observed_order_h_c") == pytest.approx(2.0)
     checked = with_coarser_pair(fine, coarser, 300.0)
     assert checked.scalar("unresolved_h_c") == 1.0 and "error_bound_h_c" not in checked.scalars
+
+
+def test_a_thermal_contacts_friction_outside_the_asymptotic_range_along_x_is_unresolved():
+    """The envelope's ab1_ph0.3_u10_srr0.5_th asked on 129 x 33 is solved on 513 x 33 (its inlet lengthened), with a
+    seed stage on 129 x 33 and its coarse stage on 257 x 33. Its mu on the three grids moves by -0.03 % and then
+    +0.22 %: the finer pair's difference is larger than the coarser's, beyond the seed stage's loop error (0.05 %),
+    and mu is unresolved (its two-grid bound was 4.4 %). Independent of the seed stage's early stop (2 % of the
+    rise): the same contact converged to the thermal tolerance on 129 x 33 and 257 x 33 of the same domain gives mu
+    differences that grow tenfold towards 513 x 33, an observed order below zero, where the first-order estimate
+    needs 0.415 (Roache 1998, ch. 5): the grids are outside the asymptotic range along x."""
+    from facegear_tehl.ehl.staged import STAGED, UNBOUNDED
+    from facegear_tehl.suites.envelope import envelope_cases
+
+    case = next(c for c in envelope_cases() if c.name == "ab1_ph0.3_u10_srr0.5_th")
+    solution = STAGED(case.point(), case.lubricant(), case.settings(129, 33))
+    assert solution.converged and (solution.scalar("grid"), solution.scalar("grid_y")) == (513, 33)
+    assert list(solution.history["level_state_nodes"].values) == [SEED, COARSE]
+    seed, coarse = solution.history["level_mu"].values
+    mu = solution.scalar("mu")
+    assert (coarse - seed) * (mu - coarse) < 0.0 and abs(mu - coarse) > 4.0 * abs(coarse - seed)
+    assert solution.scalar("unresolved_mu") == 1.0 and "error_bound_mu" not in solution.scalars
+    assert solution.scalar("unresolved_dT_max") == 0.0  # its dT_max converges at an order near one on the same grids
+    x, y = solution.axes["x"].values / solution.scalar("b"), solution.axes["y"].values / solution.scalar("a")
+    converged = [UNBOUNDED(case.point(), case.lubricant(), replace(
+        case.settings(nx, 33), domain_x=(x[0], x[-1]), domain_y=(y[0], y[-1]))).scalar("mu") for nx in (129, 257)]
+    assert 0.0 < abs(converged[1] - converged[0]) < 0.25 * abs(mu - converged[1])
+    assert solution.scalar("error_estimate_mu") == pytest.approx((mu - coarse) / mu)
