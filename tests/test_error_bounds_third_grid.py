@@ -207,3 +207,27 @@ def test_a_thermal_contacts_friction_outside_the_asymptotic_range_along_x_is_unr
         case.settings(nx, 33), domain_x=(x[0], x[-1]), domain_y=(y[0], y[-1]))).scalar("mu") for nx in (129, 257)]
     assert 0.0 < abs(converged[1] - converged[0]) < 0.25 * abs(mu - converged[1])
     assert solution.scalar("error_estimate_mu") == pytest.approx((mu - coarse) / mu)
+
+
+@pytest.mark.slow
+def test_a_thermal_point_refined_by_the_run_is_checked_against_the_grid_it_was_refined_from():
+    """The envelope's ab100_ph1.5_u2_srr0.5_th asked on 129 x 33 converges with h_c and h_min estimated 12 and 15 %
+    off; the run refines its rows (129 x 65: the lowest film in a side lobe) and then both axes (257 x 129). That
+    thermal solve has no seed stage (257 nodes along x) and so no third grid of its own; the converged 129 x 65 it was
+    refined from is one (one doubling along x, same domain, neither square): every figure it bounds gets an observed
+    order, above the lowest one F_s covers (first order for dT_max and mu, whose differences fall at 1.5 and 2 here,
+    as a smooth solution's do at a second-order discretisation), so no bound is withdrawn."""
+    from facegear_tehl.ehl.staged import STAGED
+    from facegear_tehl.parallel import SolveTask
+    from facegear_tehl.run import solve_refining
+    from facegear_tehl.suites.envelope import envelope_cases
+
+    case = next(c for c in envelope_cases() if c.name == "ab100_ph1.5_u2_srr0.5_th")
+    (solution,), _, refined = solve_refining([SolveTask(case.point(), case.lubricant(), case.settings(129, 33))],
+                                             STAGED, jobs=1)
+    assert refined[case.point().name].grid == "257 x 129" and solution.converged
+    assert "level_state_nodes" in solution.history and solution.history["level_state_nodes"].values.size == 1
+    for name in ("h_c", "h_min", "dT_max", "mu"):
+        order = 1 if name in ("dT_max", "mu") else 2
+        assert solution.scalar(f"unresolved_{name}") == 0.0
+        assert solution.scalar(f"observed_order_{name}") > lowest_order(order)
