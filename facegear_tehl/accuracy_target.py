@@ -578,17 +578,15 @@ def doublings_to(coarse: SolverSettings, fine: SolverSettings) -> tuple[int, int
             round(math.log2((fine.nodes_y - 1) / (coarse.nodes_y - 1))))
 
 
-def three_grid_checked(point: Progressing, task: SolveTask, solution: PointSolution) -> PointSolution:
-    """The finer `solution` of `task` with its bounds checked against the point's converged solve in the same model one
-    doubling coarser along x (error_bounds.with_coarser_pair: its x-estimates are the next coarser pair's, the third
-    grid of Roache's asymptotic-range check), where the two grids are both square or both not (an estimate along x
-    alone, or one along both axes at once, in both); as it is elsewhere."""
-    coarse, fine = point.task.settings, task.settings
-    if doublings_to(coarse, fine)[0] != 1 or (coarse.grid == coarse.nodes_y) != (fine.grid == fine.nodes_y):
-        return solution
+def three_grid_checked(coarser: PointSolution, solution: PointSolution, t_inlet: float) -> PointSolution:
+    """`solution` with its bounds checked against `coarser`, the same point's converged solve in the same model one
+    doubling coarser along x on the same domain, both grids square or both not (error_bounds.one_doubling_coarser):
+    its x-estimates are the next coarser pair's, the third grid of Roache's asymptotic-range check
+    (error_bounds.with_coarser_pair); as it is elsewhere. t_inlet in K. The accuracy target's and run.py's refinement
+    both check their finer solve so."""
     from facegear_tehl.ehl.error_bounds import with_coarser_pair  # here: the command line loads no solver kernels
 
-    return with_coarser_pair(solution, point.solution, task.lubricant.inlet_temperature)
+    return with_coarser_pair(solution, coarser, t_inlet)
 
 
 def refined(point: Progressing, task: SolveTask, solution: PointSolution) -> Progressing:
@@ -610,7 +608,7 @@ def refined(point: Progressing, task: SolveTask, solution: PointSolution) -> Pro
         return replace(point, steps=steps, stop=f"{ended}{before}; the converged {grid_words(point.task.settings)} "
                                                 "solution kept")
     if point.solution.converged and point.model_solved:
-        solution = three_grid_checked(point, task, solution)
+        solution = three_grid_checked(point.solution, solution, task.lubricant.inlet_temperature)
     after = replace(point, task=task, solution=solution, steps=steps, failed="", model_solved=True,
                     coarser=point.spans() if point.solution.converged else point.coarser)
     if not (point.solution.converged and point.model_solved):  # no converged solve in this model to measure from

@@ -7,7 +7,7 @@ from dataclasses import dataclass, replace
 import math
 from typing import Sequence
 
-from facegear_tehl.accuracy_target import solve_to_accuracy
+from facegear_tehl.accuracy_target import solve_to_accuracy, three_grid_checked
 from facegear_tehl.case import Case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.cycle import MeshCycle, mesh_cycle, with_film_parameter
@@ -148,9 +148,10 @@ def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver | P
     converged with an error estimate above coarse_estimate, RetryPolicy.coarse, unless asked on a trial grid) solved
     again on grids twice as fine until it can or the grid would pass the largest refined grid (a finer grid also lets
     the retry's start begin on a finer coarsest grid). A finer solve that does not converge after a converged one
-    ends the refinement of that point with the converged one. Returns the solutions in task order (a refined point's
-    wall time counts its coarser attempts), the indices of those that raised, and per refined point what the solver
-    did."""
+    ends the refinement of that point with the converged one; one that converges after a converged one has its bounds
+    checked against it where it is the third grid (accuracy_target.three_grid_checked). Returns the solutions in task
+    order (a refined point's wall time counts its coarser attempts), the indices of those that raised, and per refined
+    point what the solver did."""
     tasks = list(tasks)
     solved, failed = solve_all(tasks, solver, jobs=jobs, progress=progress)
     refined: dict[str, Refinement] = {}
@@ -188,6 +189,8 @@ def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver | P
                 continue
             tasks[i] = task
             refined[name] = replace(first, grid=_shape(task.settings))
+            if previous.converged:  # the grid refined from: the third grid of the finer solve's x-estimates
+                solution = three_grid_checked(previous, solution, task.lubricant.inlet_temperature)
             reason = Reason.COARSE_ESTIMATE if first.reason else Reason.UNRESOLVED
             why = f": {first.reason}" if first.reason else ""
             detail = f"{asked[name]}{why}; {_shape(task.settings)} chosen by the solver"

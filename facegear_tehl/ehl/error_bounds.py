@@ -6,7 +6,8 @@ A reported error estimate is a promise: the bound of a figure f solved on nx x n
 
 e_x the Richardson estimate of the solve from the grid one coarser along x alone (report.estimate), checked against the
 next coarser pair along x where a third grid is at hand (`three_grid_estimate`: Roache's asymptotic-range check; the
-solve's own levels, `coarser_estimates`, or the accuracy target's last grid, `with_coarser_pair`), e_ref the iteration
+solve's own levels, `coarser_estimates`, the seed stage's film state among them, or the grid the solve was refined from,
+`with_coarser_pair`: the accuracy target's last grid, run.py's refinement's), e_ref the iteration
 error of the grid e_x compares with (`reference_error`: the coarse stage's loop stops at its own tolerance), e_y the
 Richardson
 estimate along y (`y_estimates`), e_it the error the iteration left, from its last changes and contraction rate
@@ -318,34 +319,57 @@ def stage_error(solution: PointSolution, stage: Stage, name: str) -> float:
     return loop_error(changes[window], films, False, name, solution.scalar(name), thermal)
 
 
-def coarser_estimates(solution: PointSolution) -> dict[str, CoarserPair]:
-    """The next coarser pair's x-estimate of h_c and h_min from the solve's last three level summaries (`level_h_c`,
-    `level_h_min`), where they are one model on one refinement (the same rows, or all square): an isothermal Newtonian
-    solve's full-multigrid levels, or a coupled solve's seed stage, coarse stage and finest grid, with the two stages'
-    loop errors as its noise (the seed stage stops at 2 % of the rise). Empty elsewhere (a coupled solve without a seed
-    stage: its levels below the coarse stage are the isothermal start's)."""
+def level_triple(solution: PointSolution) -> list[int]:
+    """Nodes along x of the solve's last three levels (`level_nodes`) where they are one model on one refinement (the
+    same rows, or all square): an isothermal Newtonian solve's full-multigrid levels, or a coupled solve's seed stage,
+    coarse stage and finest grid; [] elsewhere (a coupled solve without a seed stage: its levels below the coarse stage
+    are the isothermal start's)."""
     history, record = solution.history, solution.record
     if "level_nodes" not in history or "grid" not in solution.scalars or "grid_y" not in solution.scalars:
-        return {}
+        return []
     coupled = "thermal_change_history" in history or "viscosity_change_history" in history
     # a seed stage's level is in the summaries unless a later failure began the hierarchy again (its place -1)
     if coupled and (record is None or not any(s.stage is Stage.SEED and s.first_outer >= 0 for s in record.stages)):
-        return {}
+        return []
     nodes = [int(n) for n in history["level_nodes"].values[-3:]]
     coarsest = int(solution.scalars.get("coarsest_grid", (17.0, "1"))[0])
     shapes = hierarchy_shapes(int(solution.scalar("grid")), int(solution.scalar("grid_y")), coarsest)[-3:]
     same_rows = len({ny for _, ny in shapes}) == 1 or all(nx == ny for nx, ny in shapes)
-    if len(nodes) < 3 or len(shapes) < 3 or nodes != [nx for nx, _ in shapes] or not same_rows:
-        return {}
+    return nodes if len(nodes) == 3 and nodes == [nx for nx, _ in shapes] and same_rows else []
+
+
+def level_values(solution: PointSolution, name: str, nodes: list[int]) -> tuple[float, float, float] | None:
+    """A figure on the last three levels `nodes` (`level_triple`), coarsest first: h_c and h_min from their level
+    summaries (`level_h_c`, `level_h_min`); the film state's from the seed and coarse stages' (`level_<name>` over
+    `level_state_nodes`) and the reported figure, except dT_max and mu of an outlet-refined solve (its estimate
+    compares the patches with the uniform grid: report._outlet_scalars). None where they are not on record."""
+    history, key = solution.history, f"level_{name}"
+    if key not in history or name not in solution.scalars:
+        return None
+    values = [float(v) for v in history[key].values]
+    if name in ("h_c", "h_min"):
+        return tuple(values[-3:]) if len(values) >= 3 else None
+    patched = solution.scalars.get("outlet_patches", (0.0, "1"))[0] > 0.0
+    stated = [int(n) for n in history["level_state_nodes"].values[-2:]] if "level_state_nodes" in history else []
+    if stated != nodes[:2] or (patched and name in ("dT_max", "mu")):
+        return None
+    return values[-2], values[-1], solution.scalar(name)
+
+
+def coarser_estimates(solution: PointSolution) -> dict[str, CoarserPair]:
+    """The next coarser pair's x-estimate of h_c, h_min, dT_max, dT_min and mu from the solve's last three levels
+    (`level_triple`, `level_values`), with the seed and coarse stages' loop errors as its noise (the seed stage stops
+    at seed_stage_limit of the rise); empty without three levels of one model on one refinement."""
+    nodes = level_triple(solution)
     out = {}
-    for name in ("h_c", "h_min"):
-        key = f"level_{name}"
-        if key in history and history[key].values.size >= 3:
-            third, second, first = (float(v) for v in history[key].values[-3:])
-            scale = 2.0 ** ORDERS[name] - 1.0
-            noise = (stage_error(solution, Stage.SEED, name) + stage_error(solution, Stage.COARSE, name)) / scale
-            if first != 0.0:
-                out[name] = CoarserPair((second - third) / scale / first, noise)
+    for name in (FIGURES if nodes else ()):
+        values = level_values(solution, name, nodes)
+        if values is None or values[2] == 0.0:
+            continue
+        third, second, first = values
+        scale = 2.0 ** ORDERS[name] - 1.0
+        noise = (stage_error(solution, Stage.SEED, name) + stage_error(solution, Stage.COARSE, name)) / scale
+        out[name] = CoarserPair((second - third) / scale / first, noise)
     return out
 
 
@@ -405,15 +429,33 @@ def bounds(solution: PointSolution, e_y: dict[str, float], nodes: dict[str, int]
     return out
 
 
+def one_doubling_coarser(coarser: PointSolution, solution: PointSolution) -> bool:
+    """Whether `coarser` lies on the grid `solution`'s coarse stage lies on, as the third grid of the three-grid check
+    asks: the same model (thermal, rheology) on the same domain, one doubling coarser along x ((nx - 1) = 2 (nx_c - 1)),
+    and both grids square or both not (the x-estimate along x alone, or along both axes at once, in both: the
+    hierarchy coarsens x alone while nx > ny, grid.hierarchy_shapes)."""
+    if any(axis not in s.axes for s in (coarser, solution) for axis in ("x", "y")):
+        return False
+    (x_c, y_c), (x, y) = ((s.axes["x"].values, s.axes["y"].values) for s in (coarser, solution))
+    same_domain = all(math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-9 * float(ends[-1] - ends[0]))
+                      for ends, other in ((x, x_c), (y, y_c)) for a, b in ((ends[0], other[0]), (ends[-1], other[-1])))
+    same_model = all(coarser.models.get(k) == solution.models.get(k) for k in ("thermal", "rheology"))
+    return (same_domain and same_model and x.size - 1 == 2 * (x_c.size - 1)
+            and (x_c.size == y_c.size) == (x.size == y.size))
+
+
 def with_coarser_pair(solution: PointSolution, coarser: PointSolution, t_inlet: float) -> PointSolution:
     """`solution`'s bounds again with the x-estimates of `coarser`, the same point and model solved converged on the
-    grid its coarse stage lies on (the accuracy target's last grid), as the next coarser pair along x
-    (`three_grid_estimate`; in units of `solution`'s figures, its noise the coarser solve's e_ref and e_it/(2^p - 1)),
-    for the figures whose estimates both solves take at the ratio 2 (not dT_max and mu of an outlet-refined solve,
-    report._outlet_scalars); t_inlet in K."""
-    if not (solution.converged and coarser.converged) or "film_thickness" not in solution.fields:
+    grid its coarse stage lies on (`one_doubling_coarser`: the accuracy target's last grid, or the grid run.py refined
+    from), as the next coarser pair along x (`three_grid_estimate`; in units of `solution`'s figures, its noise the
+    coarser solve's e_ref and e_it/(2^p - 1)), for the figures whose estimates both solves take at the ratio 2 (not
+    dT_max and mu of an outlet-refined solve, report._outlet_scalars), beside the third grid of its own levels
+    (`coarser_estimates`): the stricter of the two (`stricter`); t_inlet in K. As it is where `coarser` is not that
+    grid, either did not converge, or `solution` carries no film or no bounds."""
+    if (not (solution.converged and coarser.converged) or "film_thickness" not in solution.fields
+            or "unresolved_h_min" not in solution.scalars or not one_doubling_coarser(coarser, solution)):
         return solution
-    pairs = coarser_estimates(solution)
+    pairs = {}
     patched = any(s.scalars.get("outlet_patches", (0.0, "1"))[0] > 0.0 for s in (solution, coarser))
     for name in FIGURES:
         value, before = solution.scalars.get(name, (0.0, "1"))[0], coarser.scalars.get(name, (0.0, "1"))[0]
@@ -424,8 +466,24 @@ def with_coarser_pair(solution: PointSolution, coarser: PointSolution, t_inlet: 
             pairs[name] = CoarserPair(estimate * before / value, noise)
     e_y = {name: solution.scalars.get(f"error_estimate_y_{name}", (math.nan, "1"))[0] for name in FIGURES}
     kept = {k: v for k, v in solution.scalars.items() if not k.startswith(("error_bound_", "observed_order_"))}
-    extra = bounds(solution, e_y, feature_nodes(solution, t_inlet), pairs)
+    nodes = feature_nodes(solution, t_inlet)
+    extra = stricter(bounds(solution, e_y, nodes, coarser_estimates(solution)), bounds(solution, e_y, nodes, pairs))
     return replace(solution, scalars={**kept, **extra})
+
+
+def stricter(first: dict[str, tuple[float, str]], second: dict[str, tuple[float, str]]) -> dict[str, tuple[float, str]]:
+    """Two `bounds` of one solve from two third grids (its own levels, `first`; another solve, `second`) as one: a
+    figure unresolved by either is unresolved, else its bound is the larger; the observed order is the second's where
+    it has one."""
+    out = {**first, **second}
+    for key in (k for k in first if k.startswith("unresolved_")):
+        bound = f"error_bound_{key.removeprefix('unresolved_')}"
+        if first[key][0] == 1.0 or second.get(key, (0.0, "1"))[0] == 1.0:
+            out[key] = (1.0, "1")
+            out.pop(bound, None)
+        elif bound in first and bound in second:
+            out[bound] = (max(first[bound][0], second[bound][0]), "1")
+    return out
 
 
 def with_error_bounds(solution: PointSolution, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,

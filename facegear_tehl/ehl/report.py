@@ -305,6 +305,7 @@ def _histories(solve: Reported) -> dict[str, Field]:
         "level_h_min": Field(np.array([s.h_min * film_scale for s in summaries]), "m",
                              "minimum film on each full-multigrid level as solved there, coarsest first"),
         "level_nodes": Field(np.array([float(s.n) for s in summaries]), "1", "nodes per side of each level"),
+        **_film_state_levels(summaries),
     }
     if history.thermal_changes:
         records["thermal_change_history"] = Field(np.array(history.thermal_changes), "K",
@@ -315,6 +316,23 @@ def _histories(solve: Reported) -> dict[str, Field]:
     if history.thermal_h_c:
         records["thermal_h_c_history"] = Field(np.array(history.thermal_h_c), "m", "central film per outer iteration")
     return records
+
+
+def _film_state_levels(summaries: list[LevelSummary]) -> dict[str, Field]:
+    """The film-state figures of the levels summarised with their converged film state (with_film_state: a thermal
+    solve's seed and coarse stages), coarsest first, and their nodes along x; none without such a level."""
+    stated = [s for s in summaries if math.isfinite(s.dT_max)]
+    if not stated:
+        return {}
+    return {"level_state_nodes": Field(np.array([float(s.n) for s in stated]), "1",
+                                       "nodes along x of each level solved with its film state (seed and coarse "
+                                       "stages), coarsest first"),
+            "level_dT_max": Field(np.array([s.dT_max for s in stated]), "K",
+                                  "largest temperature rise on each level of level_state_nodes"),
+            "level_dT_min": Field(np.array([s.dT_min for s in stated]), "K",
+                                  "coldest temperature relative to the inlet on each level of level_state_nodes"),
+            "level_mu": Field(np.array([s.mu for s in stated]), "1",
+                              "friction coefficient on each level of level_state_nodes")}
 
 
 def _film_histories(history: History, film_scale: float) -> dict[str, Field]:

@@ -225,7 +225,9 @@ class PointSolve:
             state, status = self.couple(index)
             self._stage_done(Stage.SEED, index, status, mark)
             if state is not None and not status.diverged and status.outcome is not Outcome.FILM_CLOSED:
-                self.summaries[-1] = summarise(self.solver.levels[index])
+                level = self.solver.levels[index]  # its summary with its film state: the third grid of dT and mu
+                self.summaries[-1] = with_film_state(summarise(level), level, state, self.scaling, self.point.load,
+                                                     self.lubricant.inlet_temperature)
                 coarse_mark = self._mark()
                 frozen, status = self._interpolated_state(index + 1, state, TUNING.cycles_per_thermal_update)
                 if not status.diverged:
