@@ -13,7 +13,9 @@ interleaved (before, after, before, ...; medians of --repeat):
    run's temporary folder, written by one untimed run per tree), as an installed package has it: an environment
    with PYTHONDONTWRITEBYTECODE set compiles the package's ~90 modules from source in every process. Its phases
    in one more run each (PHASES: importing the command line, importing the solver, Numba's first load of a cached
-   kernel, the rest of the solve, writing the file, reading it back for the tables).
+   kernel, the rest of the solve, writing the file, reading it back for the tables). Beside them the floor of any
+   such process: one that imports what `tehl run` needs of NumPy, Numba, SciPy's FFT, h5py, PyYAML and Click and
+   calls one trivial cached Numba kernel (FLOOR).
 2. S1 of cases/facegear_110.yaml: the thermal full Ree-Eyring solve's CPU time over its isothermal Newtonian solve's.
 3. `tehl run cases/facegear_110.yaml --jobs 2` (S1-S5, thermal full): wall and CPU time (the workers included).
 4. With --cycle: the 41-point thermal cycle (`gear.points: 41`, --jobs 2), --cycle-repeat runs each, interleaved;
@@ -99,6 +101,10 @@ cli.main()
 '''
 
 
+FLOOR = "import numpy, numba, scipy.fft, h5py, yaml, click, floor_kernel; floor_kernel.add(1.0)"
+FLOOR_KERNEL = "import numba\n\n\n@numba.njit(cache=True)\ndef add(x):\n    return x + 1.0\n"
+
+
 def _cached_bytecode(tree: Path, args: list[str], cache: Path) -> tuple[float, float, str]:
     """Wall time, CPU time and stdout of `python args` in `tree` with its bytecode cached in `cache`."""
     env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
@@ -169,6 +175,10 @@ def measure(trees: dict[str, Path], args: argparse.Namespace, folder: Path) -> d
     circle = ["run", str(CIRCLE), "--jobs", "1", "-o"]
     for label, tree in trees.items():  # writes each tree's bytecode cache
         _cached_bytecode(tree, ["-m", "facegear_tehl", *circle, str(folder / "warm.h5")], folder / f"{label}_pyc")
+    floor = folder / "floor"
+    floor.mkdir()
+    (floor / "floor_kernel.py").write_text(FLOOR_KERNEL)
+    _cached_bytecode(floor, ["-c", FLOOR], folder / "floor_pyc")  # compiles the kernel into its cache
     for _ in range(args.repeat):
         for label, tree in trees.items():
             output = folder / f"{label}_circle.h5"
@@ -183,6 +193,9 @@ def measure(trees: dict[str, Path], args: argparse.Namespace, folder: Path) -> d
             phases = json.loads(_cached_bytecode(tree, ["-c", PHASES, *circle, str(output)], cache)[2].splitlines()[-1])
             for phase, seconds in phases.items():
                 samples[label, f"circle 257^2, bytecode cached, wall: {phase}"].append(seconds)
+            wall, cpu, _ = _cached_bytecode(floor, ["-c", FLOOR], folder / "floor_pyc")
+            samples[label, "floor: the libraries imported, one cached kernel called, wall"].append(wall)
+            samples[label, "floor: the libraries imported, one cached kernel called, CPU"].append(cpu)
             solve = json.loads(_run(tree, ["-c", CIRCLE_SOLVE, str(CIRCLE)]).stdout.splitlines()[-1])
             samples[label, "circle 257^2: solve in a warm process, wall"].append(solve["wall"])
             samples[label, "circle 257^2: solve in a warm process, CPU"].append(solve["cpu"])
