@@ -9,7 +9,13 @@ interleaved (before, after, before, ...; medians of --repeat):
    process; H_c = h_c R/a^2 of the file against the reference's 513^2 value. The reference: the C program of
    Venner & Lubrecht (2000, appendix; full multigrid, 6 V-cycles per level) run with --reference EXE when its
    build is present (its own wall time, `EXE` as given, no arguments), else its recorded 2.0 s on this machine type
-   at 257^2 (docs/benchmarks.md).
+   at 257^2 (docs/benchmarks.md). The process again with Python's bytecode cached (PYTHONPYCACHEPREFIX in the
+   run's temporary folder, written by one untimed run per tree), as an installed package has it: an environment
+   with PYTHONDONTWRITEBYTECODE set compiles the package's ~90 modules from source in every process. Its phases
+   in one more run each (PHASES: importing the command line, importing the solver, Numba's first load of a cached
+   kernel, the rest of the solve, writing the file, reading it back for the tables). Beside them the floor of any
+   such process: one that imports what `tehl run` needs of NumPy, Numba, SciPy's FFT, h5py, PyYAML and Click and
+   calls one trivial cached Numba kernel (FLOOR).
 2. S1 of cases/facegear_110.yaml: the thermal full Ree-Eyring solve's CPU time over its isothermal Newtonian solve's.
 3. `tehl run cases/facegear_110.yaml --jobs 2` (S1-S5, thermal full): wall and CPU time (the workers included).
 4. With --cycle: the 41-point thermal cycle (`gear.points: 41`, --jobs 2), --cycle-repeat runs each, interleaved;
@@ -28,6 +34,7 @@ import argparse
 import collections
 import json
 import math
+import os
 from pathlib import Path
 import statistics
 import subprocess
@@ -35,7 +42,7 @@ import sys
 import tempfile
 import time
 
-from bench_coupling import SOLVE, _cycle_case, _run, _wall
+from bench_coupling import SOLVE, _cpu_of_children, _cycle_case, _run, _wall
 import h5py
 import numpy as np
 
@@ -63,6 +70,50 @@ with threadpool_limits(limits=1):
 h_c = solution.scalar("h_c") * point.radius_x / solution.scalar("a") ** 2
 print(json.dumps({"wall": wall, "cpu": cpu, "H_c": h_c}))
 '''
+
+
+PHASES = r'''
+import atexit, json, sys, time
+begun = time.perf_counter()
+import facegear_tehl.cli as cli
+phases = {"import the command line": time.perf_counter() - begun}
+import facegear_tehl.run as run
+from numba.core.base import BaseContext
+
+def timed(owner, name, phase):
+    function = getattr(owner, name)
+    def wrapper(*args, **kwargs):
+        start = time.perf_counter()
+        try:
+            return function(*args, **kwargs)
+        finally:
+            phases[phase] = phases.get(phase, 0.0) + time.perf_counter() - start
+    setattr(owner, name, wrapper)
+
+timed(run, "path_solver", "import the solver")
+timed(run, "solve_refining", "solve")
+timed(BaseContext, "refresh", "Numba's first load of a cached kernel")  # its later calls cost microseconds
+timed(cli, "write_result", "write the file")
+timed(cli, "read_result", "read it back for the tables")
+atexit.register(lambda: print(json.dumps({**phases, "whole process": time.perf_counter() - begun})))
+sys.argv = ["tehl", *sys.argv[1:]]
+cli.main()
+'''
+
+
+FLOOR = "import numpy, numba, scipy.fft, h5py, yaml, click, floor_kernel; floor_kernel.add(1.0)"
+FLOOR_KERNEL = "import numba\n\n\n@numba.njit(cache=True)\ndef add(x):\n    return x + 1.0\n"
+
+
+def _cached_bytecode(tree: Path, args: list[str], cache: Path) -> tuple[float, float, str]:
+    """Wall time, CPU time and stdout of `python args` in `tree` with its bytecode cached in `cache`."""
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+    env.update(PYTHONPATH=str(tree), PYTHONPYCACHEPREFIX=str(cache))
+    start, cpu = time.perf_counter(), _cpu_of_children()
+    done = subprocess.run([sys.executable, *args], cwd=tree, env=env, capture_output=True, text=True)
+    if done.returncode not in (0, 3):
+        raise RuntimeError(f"{' '.join(args[:4])} in {tree} failed ({done.returncode}): {done.stderr[-500:]}")
+    return time.perf_counter() - start, _cpu_of_children() - cpu, done.stdout
 
 
 def circle_h_c(path: Path) -> float:
@@ -121,13 +172,30 @@ def reference_seconds(exe: Path | None) -> tuple[float, str]:
 def measure(trees: dict[str, Path], args: argparse.Namespace, folder: Path) -> dict:
     """Interleaved runs of every tree; samples by (tree, quantity)."""
     samples: dict[tuple[str, str], list[float]] = collections.defaultdict(list)
+    circle = ["run", str(CIRCLE), "--jobs", "1", "-o"]
+    for label, tree in trees.items():  # writes each tree's bytecode cache
+        _cached_bytecode(tree, ["-m", "facegear_tehl", *circle, str(folder / "warm.h5")], folder / f"{label}_pyc")
+    floor = folder / "floor"
+    floor.mkdir()
+    (floor / "floor_kernel.py").write_text(FLOOR_KERNEL)
+    _cached_bytecode(floor, ["-c", FLOOR], folder / "floor_pyc")  # compiles the kernel into its cache
     for _ in range(args.repeat):
         for label, tree in trees.items():
             output = folder / f"{label}_circle.h5"
-            wall, cpu = _wall(tree, ["-m", "facegear_tehl", "run", str(CIRCLE), "--jobs", "1", "-o", str(output)])
+            wall, cpu = _wall(tree, ["-m", "facegear_tehl", *circle, str(output)])
             samples[label, "circle 257^2: tehl run process, wall"].append(wall)
             samples[label, "circle 257^2: tehl run process, CPU"].append(cpu)
             samples[label, "circle 257^2: H_c of the file"].append(circle_h_c(output))
+            cache = folder / f"{label}_pyc"
+            wall, cpu, _ = _cached_bytecode(tree, ["-m", "facegear_tehl", *circle, str(output)], cache)
+            samples[label, "circle 257^2: tehl run process, bytecode cached, wall"].append(wall)
+            samples[label, "circle 257^2: tehl run process, bytecode cached, CPU"].append(cpu)
+            phases = json.loads(_cached_bytecode(tree, ["-c", PHASES, *circle, str(output)], cache)[2].splitlines()[-1])
+            for phase, seconds in phases.items():
+                samples[label, f"circle 257^2, bytecode cached, wall: {phase}"].append(seconds)
+            wall, cpu, _ = _cached_bytecode(floor, ["-c", FLOOR], folder / "floor_pyc")
+            samples[label, "floor: the libraries imported, one cached kernel called, wall"].append(wall)
+            samples[label, "floor: the libraries imported, one cached kernel called, CPU"].append(cpu)
             solve = json.loads(_run(tree, ["-c", CIRCLE_SOLVE, str(CIRCLE)]).stdout.splitlines()[-1])
             samples[label, "circle 257^2: solve in a warm process, wall"].append(solve["wall"])
             samples[label, "circle 257^2: solve in a warm process, CPU"].append(solve["cpu"])

@@ -1,6 +1,8 @@
 """Anderson acceleration (ehl/anderson.py) against exact fixed points."""
 
 from dataclasses import replace
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -130,3 +132,14 @@ def test_anderson_leaves_out_components_that_stayed_zero_and_grows_its_support(m
 
     assert run((10, 20, 25))._support is not None  # 25 of 60 stay under support_share
     assert run((10, 25, 45))._support is None
+
+
+def test_the_combination_kernel_is_one_specialisation_whatever_the_history_length():
+    # each specialisation is one more load from Numba's cache in a process's first solve (10-30 ms each): the history
+    # growing through 1, 2, 3, 4 columns is passed as a tuple of the depth's length, so one signature serves them all
+    probe = ("import numpy as np\nfrom facegear_tehl.ehl import anderson\n"
+             "accelerator, x, m = anderson.Anderson(4), np.zeros(8), np.full((8, 8), 0.05)\n"
+             "for _ in range(10):\n    x = accelerator.step(x, m @ x + 1.0 - x)\n"
+             "print(accelerator.columns, sorted(len(s[3]) for s in anderson._combine.signatures))")
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True)
+    assert done.stdout.split() == ["4", "[4]"]

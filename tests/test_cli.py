@@ -228,9 +228,10 @@ def test_validate_prints_one_ok_line():
 def test_the_command_line_loads_no_solver_kernels():
     """`tehl validate` starts in ~0.3 s because the command line imports none of the solver's Numba kernels (loading
     them costs ~0.5 s): a light module imported at the top of cli.py (as `tehl sweep`'s tables once imported the
-    error-estimate module with the formal order) would triple it. numba, the kernel modules and h5py stay unloaded."""
+    error-estimate module with the formal order) would triple it. numba, the kernel modules, h5py, SciPy (its FFT
+    with the scipy.special it imports: about 0.1 s) and Dask (`tehl study` alone) stay unloaded."""
     probe = ("import sys, facegear_tehl.cli; print(sorted(m for m in sys.modules if m in ('numba', 'h5py', "
-             "'matplotlib') or m.startswith('facegear_tehl.ehl.')))")
+             "'matplotlib', 'scipy', 'dask', 'distributed') or m.startswith('facegear_tehl.ehl.')))")
     loaded = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True).stdout
     expected = ["domain", "relaxation", "retry", "richardson", "scaling", "stopwatch", "tuning"]  # no kernels
     assert loaded.strip() == str([f"facegear_tehl.ehl.{name}" for name in expected])

@@ -45,12 +45,14 @@ def _advance(x, f, last_x, last_f, dg, df):
 
 
 @njit(cache=True)
-def _combine(x, f, gamma, columns, out):
-    """out = x + f - gamma_0 columns_0 - gamma_1 columns_1 - ... in one pass (flat arrays; `columns` a tuple), the
-    terms subtracted in order as NumPy's `result -= g * column` rounds them."""
+def _combine(x, f, gamma, columns, count, out):
+    """out = x + f - gamma_0 columns_0 - ... - gamma_(count-1) columns_(count-1) in one pass (flat arrays; `columns` a
+    tuple of the history's depth whose first `count` are the history's), the terms subtracted in order as NumPy's
+    `result -= g * column` rounds them. A tuple of fixed length is one specialisation to load from Numba's cache, not
+    one per length the history passes through (each a load of 10-30 ms in a process's first solve)."""
     for n in range(x.size):
         value = x[n] + f[n]
-        for i in range(len(columns)):
+        for i in range(count):
             value -= gamma[i] * columns[i][n]
         out[n] = value
 
@@ -173,5 +175,6 @@ class Anderson:
             return x + f
         gamma = np.linalg.lstsq(gram, rhs, rcond=TUNING.gram_cutoff)[0]
         result = np.empty_like(x)
-        _combine(x, f, gamma, tuple(self._dg), result)
+        padded = tuple(self._dg) + (x,) * (self.depth - len(self._dg))  # the tuple's length the depth (_combine)
+        _combine(x, f, gamma, padded, len(self._dg), result)
         return result
