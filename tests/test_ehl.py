@@ -206,15 +206,3 @@ def test_a_heavy_long_ellipse_starts_from_a_finer_coarsest_grid():
     sc = scaling_for(point, lubricant)
     expected = hamrock_dowson_central(sc.hamrock_u, sc.hamrock_g, sc.hamrock_w, sc.ellipticity) * radius_x
     assert sol.scalar("h_c") == pytest.approx(expected, rel=0.05)
-
-
-def test_full_multigrid_start_is_c_ordered():
-    """The bicubic start is C-ordered like every other field of a level: a transposed (Fortran-ordered) array would
-    load a second specialisation of each kernel taking it (docs/benchmarks.md, the circular case's process)."""
-    from facegear_tehl.ehl import grid
-
-    x = np.linspace(-1.0, 1.0, 9)
-    coarse = np.outer(1.0 - x**2, 2.0 + x)
-    fine = grid.prolong_cubic(coarse)
-    assert fine.shape == (17, 17) and fine.flags.c_contiguous
-    assert np.allclose(fine[::2, ::2], coarse)
