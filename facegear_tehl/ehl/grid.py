@@ -110,10 +110,8 @@ def _cubic_axis(a: np.ndarray) -> np.ndarray:
 
 
 def prolong_cubic(coarse: np.ndarray) -> np.ndarray:
-    """Bicubic (fourth-order) interpolation of a converged coarse solution: the full-multigrid start. C-ordered like
-    every other field of a level, so that each kernel taking it is loaded in one specialisation (a transposed,
-    Fortran-ordered start cost the circular case's process three more cached kernels to load)."""
-    return np.ascontiguousarray(_cubic_axis(_cubic_axis(coarse).T).T)
+    """Bicubic (fourth-order) interpolation of a converged coarse solution: the full-multigrid start."""
+    return _cubic_axis(_cubic_axis(coarse).T).T
 
 
 def restrict_full_weighting_x(fine: np.ndarray) -> np.ndarray:
