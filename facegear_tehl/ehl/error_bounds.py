@@ -233,13 +233,18 @@ def iteration_error(solution: PointSolution, name: str) -> float:
     return loop_error(changes, h_c, floored, name, solution.scalar(name), thermal)
 
 
+def over_patches(solution: PointSolution, name: str) -> bool:
+    """Whether the x-estimate of `name` compares the outlet patches with the uniform grid under them (dT_max and mu of
+    an outlet-refined solve, report._outlet_scalars), not two grids at the ratio 2."""
+    return name in ("dT_max", "mu") and solution.scalars.get("outlet_patches", (0.0, "1"))[0] > 0.0
+
+
 def reference_stage(solution: PointSolution, name: str) -> tuple[Stage, int]:
     """The stage whose figure the x-estimate of `name` compares the reported one with, and the ratio of the x
-    spacings: the outlet patches' uniform grid for dT_max and mu of an outlet-refined solve (2^patches,
-    report._outlet_scalars), else the coarse stage (2)."""
-    patches = solution.scalars.get("outlet_patches", (0.0, "1"))[0]
-    if patches > 0.0 and name in ("dT_max", "mu"):
-        return Stage.FINEST, 2 ** int(patches)
+    spacings: the outlet patches' uniform grid where the estimate is over the patches (`over_patches`: 2^patches),
+    else the coarse stage (2)."""
+    if over_patches(solution, name):
+        return Stage.FINEST, 2 ** int(solution.scalar("outlet_patches"))
     return Stage.COARSE, 2
 
 
@@ -349,9 +354,8 @@ def level_values(solution: PointSolution, name: str, nodes: list[int]) -> tuple[
     values = [float(v) for v in history[key].values]
     if name in ("h_c", "h_min"):
         return tuple(values[-3:]) if len(values) >= 3 else None
-    patched = solution.scalars.get("outlet_patches", (0.0, "1"))[0] > 0.0
     stated = [int(n) for n in history["level_state_nodes"].values[-2:]] if "level_state_nodes" in history else []
-    if stated != nodes[:2] or (patched and name in ("dT_max", "mu")):
+    if stated != nodes[:2] or over_patches(solution, name):
         return None
     return values[-2], values[-1], solution.scalar(name)
 
@@ -456,11 +460,10 @@ def with_coarser_pair(solution: PointSolution, coarser: PointSolution, t_inlet: 
             or "unresolved_h_min" not in solution.scalars or not one_doubling_coarser(coarser, solution)):
         return solution
     pairs = {}
-    patched = any(s.scalars.get("outlet_patches", (0.0, "1"))[0] > 0.0 for s in (solution, coarser))
     for name in FIGURES:
         value, before = solution.scalars.get(name, (0.0, "1"))[0], coarser.scalars.get(name, (0.0, "1"))[0]
         estimate = coarser.scalars.get(f"error_estimate_{name}", (math.nan, "1"))[0]
-        if value != 0.0 and math.isfinite(estimate) and not (patched and name in ("dT_max", "mu")):
+        if value != 0.0 and math.isfinite(estimate) and not any(over_patches(s, name) for s in (solution, coarser)):
             left = coarser.scalars.get(f"iteration_error_{name}", (0.0, "1"))[0] / (2.0 ** ORDERS[name] - 1.0)
             noise = (reference_error(coarser, name) + left) * before / value
             pairs[name] = CoarserPair(estimate * before / value, noise)
