@@ -101,7 +101,7 @@ class Level:
     pattern_jd_t: np.ndarray
     weight_x: float
     weight_y: float
-    xi_switch: float  # the Gauss-Seidel / Jacobi-distributive switch of this grid
+    switch_scale: float  # the factor of the ellipse-scaled Gauss-Seidel / Jacobi-distributive switch on this grid
     pressure: np.ndarray
     film_rhs: np.ndarray
     reynolds_rhs: np.ndarray
@@ -184,7 +184,7 @@ class MultigridSolver:
         # coupling to the other lines and beyond the band to the next sweep, diverged on the 513 x 129 face gear
         # grid (h_y = 4 h_x) with switches up to 30 and converged from 100 to 3000 (here 490).
         elastic_ratio = pb.deflection_coefficient * deflection.coefficients[0, 0] / hx / CIRCLE_SELF_COEFFICIENT
-        scale = elastic_ratio**4 * max(hy / hx, 1.0) ** 2 if self.relaxation.scale_switch else 1.0
+        scale = elastic_ratio**4 * max(hy / hx, 1.0) ** 2
         xx, yy = np.meshgrid(x, y)
         return Level(
             x=x,
@@ -196,7 +196,7 @@ class MultigridSolver:
             pattern_jd_t=e_jd_t,
             weight_x=wx,
             weight_y=wy,
-            xi_switch=self.relaxation.xi_switch * scale,
+            switch_scale=scale,
             pressure=np.zeros((ny, nx)),
             film_rhs=0.5 * xx**2 + 0.5 * pb.geometry_y * yy**2,
             reynolds_rhs=np.zeros((ny, nx)),
@@ -330,6 +330,12 @@ class MultigridSolver:
     def _fluxes(self, level: Level):
         return level.flux_x * level.film, level.flux_y * level.film
 
+    def switch(self, level: Level) -> float:
+        """The Gauss-Seidel / Jacobi-distributive switch on `level` under the current relaxation: Venner's eps/h^2,
+        times the level's ellipse and cell-aspect factor (`switch_scale`) where the relaxation scales it."""
+        rx = self.relaxation
+        return rx.xi_switch * level.switch_scale if rx.scale_switch else rx.xi_switch
+
     def relax(self, level: Level) -> float:
         """One sweep of X-line relaxation (plus one of Y-line relaxation when the entrainment is skewed),
         then the film; returns the mean absolute pressure change."""
@@ -340,7 +346,7 @@ class MultigridSolver:
             level.pressure, qx, qy, level.flux_x, level.flux_y, level.eps, level.reynolds_rhs,
             hx, hy, px, py, sx, sy,
             level.pattern_gs, level.pattern_jd, level.weight_x, level.weight_y,
-            level.xi_switch, rx.under_gs, rx.under_jd,
+            self.switch(level), rx.under_gs, rx.under_jd,
         )
         self.work_units += level.nodes / self.finest_nodes
         self.update_film(level)
@@ -353,7 +359,7 @@ class MultigridSolver:
                 pressure_t, t(qy.T), t(qx.T), t(level.flux_y.T), t(level.flux_x.T), t(level.eps.T),
                 t(level.reynolds_rhs.T), hy, hx, py, px, sy, sx,
                 level.pattern_gs_t, level.pattern_jd_t, level.weight_y, level.weight_x,
-                level.xi_switch, rx.under_gs, rx.under_jd,
+                self.switch(level), rx.under_gs, rx.under_jd,
             )
             level.pressure = t(pressure_t.T)
             self.work_units += level.nodes / self.finest_nodes

@@ -124,7 +124,7 @@ class PatchedSolver(MultigridSolver):
         # eighth of the 513 x 65 face gear grid's X spacing (h_y/h_x 32-64) then relaxed its pressure to zero
         # inside the Hertzian zone and ran away in its first sweep (default case S4, switch 7.4e4), while the switch
         # of the grid below (1.3e4, down to 100) relaxed it steadily.
-        patch.xi_switch = min(patch.xi_switch, below.xi_switch)
+        patch.switch_scale = min(patch.switch_scale, below.switch_scale)
         self.levels.append(patch)
         self.transfers.append(grid.SEMI_X)
         self.patches.append(_Patch(first, last, columns, DeflectionOperator(patch.nx, patch.ny, patch.hx, patch.hy,

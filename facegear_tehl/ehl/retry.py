@@ -12,7 +12,8 @@ In the order a failing solve meets them:
    (`stage_coarse_cycles`); a stage that fails on top of a provisional one has the stages below it solved again to
    convergence; a stage that fails for good is dropped and the solution below it reported (outlet.py);
 5. the whole attempt runs away, stalls short of its tolerances or closes its film: the next of ATTEMPTS
-   (`next_attempt`): the ellipse-scaled Gauss-Seidel / Jacobi switch, Venner's switch, that damped, and for a
+   (`next_attempt`): the ellipse-scaled Gauss-Seidel / Jacobi switch, Venner's switch (the two swapped on a grid
+   with fewer than venner_first_nodes across the contact: `attempt`), that damped, and for a
    heavily loaded point that damped from a start at a fraction of its load, raised in steps the pressure iteration
    converges, on a hierarchy that coarsens only the strongly coupled axes (load continuation, start.py); an attempt
    whose coarse stage converged and whose finest grid failed has that grid solved again from its coarse stage with
@@ -63,6 +64,15 @@ class RetryPolicy:
     """The one retry policy (see the module's list)."""
 
     attempts: tuple[Attempt, ...] = ATTEMPTS
+
+    def attempt(self, attempt: int, spacing: float) -> Attempt:
+        """Attempt `attempt` (1-based) on a finest grid of X spacing `spacing` (X = x/b): as listed, but on a grid
+        with fewer than venner_first_nodes across the Hertzian width 2b the first two swap, Venner's switch first.
+        There the ellipse-scaled switch leaves the inlet's nodes up to eps ~ 1 to Jacobi-distributive relaxation and
+        stalls where Venner's converges; on finer grids Venner's runs away where the scaled one converges."""
+        if attempt <= 2 and spacing > 2.0 / TUNING.venner_first_nodes:
+            return self.attempts[2 - attempt]
+        return self.attempts[attempt - 1]
 
     # --- within an attempt
     def escalates_start(self, attempt: int) -> bool:

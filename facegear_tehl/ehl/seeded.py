@@ -89,7 +89,7 @@ class SeededSolve(PointSolve):
                  attempt: int = 1, **options: object):
         """`attempt`: of the retry policy (retry.ATTEMPTS), whose relaxation this solve uses from the start; `options`:
         PointSolve's others (a retry's: staged.retry_options)."""
-        super().__init__(point, lubricant, settings, POLICY.attempts[attempt - 1].relaxation, attempt=attempt,
+        super().__init__(point, lubricant, settings, attempt=attempt,
                          escalate_start=POLICY.escalates_start(attempt), **options)
         self.seed = seed if seed is not None and self.plan.has(Stage.COARSE) else None
         if self.seed is not None:

@@ -82,12 +82,13 @@ class PointSolve:
     fine stage follows, else the solution; `finish` runs the fine stage."""
 
     def __init__(self, point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
-                 relaxation: Relaxation = Relaxation(), elapsed: Spent = NOTHING_SPENT, escalate_start: bool = False,
+                 relaxation: Relaxation | None = None, elapsed: Spent = NOTHING_SPENT, escalate_start: bool = False,
                  attempt: int = 1, max_doublings: int = TUNING.max_inlet_doublings, load_continuation: bool = False):
         """`elapsed`: time already spent on this point (earlier attempts), counted in its wall and CPU time;
         `escalate_start`: a start that runs away begins again from a finer coarsest grid (start.py); `attempt`: which
         attempt at the point this is (1: the first); `max_doublings`: of the inlet (domain.py); `load_continuation`:
-        above Moes M = continuation_moes_m the start begins at a fraction of the load."""
+        above Moes M = continuation_moes_m the start begins at a fraction of the load; `relaxation`: the attempt's
+        on this grid (RetryPolicy.attempt) unless given."""
         self.scaling = scaling_for(point, lubricant)
         self.domain = solution_domain(self.scaling, settings, max_doublings)
         self.point, self.lubricant, self.asked = point, lubricant, settings
@@ -99,6 +100,9 @@ class PointSolve:
         self.start_load_fraction = min(1.0, fraction) if load_continuation else 1.0
         problem = problem_for(point, lubricant, settings, self.scaling)
         shapes = hierarchy_shapes(settings, self.coarsest, problem, self.start_load_fraction < 1.0)
+        self.spacing = (problem.domain_x[1] - problem.domain_x[0]) / (shapes[-1][0] - 1)  # X = x/b, finest grid
+        if relaxation is None:
+            relaxation = POLICY.attempt(attempt, self.spacing).relaxation
         self.pressure = PressureIteration(MultigridSolver(problem, shapes, relaxation), settings,
                                           History(cycles=settings.cycles_per_level))
         self.plan: SolvePlan = plan_for(shapes, self.mode, self.coupled, settings, point.entrainment_angle)
@@ -391,8 +395,9 @@ class PointSolve:
         if self.start_load_fraction < 1.0:
             notes.append(f"full-multigrid start at {self.start_load_fraction:.3g} of the load (Moes M "
                          f"{self.scaling.moes_m:.3g}), raised to the full load in steps the iteration holds")
-        return SolveRecord(self.plan.describe(), tuple(self.stages), tuple(self.retries), self.attempt,
-                           POLICY.attempts[self.attempt - 1].name, iteration, tuple(note for note in notes if note))
+        name = POLICY.attempt(self.attempt, self.spacing).name
+        return SolveRecord(self.plan.describe(), tuple(self.stages), tuple(self.retries), self.attempt, name,
+                           iteration, tuple(note for note in notes if note))
 
     def report(self, index: int, status: Status, state: FilmState | None) -> PointSolution:
         """The PointSolution of level `index`; a film that closes (h_min <= 0) is never reported as converged."""

@@ -51,7 +51,7 @@ def finest_again(stage: PointSolve, solution: PointSolution, kept: PointSolve) -
     attempt = POLICY.finest_again(solution)
     if attempt is None:
         return stage, solution
-    kept.solver.relaxation = POLICY.attempts[attempt - 1].relaxation
+    kept.solver.relaxation = POLICY.attempt(attempt, kept.spacing).relaxation
     kept.retries.append(RetryRecord(POLICY.reason(solution), Action.FINEST_AGAIN, attempt,
                                     f"attempt {kept.attempt}: {solution.message}"))
     kept.attempt, kept.elapsed = attempt, spent_on(solution)
@@ -99,7 +99,7 @@ class StagedSolver:
             solve = PointSolve(point, lubricant, settings)
         else:
             attempt, options = retry_options(retry_after)
-            solve = noted_retry(PointSolve(point, lubricant, settings, POLICY.attempts[attempt - 1].relaxation,
+            solve = noted_retry(PointSolve(point, lubricant, settings,
                                            escalate_start=POLICY.escalates_start(attempt), attempt=attempt, **options),
                                 retry_after, attempt)
         with np.errstate(**RUN_AWAY_ARITHMETIC):
