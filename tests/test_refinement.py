@@ -7,6 +7,7 @@ refined film is the better one."""
 from __future__ import annotations
 
 from dataclasses import replace
+import re
 
 import pytest
 
@@ -144,10 +145,11 @@ solver: {grid: 129, thermal: "off"}
 
 
 def test_a_converged_film_beyond_the_bound_is_refined_until_within_it(tmp_path):
-    """The ellipse converges on the 129^2 grid asked with h_min estimated 19 % off: the run solves it again on 257^2
-    (5.9 %), where it stops, and says so in the log, the point's models and the overrides. Independent check:
-    Hamrock & Dowson's (1977) minimum film, which the 129^2 film misses by 13.5 %, is nearer the refined one (8 %
-    below it: Roelands against the fit's Barus viscosity lowers a heavy film, docs/envelope.md)."""
+    """The ellipse converges on the 129^2 grid asked with h_min estimated beyond the 10 % bound: the run solves it
+    again on 257^2, where its estimate is within it and it stops, and says so in the log, the point's models and the
+    overrides. Independent check: Hamrock & Dowson's (1977) minimum film is nearer the refined film than the 129^2
+    one by at least 4 points (the refined film lies below it: Roelands against the fit's Barus viscosity lowers a
+    heavy film, docs/envelope.md)."""
     from click.testing import CliRunner
 
     from facegear_tehl.case import load_case
@@ -161,8 +163,10 @@ def test_a_converged_film_beyond_the_bound_is_refined_until_within_it(tmp_path):
     case_file.write_text(ELLIPSE)
     result = CliRunner().invoke(tehl, ["run", str(case_file), "-o", str(target), "--jobs", "1"])
     assert result.exit_code == 0, result.output
-    assert ("warning: contact: the 129 x 129 grid did not resolve the film (converged with h_c estimated 7.1 % and "
-            "h_min 19 % off, bound 10 %); solved on 257 x 257 (chosen by the solver)") in result.stderr
+    said = re.search(r"warning: contact: the 129 x 129 grid did not resolve the film \(converged with h_c estimated "
+                     r"[\d.]+ % and h_min ([\d.]+) % off, bound 10 %\); solved on 257 x 257 \(chosen by the solver\)",
+                     result.stderr)
+    assert said and float(said.group(1)) > 100 * TUNING.coarse_estimate, result.stderr
     run = read_result(target)
     point = run.points["contact"]
     assert point.converged and (point.scalars["grid"], point.scalars["grid_y"]) == (257, 257)
@@ -183,17 +187,16 @@ def test_a_converged_film_beyond_the_bound_is_refined_until_within_it(tmp_path):
 
 def _thermal_solve(name: str, grid: int, grid_y: int, attempt: int):
     """The PointSolve of envelope contact `name` on grid x grid_y as attempt `attempt` of the staged solver makes
-    it (ehl.solve.StagedSolver.begin)."""
+    it (ehl.solve.StagedSolver.begin; its relaxation the policy's for this attempt on this grid)."""
     from test_envelope_cases import envelope
 
     from facegear_tehl.ehl.retry import ATTEMPTS
     from facegear_tehl.ehl.solve import PointSolve
 
     case = next(c for c in envelope.envelope_cases() if c.name == name)
-    chosen = ATTEMPTS[attempt - 1]
-    return PointSolve(case.point(), case.lubricant(), case.settings(grid, grid_y), chosen.relaxation,
-                      escalate_start=attempt > 1, attempt=attempt, max_doublings=TUNING.retry_inlet_doublings,
-                      load_continuation=chosen.load_continuation)
+    return PointSolve(case.point(), case.lubricant(), case.settings(grid, grid_y), escalate_start=attempt > 1,
+                      attempt=attempt, max_doublings=TUNING.retry_inlet_doublings,
+                      load_continuation=ATTEMPTS[attempt - 1].load_continuation)
 
 
 def test_a_damped_attempt_whose_coarse_thermal_stage_runs_away_couples_on_the_finest_grid(monkeypatch):
@@ -292,12 +295,11 @@ def test_refinement_stops_where_the_next_grid_would_pass_the_time_budget(budget,
 
 
 def test_a_finest_grid_that_fails_after_a_converged_coarse_stage_is_solved_again_from_that_stage(monkeypatch):
-    """The finest grid of a thermal contact (a/b = 5, 0.8 GPa, 10 m/s, SRR 0.5, 129 x 33) made to run away with the
-    first attempt's relaxation: the staged solver solves that grid again from the converged coarse stage with the next
-    attempt's relaxation (Venner's switch), not a whole new attempt from the coarsest grid, and says so. It solves
-    the discrete equations of a whole second attempt, so both converge to the same film within the loop's
-    tolerances."""
-    from facegear_tehl.ehl.retry import ATTEMPTS
+    """The finest grid of a thermal contact (a/b = 5, 0.8 GPa, 10 m/s, SRR 0.5, 129 x 33) made to run away on the
+    first attempt: the staged solver solves that grid again from the converged coarse stage with the next attempt's
+    relaxation (on 129 x 33 the ellipse-scaled switch, Venner's coming first there), not a whole new attempt from the
+    coarsest grid, and says so. It solves the discrete equations of a whole second attempt, so both converge to the
+    same film within the loop's tolerances."""
     from facegear_tehl.ehl.solve import PointSolve
     from facegear_tehl.ehl.staged import UNBOUNDED
     from facegear_tehl.record import Stage
@@ -310,7 +312,7 @@ def test_a_finest_grid_that_fails_after_a_converged_coarse_stage_is_solved_again
     ran_away = Status(Outcome.DIVERGED, "diverged at cycle 3 on the finest grid (non-finite pressure or film)")
 
     def finest_runs_away_first(self, index, initial=None, coarse_h_c=float("nan")):
-        if index == len(self.solver.levels) - 1 and self.solver.relaxation == ATTEMPTS[0].relaxation:
+        if index == len(self.solver.levels) - 1 and self.attempt == 1:
             return None, ran_away
         return couple(self, index, initial, coarse_h_c)
 
