@@ -297,8 +297,8 @@ def test_refinement_stops_where_the_next_grid_would_pass_the_time_budget(budget,
 def test_a_finest_grid_that_fails_after_a_converged_coarse_stage_is_solved_again_from_that_stage(monkeypatch):
     """The finest grid of a thermal contact (a/b = 5, 0.8 GPa, 10 m/s, SRR 0.5, 129 x 33) made to run away on the
     first attempt: the staged solver solves that grid again from the converged coarse stage with the next attempt's
-    relaxation (on 129 x 33 the ellipse-scaled switch, Venner's coming first there), not a whole new attempt from the
-    coarsest grid, and says so. It solves the discrete equations of a whole second attempt, so both converge to the
+    under-relaxation on the switch the coarse stage converged with, not a whole new attempt from the coarsest grid,
+    and says so. It solves the discrete equations of a whole second attempt, so both converge to the
     same film within the loop's tolerances."""
     from facegear_tehl.ehl.solve import PointSolve
     from facegear_tehl.ehl.staged import UNBOUNDED

@@ -395,7 +395,11 @@ class PointSolve:
         if self.start_load_fraction < 1.0:
             notes.append(f"full-multigrid start at {self.start_load_fraction:.3g} of the load (Moes M "
                          f"{self.scaling.moes_m:.3g}), raised to the full load in steps the iteration holds")
-        name = POLICY.attempt(self.attempt, self.spacing).name
+        attempt = POLICY.attempt(self.attempt, self.spacing)
+        name = attempt.name
+        if self.solver.relaxation.scale_switch != attempt.relaxation.scale_switch:  # staged.finest_again's switch
+            scaled, venner = "the ellipse-scaled switch", "Venner's switch"
+            name = name.replace(venner, scaled) if self.solver.relaxation.scale_switch else name.replace(scaled, venner)
         return SolveRecord(self.plan.describe(), tuple(self.stages), tuple(self.retries), self.attempt, name,
                            iteration, tuple(note for note in notes if note))
 
