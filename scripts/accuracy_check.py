@@ -1,14 +1,17 @@
 """The accuracy target against fine-grid references of the same case and model (docs/accuracy.md, the accuracy target).
 
-    python scripts/accuracy_check.py TARGET.h5 --fine FINE.h5 [--finer FINER.h5] [--default DEFAULT.h5]
+    python scripts/accuracy_check.py TARGET.h5 --fine FINE.h5... [--finer FINER.h5...] [--default DEFAULT.h5]
 
 TARGET.h5 from `tehl run CASE --accuracy 1%`; FINE.h5 and FINER.h5 from `tehl run CASE --grid N` on two grids, the
-second twice as fine (both axes); DEFAULT.h5 from `tehl run CASE` on the case's own grid, for the cost. The reference
-is the Richardson value of FINE and FINER at each figure's order (second for the film and p_max, first for dT_max
-and mu: ehl/error_bounds.py), or FINE alone where FINER is not given or did not converge. Per point and figure it
-prints the target's value, its bound and verdict, the reference and the target's error against it; per point the grid
-chosen, the cheaper models taken, the grids solved, the solves and their wall and CPU time, and the reported grid's
-nodes over the default run's with its wall and CPU time (each with its error check's time).
+second twice as fine (both axes), each of them one file or several (points solved apart with `--points`: each point
+from the first file that holds it); DEFAULT.h5 from `tehl run CASE` on the case's own grid, for the cost. The
+reference is the Richardson value of FINE and FINER at each figure's order (second for the film and p_max, first for
+dT_max and mu: ehl/error_bounds.py); FINER alone where FINE's own solve flags the figure unresolved (a value outside
+the asymptotic range extrapolates nowhere); FINE alone where FINER is not given, lacks the point or did not
+converge. Per point and figure it prints the target's value, its bound and verdict, the reference, which one it is,
+and the target's error against it; per point the grid chosen, the cheaper models taken, the grids solved, the solves
+and their wall and CPU time, and the reported grid's nodes over the default run's with its wall and CPU time (each
+with its error check's time).
 """
 
 from __future__ import annotations
@@ -24,13 +27,17 @@ from facegear_tehl.results import read_result
 from facegear_tehl.tables import format_table
 
 
-def reference(name: str, point: str, fine, finer) -> float:
-    """The Richardson value of the figure from the two reference grids, or FINE alone where FINER is not given or its
-    point did not converge."""
-    if finer is None or not finer.points[point].converged:
-        return fine.points[point].scalars[name]
-    f_h, f_2h = finer.points[point].scalars[name], fine.points[point].scalars[name]
-    return f_h * (1.0 + richardson_error(f_h, f_2h, ORDERS[name]))  # f* = f_h + (f_h - f_2h)/(2^p - 1)
+def reference(name: str, point: str, fine: dict, finer: dict) -> tuple[float, str]:
+    """The reference value of the figure and where it comes from: the Richardson value of the two reference grids,
+    FINER alone where FINE flags the figure unresolved, FINE alone where FINER lacks the point or did not converge."""
+    coarse = fine[point]
+    if point not in finer or not finer[point].converged:
+        return coarse.scalars[name], "fine"
+    f_h = finer[point].scalars[name]
+    if coarse.scalars.get(f"unresolved_{name}", 0.0) == 1.0:
+        return f_h, "finer"
+    f_2h = coarse.scalars[name]
+    return f_h * (1.0 + richardson_error(f_h, f_2h, ORDERS[name])), "Richardson"  # f* = f_h + (f_h - f_2h)/(2^p - 1)
 
 
 def figure_rows(target, fine, finer) -> list[list[str]]:
@@ -41,11 +48,11 @@ def figure_rows(target, fine, finer) -> list[list[str]]:
         for name in FIGURES:
             if name not in solved.scalars or name not in figures:
                 continue
-            best = reference(name, point, fine, finer)
+            best, source = reference(name, point, fine, finer)
             error = (solved.scalars[name] - best) / abs(best)
             bound = figures[name].bound
             rows.append([point, name, f"{solved.scalars[name]:.5g}", "-" if math.isnan(bound) else f"{100 * bound:.2f}",
-                         figures[name].verdict.value, f"{best:.5g}", f"{100 * error:+.2f}"])
+                         figures[name].verdict.value, f"{best:.5g}", source, f"{100 * error:+.2f}"])
     return rows
 
 
@@ -82,18 +89,26 @@ def cost_rows(target, default) -> list[list[str]]:
     return rows
 
 
+def points_of(paths: list[Path]) -> dict:
+    """Point name -> its result, each from the first of `paths` that holds it."""
+    points: dict = {}
+    for path in paths:
+        for name, solved in read_result(path, fields=False).points.items():
+            points.setdefault(name, solved)
+    return points
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("target", type=Path)
-    parser.add_argument("--fine", type=Path, required=True)
-    parser.add_argument("--finer", type=Path)
+    parser.add_argument("--fine", type=Path, nargs="+", required=True)
+    parser.add_argument("--finer", type=Path, nargs="+", default=[])
     parser.add_argument("--default", type=Path)
     args = parser.parse_args()
     target = read_result(args.target, fields=False)
-    fine = read_result(args.fine, fields=False)
-    finer = read_result(args.finer, fields=False) if args.finer else None
+    fine, finer = points_of(args.fine), points_of(args.finer)
     default = read_result(args.default, fields=False) if args.default else None
-    print(format_table(["point", "figure", "value (SI)", "bound %", "verdict", "reference", "error %"],
+    print(format_table(["point", "figure", "value (SI)", "bound %", "verdict", "reference", "from", "error %"],
                        figure_rows(target, fine, finer)))
     print()
     print(format_table(["point", "grid chosen", "models", "grids solved", "solves", "wall (CPU) s", "default grid",

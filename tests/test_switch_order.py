@@ -64,3 +64,31 @@ def test_the_pitch_points_coarse_check_converges_on_its_first_attempt():
     assert solution.converged, solution.message
     assert solution.scalar("attempts") == 1
     assert solution.record.relaxation == "Venner's switch"
+
+
+def test_the_finest_grid_again_never_repeats_the_failed_relaxation():
+    """A finest grid that ran away after a converged coarse stage is solved again from that stage with a relaxation
+    other than the one it failed with: the same relaxation from the same state repeats the same (deterministic)
+    iteration. After the undamped attempts, whichever grid and switch, that is the damped one on the kept switch,
+    numbered as the damped attempt; after the damped attempt of a light contact (no load continuation), none."""
+    from facegear_tehl.record import SolveRecord, StageRecord, Stage
+    from facegear_tehl.solution import Outcome, PointSolution
+
+    def ran_away(attempt: int) -> PointSolution:
+        stages = (StageRecord(Stage.COARSE, 129, 33, 10, 5, Outcome.CONVERGED, 0.1),
+                  StageRecord(Stage.FINEST, 257, 65, 3, 1, Outcome.DIVERGED, 0.1))
+        return PointSolution("S3", Outcome.DIVERGED, "diverged", {"attempts": (attempt, "-"), "moes_m": (100.0, "-")},
+                             {}, {}, record=SolveRecord(stages=stages, attempt=attempt))
+
+    for spacing in (2.0 / 42.7, 2.0 / 85.3):  # either side of venner_first_nodes
+        for attempt in (1, 2):
+            for switch in (True, False):  # the coarse stage's, kept
+                failed = replace(POLICY.attempt(attempt, spacing).relaxation, scale_switch=switch)
+                again = POLICY.finest_again(ran_away(attempt), failed, spacing)
+                assert again is not None
+                number, relaxation = again
+                assert relaxation != failed and relaxation.scale_switch == switch
+                assert number == TUNING.damped_attempt
+                assert relaxation.under_gs < failed.under_gs
+        damped = POLICY.attempt(TUNING.damped_attempt, spacing).relaxation
+        assert POLICY.finest_again(ran_away(TUNING.damped_attempt), damped, spacing) is None

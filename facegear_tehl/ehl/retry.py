@@ -16,8 +16,9 @@ In the order a failing solve meets them:
    with fewer than venner_first_nodes across the contact: `attempt`), that damped, and for a
    heavily loaded point that damped from a start at a fraction of its load, raised in steps the pressure iteration
    converges, on a hierarchy that coarsens only the strongly coupled axes (load continuation, start.py); an attempt
-   whose coarse stage converged and whose finest grid failed has that grid solved again from its coarse stage with
-   the next attempt's relaxation first (`finest_again`);
+   whose coarse stage converged and whose finest grid failed has that grid solved again from its coarse stage first,
+   with the next attempt's under-relaxation that differs from the failed one, on the coarse stage's switch
+   (`finest_again`);
 6. the grid does not resolve the film (it closes, a start's load continuation stops short of the load, or an
    estimate exceeds its bound): the point is solved again on a finer grid, up to a cap (`finer_settings`, run.py),
    twice the rows alone where the film closes in a side lobe;
@@ -108,21 +109,26 @@ class RetryPolicy:
         heavy = solution.scalar("moes_m") > TUNING.continuation_moes_m
         return following if heavy or not self.attempts[following - 1].load_continuation else None
 
-    def finest_again(self, solution: PointSolution) -> int | None:
-        """The attempt (1-based) whose relaxation solves the finest grid again from the converged coarse stage of
-        `solution`, whose finest grid failed (ran away, stalled or closed its film): the next attempt, where the
-        policy has one (`next_attempt`) and its relaxation differs; else None. The coarse stage's solution and film
-        state are sound, the failure is the finest grid's iteration: a whole new attempt would begin again from the
-        coarsest grid, whose start and seed stage the point already got through once."""
+    def finest_again(self, solution: PointSolution, relaxation: Relaxation,
+                     spacing: float) -> tuple[int, Relaxation] | None:
+        """The attempt (1-based) and relaxation that solve the finest grid again from the converged coarse stage of
+        `solution`, whose finest grid failed (ran away, stalled or closed its film) with `relaxation` at X spacing
+        `spacing`: the first attempt from the policy's next one (`next_attempt`) whose under-relaxation, on the switch
+        the coarse stage converged with, differs from `relaxation`; else None (the same relaxation from the same
+        state is the same iteration). The coarse stage's solution and film state are sound, the failure is the
+        finest grid's iteration: a whole new attempt would begin again from the coarsest grid, whose start and seed
+        stage the point already got through once."""
         following = self.next_attempt(solution)
         if following is None or solution.record is None:
             return None
         stages = {s.stage: s.outcome for s in solution.record.stages}
         if stages.get(Stage.COARSE) is not Outcome.CONVERGED or stages.get(Stage.FINEST) is Outcome.CONVERGED:
             return None
-        if self.attempts[following - 1].relaxation == self.attempts[int(solution.scalar("attempts")) - 1].relaxation:
-            return None
-        return following
+        for attempt in range(following, len(self.attempts) + 1):
+            again = replace(self.attempt(attempt, spacing).relaxation, scale_switch=relaxation.scale_switch)
+            if again != relaxation:
+                return attempt, again
+        return None
 
     @staticmethod
     def reason(solution: PointSolution) -> Reason:

@@ -45,16 +45,16 @@ def noted_retry(solve: PointSolve, retry_after: PointSolution, attempt: int) -> 
 def finest_again(stage: PointSolve, solution: PointSolution, kept: PointSolve) -> tuple[PointSolve, PointSolution]:
     """After `stage.finish()` gave `solution`: where its finest grid failed after a converged coarse stage
     (RetryPolicy.finest_again), the finest grid solved again from that coarse stage (`kept`, a copy taken before the
-    finest grid ran) with the next attempt's under-relaxation on the switch the coarse stage converged with (the
-    shipped S3 on 1025 x 129 converges so, damped on the ellipse-scaled switch, and runs away damped on Venner's).
+    finest grid ran) with the first next attempt's under-relaxation that differs from the failed one's, on the switch
+    the coarse stage converged with (the shipped S3 on 1025 x 129 converges so, damped on the ellipse-scaled switch,
+    and runs away damped on Venner's).
     Returns the solve and solution to report: the new ones if
     that converged, else the first with the time of both and the try in its record (the policy's next attempt
     follows as before)."""
-    attempt = POLICY.finest_again(solution)
-    if attempt is None:
+    chosen = POLICY.finest_again(solution, kept.solver.relaxation, kept.spacing)
+    if chosen is None:
         return stage, solution
-    switch = kept.solver.relaxation.scale_switch  # the grid's switch kept: the next attempt's damping on it
-    kept.solver.relaxation = replace(POLICY.attempt(attempt, kept.spacing).relaxation, scale_switch=switch)
+    attempt, kept.solver.relaxation = chosen
     kept.retries.append(RetryRecord(POLICY.reason(solution), Action.FINEST_AGAIN, attempt,
                                     f"attempt {kept.attempt}: {solution.message}"))
     kept.attempt, kept.elapsed = attempt, spent_on(solution)
