@@ -71,7 +71,7 @@ def test_the_finest_grid_again_never_repeats_the_failed_relaxation():
     other than the one it failed with: the same relaxation from the same state repeats the same (deterministic)
     iteration. After the undamped attempts, whichever grid and switch, that is the damped one on the kept switch,
     numbered as the damped attempt; after the damped attempt of a light contact (no load continuation), none."""
-    from facegear_tehl.record import SolveRecord, StageRecord, Stage
+    from facegear_tehl.record import SolveRecord, Stage, StageRecord
     from facegear_tehl.solution import Outcome, PointSolution
 
     def ran_away(attempt: int) -> PointSolution:
