@@ -8,8 +8,9 @@ from the first file that holds it); DEFAULT.h5 from `tehl run CASE` on the case'
 reference is the Richardson value of FINE and FINER at each figure's order (second for the film and p_max, first for
 dT_max and mu: ehl/error_bounds.py); FINER alone where FINE's own solve flags the figure unresolved (a value outside
 the asymptotic range extrapolates nowhere); FINE alone where FINER is not given, lacks the point or did not
-converge. Per point and figure it prints the target's value, its bound and verdict, the reference, which one it is,
-and the target's error against it; per point the grid chosen, the cheaper models taken, the grids solved, the solves
+converge; a reference whose own solve flags the figure unresolved is marked so (it is no reference). Per point and
+figure it prints the target's value, its bound and verdict, the reference, which one it is, and the target's error
+against it; per point the grid chosen, the cheaper models taken, the grids solved, the solves
 and their wall and CPU time, and the reported grid's nodes over the default run's with its wall and CPU time (each
 with its error check's time).
 """
@@ -19,40 +20,56 @@ from __future__ import annotations
 import argparse
 import math
 from pathlib import Path
+from types import SimpleNamespace
 
 from facegear_tehl.accuracy_target import FIGURES
-from facegear_tehl.ehl.error_bounds import ORDERS
+from facegear_tehl.ehl.error_bounds import ORDERS, compression_held
 from facegear_tehl.ehl.richardson import richardson_error
 from facegear_tehl.results import read_result
 from facegear_tehl.tables import format_table
 
 
+def flagged(solved, name: str) -> bool:
+    """The solve flags the figure unresolved (no bound: error_bounds.py), or it is a dT_max the film's compression
+    holds (error_bounds.compression_held, applied here too to files written before that rule took its present form)."""
+    if solved.scalars.get(f"unresolved_{name}", 0.0) == 1.0:
+        return True
+    as_solved = SimpleNamespace(scalars={key: (value, "") for key, value in solved.scalars.items()})
+    return name == "dT_max" and compression_held(as_solved)
+
+
 def reference(name: str, point: str, fine: dict, finer: dict) -> tuple[float, str]:
     """The reference value of the figure and where it comes from: the Richardson value of the two reference grids,
-    FINER alone where FINE flags the figure unresolved, FINE alone where FINER lacks the point or did not converge."""
+    FINER alone where FINE flags the figure unresolved, FINE alone where FINER lacks the point or did not converge;
+    "(unresolved)" added where the reference taken flags the figure unresolved itself."""
     coarse = fine[point]
     if point not in finer or not finer[point].converged:
-        return coarse.scalars[name], "fine"
+        return coarse.scalars[name], "fine (unresolved)" if flagged(coarse, name) else "fine"
     f_h = finer[point].scalars[name]
-    if coarse.scalars.get(f"unresolved_{name}", 0.0) == 1.0:
-        return f_h, "finer"
+    if flagged(coarse, name):
+        return f_h, "finer (unresolved)" if flagged(finer[point], name) else "finer"
     f_2h = coarse.scalars[name]
     return f_h * (1.0 + richardson_error(f_h, f_2h, ORDERS[name])), "Richardson"  # f* = f_h + (f_h - f_2h)/(2^p - 1)
 
 
 def figure_rows(target, fine, finer) -> list[list[str]]:
-    """One row per point and figure: value, bound, verdict, reference, error against it."""
+    """One row per point and figure: value, bound, verdict, reference, error against it; a run without an accuracy
+    target (the default grid) has the bound of its file (`error_bound_<name>`, or unresolved) and no verdict."""
     rows = []
     for point, solved in target.points.items():
-        figures = {f.name: f for f in solved.accuracy.figures}
+        if solved.accuracy is not None:
+            figures = {f.name: (f.bound, f.verdict.value) for f in solved.accuracy.figures}
+        else:
+            figures = {name: (solved.scalars.get(f"error_bound_{name}", math.nan),
+                              "unresolved" if flagged(solved, name) else "-") for name in FIGURES}
         for name in FIGURES:
             if name not in solved.scalars or name not in figures:
                 continue
             best, source = reference(name, point, fine, finer)
             error = (solved.scalars[name] - best) / abs(best)
-            bound = figures[name].bound
+            bound, verdict = figures[name]
             rows.append([point, name, f"{solved.scalars[name]:.5g}", "-" if math.isnan(bound) else f"{100 * bound:.2f}",
-                         figures[name].verdict.value, f"{best:.5g}", source, f"{100 * error:+.2f}"])
+                         verdict, f"{best:.5g}", source, f"{100 * error:+.2f}"])
     return rows
 
 
@@ -73,6 +90,8 @@ def cost_rows(target, default) -> list[list[str]]:
     rows = []
     for point, solved in target.points.items():
         record = solved.accuracy
+        if record is None:  # a run without an accuracy target: no choices to show
+            continue
         grid = next(c.chosen for c in record.choices if c.what == "grid")
         taken = [c for c in record.choices if c.what in MODEL_CHOICES and c.chosen != "as the case"]
         models = "; ".join(f"{c.what} {c.chosen}" for c in taken) or "the case's"

@@ -31,8 +31,8 @@ h_c and h_min of a solve without an outer loop whose pressure cycles left the fi
 contracting (its iteration error has no bound); any figure whose iteration error e_it (`iteration_error_<name>` in the
 file, the reason) exceeds TUNING.max_iteration_error, as a loop ended at its floor can leave it (the full step no longer
 contracting at the smallest relaxation: e_it is the amplitude of its last window, `floor_error`); and dT_max where the
-film's compression, not its shear, sets its temperatures and the outlet spike's expansion cooling is unresolved
-(`compression_held`). docs/accuracy.md (error bounds) holds the calibration that chose these rules.
+film's compression, not its shear, sets its temperatures through the outlet spike (`compression_held`).
+docs/accuracy.md (error bounds) holds the calibration that chose these rules.
 """
 
 from __future__ import annotations
@@ -298,15 +298,15 @@ def feature_nodes(solution: PointSolution, t_inlet: float) -> dict[str, int]:
     return {name: min(both) for name, both in feature_runs(solution, t_inlet).items()}
 
 
-def compression_held(solution: PointSolution, cold_unresolved: bool) -> bool:
-    """Whether the film's temperatures are its compression's, through an outlet spike the grid does not resolve: it
-    cools through the outlet at least as much as it heats (-dT_min >= dT_max > 0: the compression work
-    beta_T T u.grad p, heating where the pressure rises along the flow and cooling where it falls, outweighs the shear
-    heating, as in pure rolling) and dT_min, the expansion behind the spike, is unresolved. The spike's rising flank
-    then heats the oil as its fall cools it, and grows with every refinement as p_max does: the hot spot can move there
-    on a finer grid (docs/accuracy.md, calibration: design 6's S3)."""
+def compression_held(solution: PointSolution) -> bool:
+    """Whether the film's temperatures are its compression's, through the outlet spike, which no grid resolves (p_max
+    is never bounded): it cools through the outlet at least as much as it heats (-dT_min >= dT_max > 0: the
+    compression work beta_T T u.grad p, heating where the pressure rises along the flow and cooling where it falls,
+    outweighs the shear heating, as in pure rolling). The spike's rising flank then heats the oil as its fall cools it,
+    and grows with every refinement as p_max does: the hot spot can move there on a finer grid whether or not the cold
+    spot's own estimate looks resolved (docs/accuracy.md, calibration: design 6's S3 and the shipped case's S3)."""
     rise, cold = solution.scalars.get("dT_max", (0.0, "K"))[0], solution.scalars.get("dT_min", (0.0, "K"))[0]
-    return cold_unresolved and rise > 0.0 and -cold >= rise
+    return rise > 0.0 and -cold >= rise
 
 
 def stage_error(solution: PointSolution, stage: Stage, name: str) -> float:
@@ -410,7 +410,7 @@ def bounds(solution: PointSolution, e_y: dict[str, float], nodes: dict[str, int]
                         e_y.get(name, math.nan)) for name in FIGURES if name in solution.scalars}
     unresolved = {name: unresolved_figure(solution, name, *estimates[name], nodes.get(name, TUNING.feature_nodes))
                   for name in estimates}
-    if "dT_max" in unresolved and compression_held(solution, unresolved.get("dT_min", True)):
+    if "dT_max" in unresolved and compression_held(solution):
         unresolved["dT_max"] = True
     out: dict[str, tuple[float, str]] = {}
     for name, (e_x, along_y) in estimates.items():
