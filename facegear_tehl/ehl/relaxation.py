@@ -22,3 +22,9 @@ class Relaxation:
     force_damping: float = 1.0  # fraction of the secant step taken
     alternate_above: float = 0.25  # add Y-line sweeps when |c_y| > this * |c_x| (entrainment skewed > 14 deg)
     scale_switch: bool = True  # scale xi_switch for long ellipses (see Level); False: Venner's value as is
+
+    def describe(self) -> str:
+        """The words a solve record names this relaxation by: its switch, and "damped" where its Gauss-Seidel changes
+        are under-relaxed below the default."""
+        switch = "the ellipse-scaled switch" if self.scale_switch else "Venner's switch"
+        return switch + (", damped" if self.under_gs < Relaxation.under_gs else "")

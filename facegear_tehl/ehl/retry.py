@@ -43,20 +43,24 @@ CLOSURE_PLACE = ("x_film_closed", "y_film_closed")  # where a reported iterate's
 
 @dataclass(frozen=True)
 class Attempt:
-    """One attempt at a point: its name, the relaxation of its multigrid cycles and whether its start begins at a
-    fraction of the load (above Moes M = continuation_moes_m)."""
+    """One attempt at a point: the relaxation of its multigrid cycles and whether its start begins at a fraction of
+    the load (above Moes M = continuation_moes_m)."""
 
-    name: str
     relaxation: Relaxation
     load_continuation: bool = False
+
+    @property
+    def name(self) -> str:
+        """The words its solve record names it by."""
+        return self.relaxation.describe() + (", from a fraction of the load" if self.load_continuation else "")
 
 
 DAMPED = Relaxation(scale_switch=False, under_gs=0.15, under_jd=0.1)  # Gauss-Seidel / Jacobi changes halved
 ATTEMPTS = (
-    Attempt("the ellipse-scaled switch", Relaxation()),
-    Attempt("Venner's switch", Relaxation(scale_switch=False)),
-    Attempt("Venner's switch, damped", DAMPED),
-    Attempt("Venner's switch, damped, from a fraction of the load", DAMPED, load_continuation=True),
+    Attempt(Relaxation()),  # the ellipse-scaled switch
+    Attempt(Relaxation(scale_switch=False)),  # Venner's switch
+    Attempt(DAMPED),
+    Attempt(DAMPED, load_continuation=True),
 )
 
 

@@ -395,12 +395,12 @@ class PointSolve:
         if self.start_load_fraction < 1.0:
             notes.append(f"full-multigrid start at {self.start_load_fraction:.3g} of the load (Moes M "
                          f"{self.scaling.moes_m:.3g}), raised to the full load in steps the iteration holds")
+        # named by the attempt, on the switch it runs (staged.finest_again keeps the coarse stage's; a stalled loop's
+        # damping of the cycles, coupled.py, leaves the name as it is)
         attempt = POLICY.attempt(self.attempt, self.spacing)
-        name = attempt.name
-        if self.solver.relaxation.scale_switch != attempt.relaxation.scale_switch:  # staged.finest_again's switch
-            scaled, venner = "the ellipse-scaled switch", "Venner's switch"
-            name = name.replace(venner, scaled) if self.solver.relaxation.scale_switch else name.replace(scaled, venner)
-        return SolveRecord(self.plan.describe(), tuple(self.stages), tuple(self.retries), self.attempt, name,
+        switch = self.solver.relaxation.scale_switch
+        attempt = replace(attempt, relaxation=replace(attempt.relaxation, scale_switch=switch))
+        return SolveRecord(self.plan.describe(), tuple(self.stages), tuple(self.retries), self.attempt, attempt.name,
                            iteration, tuple(note for note in notes if note))
 
     def report(self, index: int, status: Status, state: FilmState | None) -> PointSolution:
