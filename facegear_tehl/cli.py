@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import replace
+import gc
 import json
 from pathlib import Path
 import signal
@@ -864,6 +865,11 @@ def _terminate(signum: int, frame: object) -> None:
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    """Console entry point `tehl`."""
+    """Console entry point `tehl`. The process ends with it: every object it made is frozen out of the garbage
+    collector (`gc.freeze`) first, as the interpreter's exit otherwise traverses them all in a full collection for each
+    module it tears down (those of Numba, SciPy and h5py)."""
     signal.signal(signal.SIGTERM, _terminate)
-    tehl.main(args=argv, prog_name="tehl")
+    try:
+        tehl.main(args=argv, prog_name="tehl")
+    finally:
+        gc.freeze()
