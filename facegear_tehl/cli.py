@@ -177,7 +177,7 @@ def run(
     if result.cycle:
         click.echo(CYCLE_TITLE + "\n" + cycle_table(result))
         click.echo(cycle_summary(result))
-    if result.verdict:
+    if verdict_text(result):
         click.echo(verdict_text(result))
     click.echo(f"result: {target} (status {result.status})")
     _exit_on_status(ctx, result)
@@ -572,7 +572,7 @@ def info_json(result: Result) -> dict[str, Any]:
                       "columns": {name: column.values.tolist() for name, column in result.cycle.items()}}}
            if result.cycle else {}),
         **({"verdict": {**result.verdict, "units": dict(result.verdict_units), "labels": dict(result.verdict_labels)}}
-           if result.verdict else {}),
+           if result.verdict or result.verdict_labels else {}),
     }
 
 
@@ -616,7 +616,7 @@ def info_text(result: Result, si: bool = False) -> str:
         lines += ["", HEAT_TITLE, heat_budget_table(result)]
     if result.cycle:
         lines += ["", CYCLE_TITLE, cycle_table(result), cycle_summary(result)]
-    if result.verdict:
+    if verdict_text(result):
         lines += ["", verdict_text(result)]
     lines += _point_sections(points)
     if result.contact_scalars:
@@ -775,7 +775,7 @@ def cycle_summary(result: Result) -> str:
     scalars = result.cycle_scalars
     count = int(scalars["point_count"])
     if not any(f"power_loss{suffix}" in scalars for suffix, _ in _LOSS_VARIANTS):
-        return f"mesh cycle: {count} points; no mesh power loss (see the warnings)"
+        return f"mesh cycle: {count} point{'s' if count != 1 else ''}; no mesh power loss (see the warnings)"
     lines = [f"mesh cycle: {count} points, input power T1 w1 = {scalars['input_power'] / 1e3:.2f} kW; "
              f"power loss = {QUADRATURE}:"]
     for suffix, label in _LOSS_VARIANTS:

@@ -116,7 +116,7 @@ def iso_tr_14179_mean_friction(case: Case, normal_load: float, path: Mapping[str
 
 def mesh_cycle(case: Case, points: Sequence[ContactPoint], solutions: Sequence[PointSolution],
                path: Mapping[str, Field], geometry: Mapping[str, tuple[float, str]]) -> MeshCycle:
-    """The cycle of a gear case over the points whose film was solved (those with an h_min), in path order.
+    """The cycle of a gear case over the points whose film was solved (converged, with an h_min), in path order.
 
     path: the contact path table (gears/analysis.py); geometry: its scalars (base_pitch, normal_load,
     pinion_base_radius, path_start, path_end). The power loss and efficiency are given when the points span the
@@ -142,7 +142,7 @@ def mesh_cycle(case: Case, points: Sequence[ContactPoint], solutions: Sequence[P
              and abs(s[-1] - geometry["path_end"][0]) <= PATH_END_TOLERANCE * base_pitch)
     left_out = [p.name for p, sol in zip(points, solutions) if not _has_film(sol)]
     if left_out:
-        notes.append(f"cycle: {', '.join(left_out)} left out (no solved film)")
+        notes.append(f"cycle: {', '.join(left_out)} left out (not converged)")
     if not spans or len(solved) < 2:
         notes.append("cycle: the solved points do not span the contact path from end to end; "
                      "no mesh power loss or efficiency")
@@ -229,7 +229,9 @@ def _power_losses(case: Case, s: np.ndarray, columns: Mapping[str, Field], sigma
 
 
 def _has_film(solution: PointSolution | None) -> bool:
-    return solution is not None and "h_min" in solution.scalars
+    """A converged solve with a film: the figures a point that did not converge carries are of its last iterate
+    or coarser grid, not a result."""
+    return solution is not None and solution.converged and "h_min" in solution.scalars
 
 
 # Columns the points gain as scalars (the others they already hold).

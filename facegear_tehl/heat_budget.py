@@ -174,13 +174,13 @@ def _heat_distributions(point: ContactPoint, solution: PointSolution, power: flo
 
 def heat_budget(points: list[ContactPoint], solutions: list[PointSolution], lubricant: Lubricant
                 ) -> tuple[list[PointSolution], dict[str, Field]]:
-    """Budget of every point that has a solved film state: its solution gains the budget's scalars and heat
+    """Budget of every converged point that has a solved film state: its solution gains the budget's scalars and heat
     flux fields; the /heat table has one row per such point (empty when none has)."""
     rows: list[tuple[str, dict[str, float]]] = []
     out = []
     for point, solution in zip(points, solutions):
-        if (solution is None or "mu" not in solution.scalars or "temperature_mean" not in solution.fields
-                or "dissipation_column" not in solution.fields):
+        if (solution is None or not solution.converged or "mu" not in solution.scalars
+                or "temperature_mean" not in solution.fields or "dissipation_column" not in solution.fields):
             out.append(solution)
             continue
         values, fields = point_budget(point, solution, lubricant)

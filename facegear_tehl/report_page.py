@@ -120,7 +120,7 @@ def _engineering(key: str, value: Any) -> tuple[str, str]:
 
 def _verdict(result: Result) -> str:
     """The verdict as a table of (item, assessment), or why there is none."""
-    if not result.verdict:
+    if not verdict_text(result):
         return "<p class=\"note\">The file has no /verdict group (a plain contact, or a file before the verdict).</p>"
     rows = []
     for line in verdict_text(result).splitlines()[1:]:

@@ -230,9 +230,11 @@ def write_result(run: RunResult, path: str | Path) -> Path:
             _write_table(h5, "heat", run.heat, {}, chunks)
             _write_table(h5, "sweep", run.sweep, run.sweep_scalars, chunks)
             _write_table(h5, "cycle", run.cycle, run.cycle_scalars, chunks)
-            _write_table(h5, "verdict", {}, run.verdict, chunks)
-            if run.verdict_labels:
-                h5["verdict"].attrs["labels"] = json.dumps(dict(run.verdict_labels))
+            if run.verdict or run.verdict_labels:  # words without figures where no point converged
+                verdict = h5.create_group("verdict", track_order=True)
+                _write_scalars(verdict, run.verdict)
+                if run.verdict_labels:
+                    verdict.attrs["labels"] = json.dumps(dict(run.verdict_labels))
             h5.flush()
         _fsync(temporary)
         os.replace(temporary, target)

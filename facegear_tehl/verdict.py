@@ -6,7 +6,7 @@ others as comparisons."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import replace
 
 from facegear_tehl.cycle import composite_roughness
@@ -22,6 +22,7 @@ from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.ratings import rate
 from facegear_tehl.results import Result, RunResult
 from facegear_tehl.scuffing import flash_safety
+from facegear_tehl.solution import PointSolution
 from facegear_tehl.units import CELSIUS, MILLIMETRE, PERCENT
 
 # The recommended mesh power loss: the solved film's sliding traction times the sliding speed (cycle.py's
@@ -42,24 +43,29 @@ def assess(run: RunResult) -> RunResult:
     sigma = composite_roughness(materials.body_1.roughness, materials.body_2.roughness)
     if sigma > 0.0:
         points = tuple(with_central_film_parameter(p, sigma) for p in run.points)
-        lambdas = {p.name: p.scalar("film_parameter") for p in points if "film_parameter" in p.scalars}
+        lambdas = {p.name: p.scalar("film_parameter") for p in points if p.converged and "film_parameter" in p.scalars}
         warning = regime_warning(lambdas)
         run = replace(run, points=points, cycle=central_column(run.cycle, sigma) if run.cycle else run.cycle,
                       warnings=run.warnings + ((warning,) if warning else ()))
-    scalars, labels = _film_verdict(run)
-    scalars.update(_temperature_verdict(run))
+    converged = [p for p in run.points if p.converged]  # another point's figures are its last iterate's
+    scalars, labels = _film_verdict(converged)
+    scalars.update(_temperature_verdict(run, converged))
     scalars.update(_scuffing_verdict(run.case.lubricant, scalars))
     scalars.update(_efficiency_verdict(run.cycle_scalars))
     rated, not_rated = rate(run.case, run.contact, run.contact_scalars, run.cycle)
     scalars.update(rated)
     if not_rated:
         labels["not_rated"] = "; ".join(not_rated)
+    left_out = [p.name for p in run.points if not p.converged]
+    if left_out:
+        labels["left_out"] = ", ".join(left_out)
     return replace(run, verdict=scalars, verdict_labels=labels)
 
 
-def _film_verdict(run: RunResult) -> tuple[dict[str, tuple[float, str]], dict[str, str]]:
-    """lambda_min, the point where it lies (its path coordinate for a gear), lambda_c there and the regime."""
-    solved = [p for p in run.points if "film_parameter" in p.scalars]
+def _film_verdict(points: Sequence[PointSolution]) -> tuple[dict[str, tuple[float, str]], dict[str, str]]:
+    """lambda_min over the converged `points`, the point where it lies (its path coordinate for a gear), lambda_c
+    there and the regime."""
+    solved = [p for p in points if "film_parameter" in p.scalars]
     if not solved:
         return {}, {}
     lowest = min(solved, key=lambda p: p.scalar("film_parameter"))
@@ -71,12 +77,13 @@ def _film_verdict(run: RunResult) -> tuple[dict[str, tuple[float, str]], dict[st
     return scalars, {"lambda_min_point": lowest.name, "regime": regime(lowest.scalar("film_parameter")).value}
 
 
-def _temperature_verdict(run: RunResult) -> dict[str, tuple[float, str]]:
-    """The highest contact temperature over the points and flanks: solved (bulk + solved surface rise, thermal
-    models) and by Blok's formula with the film's mu; for a plain contact the inlet is the bulk temperature."""
+def _temperature_verdict(run: RunResult, points: Sequence[PointSolution]) -> dict[str, tuple[float, str]]:
+    """The highest contact temperature over the converged `points` of `run` and their flanks: solved (bulk + solved
+    surface rise, thermal models) and by Blok's formula with the film's mu; for a plain contact the inlet is the bulk
+    temperature."""
     inlet = run.case.lubricant.inlet_temperature
     found: dict[str, list[float]] = {"contact_temperature_max": [], "contact_temperature_blok_max": []}
-    for point in run.points:
+    for point in points:
         scalars = point.scalars
         for body in (1, 2):
             if f"contact_temperature_{body}" in scalars:
@@ -118,10 +125,13 @@ def verdict_text(result: Result) -> str:
     """The verdict of a result file, a few lines; '' when it has none."""
     lines = [*_film_lines(result), *_temperature_lines(result), *_scuffing_lines(result),
              *_standard_lines(result), *_efficiency_lines(result)]
+    labels = result.verdict_labels
+    if "left_out" in labels:
+        lines.append(f"  left out             {labels['left_out']} (not converged: no result to assess)")
     if not lines:
         return ""
-    if "not_rated" in result.verdict_labels:
-        lines.append(f"  not assessed         {result.verdict_labels['not_rated']}")
+    if "not_rated" in labels:
+        lines.append(f"  not assessed         {labels['not_rated']}")
     return "\n".join(["verdict:", *lines])
 
 

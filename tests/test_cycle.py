@@ -22,6 +22,7 @@ from facegear_tehl.lubricant import KELVIN
 from facegear_tehl.points import contact_analysis
 from facegear_tehl.results import read_result, write_result
 from facegear_tehl.run import run_case
+from facegear_tehl.verdict import assess, verdict_text
 
 import synthetic
 
@@ -120,6 +121,41 @@ def test_ends_not_solved_give_no_power_loss_and_say_so():
     run = run_case(_case(), points=["S1", "S3"], solver=_prescribed(lambda s: 100.0), jobs=1)
     assert "power_loss" not in run.cycle_scalars and list(run.cycle["point"].values) == ["S1", "S3"]
     assert any("do not span the contact path" in w for w in run.warnings)
+
+
+def test_a_point_that_did_not_converge_is_left_out_of_the_cycle_and_the_verdict(tmp_path):
+    # A point that did not converge carries its last iterate's figures (here a lower film and a larger friction):
+    # not a result, so neither the cycle's power loss nor the verdict's lambda_min may take them.
+    def solve(point, lubricant, settings):
+        solution = _prescribed(lambda s: 100.0)(point, lubricant, settings)
+        if point.name != "S2":
+            return solution
+        failed = synthetic.solution(point, converged=False)
+        return replace(failed, scalars={**failed.scalars, "h_min": (0.01 * synthetic.H_C, "m"), "mu": (30.0, "1")})
+    roughness = {"body_1": {"roughness": 1.0e-7}, "body_2": {"roughness": 1.0e-7}}
+    raw = yaml.safe_load(FACE_GEAR.read_text())
+    for body, keys in roughness.items():
+        raw["materials"][body].update(keys)
+    run = assess(run_case(parse_case(yaml.safe_dump(raw), name="facegear_110"), solver=solve, jobs=1))
+    assert list(run.cycle["point"].values) == ["S1", "S3", "S4", "S5"]
+    assert any("S2 left out (not converged)" in w for w in run.warnings)
+    # every other point dissipates 100 W: the trapezoid over them, as if S2 had its neighbours' power
+    assert run.cycle["sliding_power"].values == pytest.approx(100.0, rel=1e-12)
+    assert run.verdict_labels["lambda_min_point"] != "S2" and run.verdict_labels["left_out"] == "S2"
+    assert run.verdict["lambda_min"][0] == pytest.approx(0.6 * synthetic.H_C / (math.sqrt(2.0) * 1.0e-7), rel=1e-3)
+    text = verdict_text(read_result(write_result(run, tmp_path / "r.h5"), fields=False))
+    assert "left out             S2 (not converged" in text
+
+
+def test_a_run_where_no_point_converged_writes_its_file_and_says_why(tmp_path):
+    def solve(point, lubricant, settings):
+        return synthetic.solution(point, converged=False)
+    target = tmp_path / "failed.h5"
+    run = assess(run_case(_case(), points=["S1"], solver=solve, jobs=1))
+    assert run.verdict == {} and run.verdict_labels["left_out"] == "S1"
+    result = read_result(write_result(run, target), fields=False)
+    assert result.status == "not_converged" and result.verdict_labels["left_out"] == "S1"
+    assert "S1 (not converged: no result to assess)" in verdict_text(result)
 
 
 def test_contact_temperature_is_bulk_plus_flash(facegear_run):
