@@ -12,6 +12,7 @@ from facegear_tehl.case import Case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.cycle import MeshCycle, mesh_cycle, with_film_parameter
 from facegear_tehl.ehl.domain import solution_domain
+from facegear_tehl.ehl.energy_balance import energy_note
 from facegear_tehl.ehl.retry import POLICY, estimates
 from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.ehl.stopwatch import Spent, spent_on
@@ -104,6 +105,7 @@ def run_case(
     by_name = {s.name: s for s in solved}
     warnings = analysis.warnings + tuple(refinement_note(name, refinement, by_name[name])
                                          for name, refinement in refined.items())
+    warnings += tuple(note for note in map(energy_note, solved) if note)
     if refined:
         overrides["refined_grid"] = {name: refinement.grid for name, refinement in refined.items()}
     solutions, heat_table = heat_budget(selected, [_with_path_coordinate(s, p) for s, p in zip(solved, selected)],

@@ -31,7 +31,10 @@ h_c and h_min of a solve without an outer loop whose pressure cycles left the fi
 contracting (its iteration error has no bound); any figure whose iteration error e_it (`iteration_error_<name>` in the
 file, the reason) exceeds TUNING.max_iteration_error, as a loop ended at its floor can leave it (the full step no longer
 contracting at the smallest relaxation: e_it is the amplitude of its last window, `floor_error`); and dT_max where the
-film's compression, not its shear, sets its temperatures through the outlet spike (`compression_held`).
+film's compression, not its shear, sets its temperatures through the outlet spike (`compression_held`); and every
+figure of a thermal solve whose energy balance misses TUNING.max_energy_imbalance (`energy_unbalanced`: its film state
+is not a solution of the discrete energy equation, so neither its temperatures nor the viscosities they set are known
+to the loop's tolerance).
 docs/accuracy.md (error bounds) holds the calibration that chose these rules.
 """
 
@@ -47,6 +50,7 @@ import numpy as np
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.asymptotic_range import CoarserPair, observed_order, three_grid_estimate
 from facegear_tehl.ehl.convergence import drifting
+from facegear_tehl.ehl.energy_balance import energy_unbalanced
 from facegear_tehl.ehl.grid import hierarchy_shapes
 from facegear_tehl.ehl.report import ORDER_DT_MAX, ORDER_MU, LevelSummary
 from facegear_tehl.ehl.richardson import ORDER
@@ -412,6 +416,8 @@ def bounds(solution: PointSolution, e_y: dict[str, float], nodes: dict[str, int]
                   for name in estimates}
     if "dT_max" in unresolved and compression_held(solution):
         unresolved["dT_max"] = True
+    if energy_unbalanced(solution):
+        unresolved = dict.fromkeys(unresolved, True)
     out: dict[str, tuple[float, str]] = {}
     for name, (e_x, along_y) in estimates.items():
         converged = solution.outcome is Outcome.CONVERGED

@@ -136,6 +136,9 @@ class Tuning:
     contraction_window: int = 4  # outer changes an outer loop's contraction rate is taken over (its iteration error)
     max_contraction: float = 0.9  # changes contracting slower than this are a flicker: the window's largest change
     max_iteration_error: float = 0.1  # a figure whose iteration error (a floor's amplitude) exceeds this: unresolved
+    # the energy balance of a converged thermal film (energy.energy_budget) is exact where its state solves the discrete
+    # equations: an imbalance above this share of the heat generated says the loop stopped short, so nothing is bounded
+    max_energy_imbalance: float = 0.01
     drift_floor: float = 1e-3  # a film moving one way by less than this per cycle (relative) is wandering at its floor
     feature_nodes: int = 3  # a minimum, hot or cold spot spanning fewer nodes along x or y is unresolved ...
     feature_depth: float = 0.1  # ... counted where the figure is within this share of its extreme
