@@ -189,8 +189,25 @@ def analyse_gear_pair(spec: GearSpec, body_1: Solid, body_2: Solid, n_path: int 
         face_gear_cone_angle=math.degrees(geo.delta_2),
         transmission_error=float(np.mean(path["transmission_error"])),
         curvature_check=route_gap,
-        warnings=order_warnings(meshing_points(s_min, s_max, p_b)),
+        warnings=(() if isinstance(spec.points, int) else order_warnings(meshing_points(s_min, s_max, p_b)))
+        + tuple(edge_warnings(spec, points)),
     )
+
+
+def edge_warnings(spec: GearSpec, points: tuple[ContactPoint, ...]) -> list[str]:
+    """A message per point whose Hertzian ellipse, its major axis lengthwise along the face-gear tooth (Litvin & Fuentes
+    2004, the contact ellipse of a localized bearing contact), reaches past the face width [inner_radius,
+    outer_radius] about its face-gear radius: the ellipse and the film solved over it assume the tooth goes on."""
+    messages = []
+    for point in points:
+        a, radius = point.hertz.a, point.rotation_radius_2
+        past = max(spec.inner_radius - (radius - a), (radius + a) - spec.outer_radius)
+        if past > 0.0:
+            messages.append(f"{point.name}: its contact ellipse (major semi-axis a = {a * 1e3:.3g} mm, lengthwise) "
+                            f"about face-gear radius {radius * 1e3:.4g} mm reaches {past * 1e3:.2g} mm past the face "
+                            f"width [{spec.inner_radius * 1e3:.4g}, {spec.outer_radius * 1e3:.4g}] mm: the edge "
+                            "contact there is not modelled (the ellipse and its film assume the tooth goes on)")
+    return messages
 
 
 def _sample(

@@ -14,7 +14,7 @@ from facegear_tehl.gears.report import contact_table
 from facegear_tehl.points import contact_analysis
 from facegear_tehl.schema import CaseError
 
-from gear_examples import CASE_FILE, EXAMPLE_A, MM, STEEL, analysis, assert_reference, case_variant, spec
+from gear_examples import CASE_FILE, EXAMPLE_A, EXAMPLE_B, MM, STEEL, analysis, assert_reference, case_variant, spec
 
 
 @pytest.mark.parametrize(
@@ -157,6 +157,26 @@ def test_evenly_spaced_points():
     np.testing.assert_allclose(s, np.linspace(result.path_start, result.path_end, 7), rtol=0, atol=1e-15)
     loads = np.array([p.load for p in result.points]) / result.normal_load
     assert loads[0] == 0.5 and loads[-1] == 0.5 and 1.0 in loads
+
+
+def test_an_evenly_sampled_path_names_no_meshing_point_order():
+    # Example B's S4 lies before its pitch point (test_gear_examples); its evenly sampled path solves no S-point.
+    assert not any("lies before" in w for w in analysis(EXAMPLE_B, points=9, load_sharing="equal").warnings)
+
+
+def test_a_contact_ellipse_past_the_face_width_is_named():
+    # Example A's S2 at four times the torque: a = 15.19 mm x 4^(1/3) (Hertz, a ~ W^(1/3)) = 24.1 mm about its
+    # face-gear radius 507.3 mm reaches the inner edge 482.7 mm if the face starts above 483 mm.
+    loaded = analysis(EXAMPLE_A, pinion_torque=4 * EXAMPLE_A["pinion_torque"])
+    s2 = loaded.points[1]
+    assert s2.hertz.a == pytest.approx(15.191e-3 * 4.0 ** (1.0 / 3.0), rel=2e-3)
+    assert not any("past the face" in w for w in loaded.warnings)
+    inner = s2.rotation_radius_2 - s2.hertz.a + 1.0e-3
+    narrow = analysis(EXAMPLE_A, pinion_torque=4 * EXAMPLE_A["pinion_torque"], inner_radius=inner)
+    named = [w for w in narrow.warnings if "past the face width" in w]
+    assert any(w.startswith("S2: ") and "reaches 1 mm past" in w for w in named)
+    assert all(p.rotation_radius_2 - p.hertz.a < inner for p in narrow.points if any(
+        w.startswith(f"{p.name}: ") for w in named))
 
 
 def test_contact_table():

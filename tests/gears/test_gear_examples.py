@@ -172,4 +172,9 @@ def test_example_b():
         assert_reference(s5[column], printed, f"S5 {column}")
     # Reference example B: S4 = -0.166 mm lies before the pitch point; the analysis says so.
     assert_reference(float(result.point_values["s"][3]) / MM, "-0.166")
-    assert len(result.warnings) == 1 and "S4" in result.warnings[0] and "S3" in result.warnings[0]
+    order = [w for w in result.warnings if "lies before" in w]
+    assert len(order) == 1 and "S4" in order[0] and "S3" in order[0]
+    # Its pitch point's ellipse (a = 6.749 mm, the reference's) about face-gear radius 144.0 mm passes the inner edge
+    # at 139 mm by 1.75 mm; S5's (a = 4.72 mm about 145.0 mm) stays on the tooth.
+    edge = {w.split(":")[0]: w for w in result.warnings if "past the face width" in w}
+    assert sorted(edge) == ["S1", "S2", "S3", "S4"] and "reaches 1.7 mm past" in edge["S3"]
