@@ -213,9 +213,9 @@ def run_and_check(folder: Path, contact: Contact, combo: Combo, grid: int = GRID
     if run.exit_code == EXIT_NOT_CONVERGED:
         assert "not converged" in run.stderr, log
 
-    # the heat budget: run for every point whose film state was computed (thermal, or an isothermal
-    # Ree-Eyring film: the case where it crashed), one row per point with a film
-    with_film = [name for name, point in result.points.items() if point.fields]
+    # the heat budget: run for every converged point whose film state was computed (thermal, or an isothermal
+    # Ree-Eyring film: the case where it crashed), one row per such point (another's figures are its last iterate's)
+    with_film = [name for name, point in result.points.items() if point.fields and point.converged]
     if (thermal != "off" or rheology == "ree_eyring") and with_film:
         assert "point" in result.heat, log
     if result.heat:
