@@ -381,32 +381,25 @@ def _plain_contact(block: Block) -> PlainContact:
 
 
 def _solver(block: Block) -> SolverSettings:
+    """The solver: block. Its grids, its domain, its thermal model and its accuracy are checked apart (each an
+    `attempt` of its own), so that a problem in one does not hide another's."""
     d = _SOLVER
     grid = block.integer("grid", d["grid"])
-    _check_grid(grid, block.key_path("grid"))
     coarsest = block.integer("coarsest_grid", d["coarsest_grid"], low=9)
-    _check_grid(coarsest, block.key_path("coarsest_grid"))
-    check(coarsest <= grid, block.key_path("coarsest_grid"), coarsest, f"at most solver.grid = {grid}")
-    grid_y = d["grid_y"]
-    if block.has("grid_y"):
-        grid_y = block.integer("grid_y")
-        _check_grid(grid_y, block.key_path("grid_y"))
-        check(coarsest <= grid_y, block.key_path("grid_y"), grid_y, f"at least solver.coarsest_grid = {coarsest}")
+    grid_y = block.integer("grid_y") if block.has("grid_y") else d["grid_y"]
+    attempt(lambda: _check_grids(block, grid, coarsest, grid_y))
     dx, dy = d["domain_x"], d["domain_y"]
     if block.has("domain"):
-        domain = block.block("domain")
-        dx = domain.interval("x")
-        dy = domain.interval("y")
-        domain.finish()
-        check(dx[0] < -1.0 and dx[1] > 1.0, domain.key_path("x"), list(dx),
-              "an interval containing the contact [-1, 1] (units of the semi-axis b), e.g. [-4.5, 1.5]")
-        check(dy[0] < -1.0 and dy[1] > 1.0, domain.key_path("y"), list(dy),
-              "an interval containing the contact [-1, 1] (units of the semi-axis a), e.g. [-3, 3]")
+        dx, dy = attempt(lambda: _domain(block.block("domain"))) or (dx, dy)
     thermal = block.get("thermal", d["thermal"])
     if thermal is False:  # YAML 1.1 reads a bare `off` as false
         thermal = "off"
-    check(isinstance(thermal, str) and thermal in THERMAL_MODELS, block.key_path("thermal"), thermal,
-          "one of " + ", ".join(THERMAL_MODELS))
+    attempt(lambda: check(isinstance(thermal, str) and thermal in THERMAL_MODELS, block.key_path("thermal"), thermal,
+                          "one of " + ", ".join(THERMAL_MODELS) + (" (YAML reads a bare yes or on as true)"
+                                                                    if thermal is True else "")))
+    accuracy = d["accuracy"]
+    if block.has("accuracy"):
+        accuracy = attempt(lambda: accuracy_fraction(block.get("accuracy"), block.key_path("accuracy")))
     settings = SolverSettings(
         grid=grid,
         domain_x=dx,
@@ -425,13 +418,34 @@ def _solver(block: Block) -> SolverSettings:
         outlet_refinement=block.choice("outlet_refinement", OUTLET_REFINEMENTS, d["outlet_refinement"]),
         outlet_patches=block.integer("outlet_patches", d["outlet_patches"], low=1, high=MAX_OUTLET_PATCHES),
         time_budget=block.number("time_budget", d["time_budget"], positive=True, high=1e6, unit="s"),
-        accuracy=accuracy_fraction(block.get("accuracy"), block.key_path("accuracy")) if block.has("accuracy")
-        else d["accuracy"],
+        accuracy=accuracy,
     )
     check(settings.thermal_layers % 2 == 1, block.key_path("thermal_layers"), settings.thermal_layers,
           "an odd number of layer nodes (Simpson's rule across the film), e.g. 7, 9 or 11")
     block.finish()
     return settings
+
+
+def _check_grids(block: Block, grid: int, coarsest: int, grid_y: int) -> None:
+    """solver.grid, coarsest_grid and grid_y: each 2^n + 1, the coarsest the smallest."""
+    _check_grid(grid, block.key_path("grid"))
+    _check_grid(coarsest, block.key_path("coarsest_grid"))
+    check(coarsest <= grid, block.key_path("coarsest_grid"), coarsest, f"at most solver.grid = {grid}")
+    if block.has("grid_y"):
+        _check_grid(grid_y, block.key_path("grid_y"))
+        check(coarsest <= grid_y, block.key_path("grid_y"), grid_y, f"at least solver.coarsest_grid = {coarsest}")
+
+
+def _domain(domain: Block) -> tuple[tuple[float, float], tuple[float, float]]:
+    """solver.domain: its x and y intervals, each containing the contact."""
+    dx = domain.interval("x")
+    dy = domain.interval("y")
+    domain.finish()
+    check(dx[0] < -1.0 and dx[1] > 1.0, domain.key_path("x"), list(dx),
+          "an interval containing the contact [-1, 1] (units of the semi-axis b), e.g. [-4.5, 1.5]")
+    check(dy[0] < -1.0 and dy[1] > 1.0, domain.key_path("y"), list(dy),
+          "an interval containing the contact [-1, 1] (units of the semi-axis a), e.g. [-3, 3]")
+    return dx, dy
 
 
 def _output(block: Block) -> OutputSettings:

@@ -16,6 +16,7 @@ from facegear_tehl.gears.spec import GearSpec
 from facegear_tehl.gears.tca import Misalignment
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.materials import Solid
+from facegear_tehl.schema import CaseError
 from facegear_tehl.settings import OutputSettings, SolverSettings
 
 CONTACT = "contact: {radius_x: 0.0127, radius_y: 0.0254, load: 6.0, entrainment_speed: 0.6}\n"
@@ -69,3 +70,16 @@ def test_settings_load_without_the_gear_geometry():
     loaded = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True).stdout
     assert loaded.strip() == "['facegear_tehl.kernel_cache', 'facegear_tehl.settings']"  # kernel_cache: the
     # package's own import, before any kernel (the standard library only)
+
+
+def test_the_solver_blocks_independent_problems_are_named_together():
+    # A grid, a thermal model and an accuracy, each wrong on its own: one line each at once (docs/cli.md), the
+    # thermal model's naming YAML's boolean reading of a bare `yes`.
+    text = MINIMAL + "solver: {grid: 100, thermal: yes, accuracy: 60%, domain: {x: [-0.5, 1.5], y: [-3, 3]}}\n"
+    with pytest.raises(CaseError) as raised:
+        parse_case(text)
+    lines = str(raised.value).splitlines()
+    assert [line.split(":")[0] for line in lines] == ["solver.grid", "solver.domain.x", "solver.thermal",
+                                                      "solver.accuracy"]
+    assert "a bare yes or on as true" in lines[2]
+    assert parse_case(MINIMAL + "solver: {thermal: off}\n").solver.thermal == "off"
