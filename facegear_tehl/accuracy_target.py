@@ -412,6 +412,9 @@ def expected_nodes(start: SolveTask, base: PointSolution, target: float) -> int:
 def _not_checked(cheaper: Cheaper, expected: int, start: int) -> Choice:
     if expected <= start:
         return Choice(cheaper.what, "as the case", f"{cheaper.chosen} not checked: the start grid meets the target")
+    if cheaper.saving <= 0.0:
+        return Choice(cheaper.what, "as the case", f"{cheaper.chosen} not checked: it costs "
+                      f"{-100 * cheaper.saving:.0f} % more than the case's model (no saving to check for)")
     return Choice(cheaper.what, "as the case", f"{cheaper.chosen} not checked: it saves {100 * cheaper.saving:.0f} % "
                   f"of a solve, and the point is expected to end on {expected / start:.2g}x the start grid's nodes: "
                   "its check would cost more than it can save")

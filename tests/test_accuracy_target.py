@@ -18,7 +18,7 @@ import pytest
 
 from facegear_tehl import accuracy_target
 from facegear_tehl.accuracy_record import Verdict, accuracy_from_dict, accuracy_lines, accuracy_to_dict
-from facegear_tehl.accuracy_target import figure_bound, solve_to_accuracy
+from facegear_tehl.accuracy_target import Cheaper, _not_checked, figure_bound, solve_to_accuracy
 from facegear_tehl.case import ACCURACY_RANGE, load_case
 from facegear_tehl.ehl.error_bounds import bounds, feature_nodes
 from facegear_tehl.ehl.richardson import richardson_error
@@ -660,3 +660,13 @@ def test_a_seeded_refined_grid_gives_the_cold_starts_figures_within_their_error_
     for name in bounded:
         assert abs(seeded.scalar(name) / cold.scalar(name) - 1.0) < cold.scalar(f"error_bound_{name}"), name
     print(seconds)
+
+
+def test_a_model_that_costs_more_is_not_called_a_saving():
+    # 7 layers instead of 9 cost 10 % more (TUNING.accuracy_saving_layers < 0): the record said "it saves -10 %".
+    layers = Cheaper("layers", "7", lambda task: task, lambda task: True, TUNING.accuracy_saving_layers)
+    assert TUNING.accuracy_saving_layers < 0.0
+    reason = _not_checked(layers, expected=4, start=1).reason
+    assert "saves" not in reason and f"costs {-100 * TUNING.accuracy_saving_layers:.0f} % more" in reason
+    cheaper = Cheaper("thermal", "reduced", lambda task: task, lambda task: True, TUNING.accuracy_saving_reduced)
+    assert f"saves {100 * TUNING.accuracy_saving_reduced:.0f} %" in _not_checked(cheaper, expected=4, start=1).reason
