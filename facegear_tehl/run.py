@@ -11,7 +11,7 @@ from facegear_tehl.accuracy_target import solve_to_accuracy, three_grid_checked
 from facegear_tehl.case import Case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.cycle import MeshCycle, mesh_cycle, with_film_parameter
-from facegear_tehl.ehl.domain import solution_domain
+from facegear_tehl.ehl.domain import inlet_note, solution_domain
 from facegear_tehl.ehl.energy_balance import energy_note
 from facegear_tehl.ehl.retry import POLICY, estimates
 from facegear_tehl.ehl.scaling import scaling_for
@@ -104,8 +104,7 @@ def run_case(
         overrides["accuracy"] = case.solver.accuracy
     by_name = {s.name: s for s in solved}
     warnings = analysis.warnings + tuple(refinement_note(name, refinement, by_name[name])
-                                         for name, refinement in refined.items())
-    warnings += tuple(note for note in map(energy_note, solved) if note)
+                                         for name, refinement in refined.items()) + _model_notes(tasks, solved)
     if refined:
         overrides["refined_grid"] = {name: refinement.grid for name, refinement in refined.items()}
     solutions, heat_table = heat_budget(selected, [_with_path_coordinate(s, p) for s, p in zip(solved, selected)],
@@ -129,6 +128,16 @@ def run_case(
         overrides=overrides,
         convergence_bands=convergence_bands(),
     )
+
+
+def _model_notes(tasks: Sequence[SolveTask], solved: Sequence[PointSolution]) -> tuple[str, ...]:
+    """Warnings on the converged solves whose film is not the one their error bounds stand for: an energy balance
+    that misses (energy_balance.energy_note), an inlet short of its target (domain.inlet_note: where the solver chose
+    the domain, or starved beyond the bounds where the case gave it)."""
+    notes = [energy_note(s) for s in solved]
+    notes += [inlet_note(s.name, s.scalar("inlet_gap_ratio"), chosen=task.settings.domain_x is None)
+              for task, s in zip(tasks, solved) if s.converged and "inlet_gap_ratio" in s.scalars]
+    return tuple(note for note in notes if note)
 
 
 @dataclass(frozen=True)

@@ -11,6 +11,7 @@ import pytest
 from facegear_tehl.case import SolverSettings
 from facegear_tehl.cli import summary_table
 from facegear_tehl.ehl.asymptotic_range import lowest_order, observed_order, three_grid_estimate
+from facegear_tehl.ehl.domain import inlet_note
 from facegear_tehl.ehl.energy_balance import energy_note
 from facegear_tehl.ehl.error_bounds import (
     CoarseStage,
@@ -126,6 +127,21 @@ def test_a_film_state_that_misses_its_energy_balance_bounds_no_figure(imbalance,
     assert all(out[f"unresolved_{name}"][0] == (0.0 if bounded else 1.0) for name in ("h_c", "h_min", "dT_max", "mu"))
     note = energy_note(solution)
     assert (note == "") == bounded and (bounded or f"off by {100 * imbalance:.2g} %" in note)
+
+
+@pytest.mark.parametrize("gap_ratio, bounded", [(83.5, True), (23.5, True), (7.5, True), (7.3, False), (2.35, False)])
+def test_a_film_starved_by_its_truncated_inlet_beyond_the_asymptotic_range_bounds_no_figure(gap_ratio, bounded):
+    """The truncated inlet starves h_c by 140-200 G^-3/2 percent (docs/accuracy.md, domain size): 39-56 % at the
+    G = 2.35 of the face gear's S3 at 5 N m (22.5 b of inlet, the most the solver lengthens), which its grid's bound
+    (0.32 %) said nothing of; above G = (200/10)^(2/3) = 7.4 the starving is within the asymptotic range."""
+    estimates = {"error_estimate_h_c": 0.001, "error_estimate_h_min": 0.001}
+    out = bounds(_solution(inlet_gap_ratio=gap_ratio, **estimates), {"h_c": 0.0, "h_min": 0.0})
+    assert out["unresolved_h_c"][0] == (0.0 if bounded else 1.0) == out["unresolved_h_min"][0]
+    chosen = inlet_note("S3", gap_ratio, chosen=True)
+    assert (chosen == "") == (gap_ratio >= TUNING.inlet_gap_target)
+    assert (inlet_note("S3", gap_ratio, chosen=False) == "") == bounded  # a domain the case gave: only past the bounds
+    if gap_ratio == 2.35:
+        assert "starves h_c by about 39-56 %" in chosen and "no figure is bounded" in chosen
 
 
 def test_a_side_lobe_minimum_narrower_than_the_rows_is_counted_in_nodes():

@@ -121,3 +121,29 @@ def _lengthened(bounds: tuple[float, float], component: float) -> tuple[float, f
     low, high = bounds
     length = high - low
     return (low - length, high) if component > 0.0 else (low, high + length)
+
+
+# the truncated inlet's h_c error, 140-200 G^-3/2 percent (docs/accuracy.md, domain size): its coefficients as fractions
+STARVED_FILM_ERROR = (1.4, 2.0)
+
+
+def starved_inlet(gap_ratio: float) -> bool:
+    """Whether a film solved over an inlet of gap ratio G (`inlet_gap_ratio`) is starved beyond what its figures' bounds
+    stand for: G below TUNING.min_inlet_gap_ratio."""
+    return gap_ratio < TUNING.min_inlet_gap_ratio
+
+
+def inlet_note(name: str, gap_ratio: float, chosen: bool) -> str:
+    """A warning for point `name` whose inlet reaches G central films ("" otherwise): below inlet_gap_target where the
+    solver `chosen` the domain (it could not lengthen the inlet enough), below min_inlet_gap_ratio where the case gave
+    it (a domain chosen short, as Venner & Lubrecht's, is the case's to choose until its figures lose their bounds):
+    h_c starved by 140-200 G^-3/2 percent, and whether its figures are then unresolved (`starved_inlet`)."""
+    if not gap_ratio < (TUNING.inlet_gap_target if chosen else TUNING.min_inlet_gap_ratio):
+        return ""
+    low, high = (100.0 * c * gap_ratio**-1.5 for c in STARVED_FILM_ERROR)
+    consequence = ("so no figure is bounded" if starved_inlet(gap_ratio) else
+                   "which its error bounds (grid and iteration) do not include")
+    return (f"{name}: its inlet reaches {gap_ratio:.3g} central films (inlet_gap_ratio; target "
+            f"{TUNING.inlet_gap_target:g}): the truncated inlet starves h_c by about {low:.2g}-{high:.2g} % "
+            f"(docs/accuracy.md, domain size), {consequence}")
+

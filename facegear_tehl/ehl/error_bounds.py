@@ -34,7 +34,8 @@ contracting at the smallest relaxation: e_it is the amplitude of its last window
 film's compression, not its shear, sets its temperatures through the outlet spike (`compression_held`); and every
 figure of a thermal solve whose energy balance misses TUNING.max_energy_imbalance (`energy_unbalanced`: its film state
 is not a solution of the discrete energy equation, so neither its temperatures nor the viscosities they set are known
-to the loop's tolerance).
+to the loop's tolerance); and every figure of a film whose inlet reaches fewer than TUNING.min_inlet_gap_ratio central
+films (`domain.starved_inlet`: the truncated inlet starves h_c by more than asymptotic_estimate).
 docs/accuracy.md (error bounds) holds the calibration that chose these rules.
 """
 
@@ -50,6 +51,7 @@ import numpy as np
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.asymptotic_range import CoarserPair, observed_order, three_grid_estimate
 from facegear_tehl.ehl.convergence import drifting
+from facegear_tehl.ehl.domain import starved_inlet
 from facegear_tehl.ehl.energy_balance import energy_unbalanced
 from facegear_tehl.ehl.grid import hierarchy_shapes
 from facegear_tehl.ehl.report import ORDER_DT_MAX, ORDER_MU, LevelSummary
@@ -416,7 +418,7 @@ def bounds(solution: PointSolution, e_y: dict[str, float], nodes: dict[str, int]
                   for name in estimates}
     if "dT_max" in unresolved and compression_held(solution):
         unresolved["dT_max"] = True
-    if energy_unbalanced(solution):
+    if energy_unbalanced(solution) or starved_inlet(solution.scalars.get("inlet_gap_ratio", (math.inf, "1"))[0]):
         unresolved = dict.fromkeys(unresolved, True)
     out: dict[str, tuple[float, str]] = {}
     for name, (e_x, along_y) in estimates.items():

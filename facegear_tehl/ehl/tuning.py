@@ -139,6 +139,9 @@ class Tuning:
     # the energy balance of a converged thermal film (energy.energy_budget) is exact where its state solves the discrete
     # equations: an imbalance above this share of the heat generated says the loop stopped short, so nothing is bounded
     max_energy_imbalance: float = 0.01
+    # below this inlet gap ratio G the truncated inlet starves h_c by more than asymptotic_estimate (140-200 G^-1.5 %,
+    # docs/accuracy.md, domain size): the film is not the flooded one its figures' bounds are of
+    min_inlet_gap_ratio: float = 7.4
     drift_floor: float = 1e-3  # a film moving one way by less than this per cycle (relative) is wandering at its floor
     feature_nodes: int = 3  # a minimum, hot or cold spot spanning fewer nodes along x or y is unresolved ...
     feature_depth: float = 0.1  # ... counted where the figure is within this share of its extreme

@@ -189,9 +189,13 @@ def analyse_gear_pair(spec: GearSpec, body_1: Solid, body_2: Solid, n_path: int 
         face_gear_cone_angle=math.degrees(geo.delta_2),
         transmission_error=float(np.mean(path["transmission_error"])),
         curvature_check=route_gap,
-        warnings=(() if isinstance(spec.points, int) else order_warnings(meshing_points(s_min, s_max, p_b)))
-        + tuple(edge_warnings(spec, points)),
+        warnings=_warnings(spec, points, meshing_points(s_min, s_max, p_b)),
     )
+
+
+def _warnings(spec: GearSpec, points: tuple[ContactPoint, ...], s_points: dict[str, float]) -> tuple[str, ...]:
+    """The analysis's warnings: the S-points out of order (where they are solved), ellipses past the face width."""
+    return (() if isinstance(spec.points, int) else order_warnings(s_points)) + tuple(edge_warnings(spec, points))
 
 
 def edge_warnings(spec: GearSpec, points: tuple[ContactPoint, ...]) -> list[str]:
