@@ -27,6 +27,7 @@ from facegear_tehl.case import Case, accuracy_fraction, load_case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.cycle import COARSE_POINT_COUNT, QUADRATURE
 from facegear_tehl.ehl.tuning import TUNING
+from facegear_tehl.ehl.unresolved import Why
 from facegear_tehl.gears.analysis import analyse_gear_pair
 from facegear_tehl.gears.report import contact_table
 from facegear_tehl.output_path import (
@@ -50,6 +51,7 @@ from facegear_tehl.tables import (
     ROUND_OFF,
     SCALAR_GROUPS,
     UNRESOLVED,
+    UNRESOLVED_REASON,
     UNRESOLVED_WORD,
     Column,
     cell,
@@ -597,7 +599,7 @@ def info_text(result: Result, si: bool = False) -> str:
     header += [("derived", line) for line in result.derived]
     header += [("warning", warning) for warning in result.warnings]
     points = list(result.points.values())
-    names = list(dict.fromkeys(key for p in points for key in p.scalars))
+    names = list(dict.fromkeys(key for p in points for key in p.scalars if not key.startswith(UNRESOLVED_REASON)))
     units = {key: next(p.units[key] for p in points if key in p.units) for key in names}
     lines = [format_pairs(header)]
     for group in [name for name, _ in SCALAR_GROUPS] + ["other"]:
@@ -634,6 +636,12 @@ def _point_sections(points: list[PointResult]) -> list[str]:
                if p.models.get("thermal_reason", "").startswith("auto")]
     if choices:
         lines += ["", "thermal model chosen by `thermal: auto` (docs/accuracy.md):", *choices]
+    reasons = [f"  {p.name} {key.removeprefix(UNRESOLVED_REASON)}: {Why(int(code)).words}" for p in points
+               for key, code in p.scalars.items()
+               if key.startswith(UNRESOLVED_REASON) and code in set(Why) and Why(int(code)) is not Why.NEVER]
+    if reasons:
+        lines += ["", "why a figure is unresolved (p_max never has a bound; docs/accuracy.md, error bounds):",
+                  *reasons]
     for p in points:
         if p.record is not None:
             lines += ["", *record_lines(p.name, p.record)]

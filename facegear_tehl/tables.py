@@ -107,6 +107,7 @@ PERCENT_KEYS = frozenset({"load_error", "energy_balance_error", "error_estimate_
                           "distribution_difference", "load_share"})
 UNRESOLVED = "unresolved_"  # prefix of the flags of quantities a solve cannot bound (ehl/error_bounds.py)
 UNRESOLVED_WORD = "unresolved"  # what a table shows for such a quantity, never a number
+UNRESOLVED_REASON = "unresolved_reason_"  # prefix of why (ehl/unresolved.py's code), worded apart from the tables
 BOUNDED_FIGURES = ("h_c", "h_min", "p_max", "dT_max", "dT_min", "mu")  # the figures with error_bound_/unresolved_
 
 

@@ -29,6 +29,7 @@ from facegear_tehl.ehl.richardson import richardson_error
 from facegear_tehl.ehl.scaling import contact_from_moes
 from facegear_tehl.ehl.staged import solve_point
 from facegear_tehl.ehl.tuning import TUNING
+from facegear_tehl.ehl.unresolved import Why
 from facegear_tehl.results import PointResult
 from facegear_tehl.solution import Field, Outcome, PointSolution
 
@@ -86,11 +87,16 @@ def test_a_figure_without_an_estimate_or_with_a_large_one_is_unresolved_never_sm
     assert out["unresolved_h_c"][0] == 0.0 and out["error_bound_h_c"][0] == pytest.approx(TUNING.bound_safety * 0.002)
     assert out["unresolved_h_min"][0] == 1.0 and "error_bound_h_min" not in out
     assert out["unresolved_p_max"][0] == 1.0 and "error_bound_p_max" not in out  # the spike forms under refinement
+    assert out["unresolved_reason_h_min"][0] == Why.OUTSIDE_ASYMPTOTIC_RANGE and out["unresolved_reason_p_max"][0] == 2
+    assert "unresolved_reason_h_c" not in out
     assert bounds(solution, {"h_c": math.nan})["unresolved_h_c"][0] == 1.0
+    assert bounds(solution, {"h_c": math.nan})["unresolved_reason_h_c"][0] == Why.NO_ESTIMATE
     stalled = _solution(outcome=Outcome.NOT_CONVERGED, error_estimate_h_c=0.001)
     assert bounds(stalled, {"h_c": 0.0})["unresolved_h_c"][0] == 1.0
+    assert bounds(stalled, {"h_c": 0.0})["unresolved_reason_h_c"][0] == Why.NOT_CONVERGED
     narrow = bounds(solution, {"h_c": 0.001, "h_min": 0.001}, {"h_min": TUNING.feature_nodes - 1})
     assert narrow["unresolved_h_min"][0] == 1.0 and narrow["unresolved_h_c"][0] == 0.0
+    assert narrow["unresolved_reason_h_min"][0] == Why.NARROW_FEATURE
 
 
 def test_a_rise_set_by_compression_through_the_outlet_spike_is_unresolved():
@@ -105,6 +111,9 @@ def test_a_rise_set_by_compression_through_the_outlet_spike_is_unresolved():
     e_y = {"dT_max": -0.0011, "dT_min": 0.026, "h_c": 0.0, "h_min": 0.0}
     rolling = bounds(_solution(dT_max=16.14, dT_min=-23.85, **estimates), e_y)
     assert rolling["unresolved_dT_max"][0] == 1.0 and "error_bound_dT_max" not in rolling
+    assert rolling["unresolved_reason_dT_max"][0] == Why.COMPRESSION_HELD
+    assert rolling["unresolved_reason_dT_min"][0] == Why.OUTSIDE_ASYMPTOTIC_RANGE  # its e_x of 15.7 %
+    assert "unresolved_reason_h_c" not in rolling
     assert rolling["unresolved_dT_min"][0] == 1.0 and rolling["unresolved_h_c"][0] == 0.0
     sliding = bounds(_solution(dT_max=34.5, dT_min=-8.0, **estimates), e_y)
     assert sliding["unresolved_dT_max"][0] == 0.0
@@ -125,6 +134,7 @@ def test_a_film_state_that_misses_its_energy_balance_bounds_no_figure(imbalance,
     solution = _solution(dT_max=60.0, mu=0.01, energy_balance_error=imbalance, **estimates)
     out = bounds(solution, {"dT_max": 0.0, "h_c": 0.0, "h_min": 0.0, "mu": 0.0})
     assert all(out[f"unresolved_{name}"][0] == (0.0 if bounded else 1.0) for name in ("h_c", "h_min", "dT_max", "mu"))
+    assert bounded or out["unresolved_reason_h_c"][0] == Why.ENERGY_BALANCE
     note = energy_note(solution)
     assert (note == "") == bounded and (bounded or f"off by {100 * imbalance:.2g} %" in note)
 
@@ -137,6 +147,7 @@ def test_a_film_starved_by_its_truncated_inlet_beyond_the_asymptotic_range_bound
     estimates = {"error_estimate_h_c": 0.001, "error_estimate_h_min": 0.001}
     out = bounds(_solution(inlet_gap_ratio=gap_ratio, **estimates), {"h_c": 0.0, "h_min": 0.0})
     assert out["unresolved_h_c"][0] == (0.0 if bounded else 1.0) == out["unresolved_h_min"][0]
+    assert bounded != ("unresolved_reason_h_min" in out) and (bounded or out["unresolved_reason_h_min"][0] == 3.0)
     chosen = inlet_note("S3", gap_ratio, chosen=True)
     assert (chosen == "") == (gap_ratio >= TUNING.inlet_gap_target)
     assert (inlet_note("S3", gap_ratio, chosen=False) == "") == bounded  # a domain the case gave: only past the bounds
@@ -208,12 +219,15 @@ def test_tehl_info_words_an_unresolved_figure_and_its_estimates(tmp_path):
     point = contact_analysis(case).points[0]
     solved = synthetic.solution(point)
     flags = {"error_estimate_h_c": 0.0012, "error_estimate_h_min": 0.0021, "error_estimate_y_h_min": 0.15,
-             "error_bound_h_c": 0.0036, "unresolved_h_c": 0.0, "unresolved_h_min": 1.0}
+             "error_bound_h_c": 0.0036, "unresolved_h_c": 0.0, "unresolved_h_min": 1.0,
+             "unresolved_reason_h_min": float(Why.OUTSIDE_ASYMPTOTIC_RANGE)}
     solved = replace(solved, scalars={**solved.scalars, **{k: (v, "1") for k, v in flags.items()}})
     text = info_text(read_result(write_result(RunResult(case=case, points=(solved,)), tmp_path / "r.h5"),
                                  fields=False))
     rows = {line.split()[0]: line.split()[1:] for line in text.splitlines() if line.strip()}
     assert rows["unresolved_h_min"] == ["unresolved"] and rows["unresolved_h_c"] == ["bounded"]
+    assert "unresolved_reason_h_min" not in rows  # worded in its own section, not a flag row
+    assert f"  contact h_min: {Why.OUTSIDE_ASYMPTOTIC_RANGE.words}" in text.splitlines()
     assert rows["error_estimate_h_min"][-1] == "unresolved" and rows["error_estimate_y_h_min"][-1] == "unresolved"
     assert rows["error_estimate_h_c"][-1] == "0.12" and rows["error_bound_h_c"][-1] == "0.36"
 

@@ -58,6 +58,7 @@ from facegear_tehl.ehl.report import ORDER_DT_MAX, ORDER_MU, LevelSummary
 from facegear_tehl.ehl.richardson import ORDER
 from facegear_tehl.ehl.scaling import Scaling
 from facegear_tehl.ehl.tuning import TUNING
+from facegear_tehl.ehl.unresolved import Why
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.record import Stage
 from facegear_tehl.settings import OutletRefinement, SolverSettings
@@ -396,30 +397,41 @@ def estimated_in_model(solution: PointSolution) -> bool:
     return any(s.stage is Stage.COARSE and s.first_outer >= 0 for s in record.stages)
 
 
-def unresolved_figure(solution: PointSolution, name: str, e_x: float, along_y: float, nodes: int) -> bool:
-    """A figure no bound can be given (module docstring), from its estimates along x and y and the nodes across its
-    feature."""
-    return (solution.outcome is not Outcome.CONVERGED or name in UNBOUNDED
-            or not (math.isfinite(e_x) and math.isfinite(along_y))
-            or max(abs(e_x), abs(along_y)) > TUNING.asymptotic_estimate or nodes < TUNING.feature_nodes)
+def unresolved_figure(solution: PointSolution, name: str, e_x: float, along_y: float, nodes: int) -> Why | None:
+    """Why no bound can be given to a figure from the solve, its estimates along x and y and the nodes across its
+    feature (module docstring); None where one may be."""
+    if solution.outcome is not Outcome.CONVERGED:
+        return Why.NOT_CONVERGED
+    if name in UNBOUNDED:
+        return Why.NEVER
+    if starved_inlet(solution.scalars.get("inlet_gap_ratio", (math.inf, "1"))[0]):
+        return Why.STARVED_INLET
+    if energy_unbalanced(solution):
+        return Why.ENERGY_BALANCE
+    if not (math.isfinite(e_x) and math.isfinite(along_y)):
+        return Why.NO_ESTIMATE
+    if max(abs(e_x), abs(along_y)) > TUNING.asymptotic_estimate:
+        return Why.OUTSIDE_ASYMPTOTIC_RANGE
+    if nodes < TUNING.feature_nodes:
+        return Why.NARROW_FEATURE
+    if name == "dT_max" and compression_held(solution):
+        return Why.COMPRESSION_HELD
+    return None
 
 
 def bounds(solution: PointSolution, e_y: dict[str, float], nodes: dict[str, int] | None = None,
            coarser: dict[str, CoarserPair] | None = None) -> dict[str, tuple[float, str]]:
-    """`error_bound_<name>` (relative, >= 0) of every reported figure it can bound and `unresolved_<name>` (1 or 0)
-    of every reported figure (module docstring); `nodes`: feature_nodes of the solution; `coarser`: the next coarser
-    pair along x of a figure (`three_grid_estimate`, whose noise adds this solve's e_ref and e_it/(2^p - 1) to the
-    pair's; `observed_order_<name>` in the file)."""
+    """`error_bound_<name>` (relative, >= 0) of every reported figure it can bound, `unresolved_<name>` (1 or 0)
+    of every reported figure and `unresolved_reason_<name>` (unresolved.Why) of those it cannot (module docstring);
+    `nodes`: feature_nodes of the solution; `coarser`: the next coarser pair along x of a figure
+    (`three_grid_estimate`, whose noise adds this solve's e_ref and e_it/(2^p - 1) to the pair's;
+    `observed_order_<name>` in the file)."""
     nodes, coarser = nodes or {}, coarser or {}
     in_model = estimated_in_model(solution)
     estimates = {name: (solution.scalars.get(f"error_estimate_{name}", (math.nan, "1"))[0] if in_model else math.nan,
                         e_y.get(name, math.nan)) for name in FIGURES if name in solution.scalars}
-    unresolved = {name: unresolved_figure(solution, name, *estimates[name], nodes.get(name, TUNING.feature_nodes))
-                  for name in estimates}
-    if "dT_max" in unresolved and compression_held(solution):
-        unresolved["dT_max"] = True
-    if energy_unbalanced(solution) or starved_inlet(solution.scalars.get("inlet_gap_ratio", (math.inf, "1"))[0]):
-        unresolved = dict.fromkeys(unresolved, True)
+    why = {name: unresolved_figure(solution, name, *estimates[name], nodes.get(name, TUNING.feature_nodes))
+           for name in estimates}
     out: dict[str, tuple[float, str]] = {}
     for name, (e_x, along_y) in estimates.items():
         converged = solution.outcome is Outcome.CONVERGED
@@ -428,8 +440,13 @@ def bounds(solution: PointSolution, e_y: dict[str, float], nodes: dict[str, int]
         pair = coarser.get(name, CoarserPair(math.nan))
         noise = pair.noise + reference + (left / (2.0 ** ORDERS[name] - 1.0) if math.isfinite(left) else 0.0)
         along_x = three_grid_estimate(e_x, pair.estimate, ORDERS[name], noise) + reference
-        bound = math.inf if unresolved[name] or left > TUNING.max_iteration_error else (
-            TUNING.bound_safety * (along_x + abs(along_y)) + left)
+        if why[name] is None and not left <= TUNING.max_iteration_error:
+            why[name] = Why.ITERATION_ERROR
+        if why[name] is None and not math.isfinite(along_x):
+            why[name] = Why.THREE_GRIDS
+        bound = math.inf if why[name] is not None else TUNING.bound_safety * (along_x + abs(along_y)) + left
+        if why[name] is not None:
+            out[f"unresolved_reason_{name}"] = (float(why[name]), "1")
         if math.isfinite(bound):
             out[f"error_bound_{name}"] = (bound, "1")
         if math.isfinite(left):
@@ -476,7 +493,8 @@ def with_coarser_pair(solution: PointSolution, coarser: PointSolution, t_inlet: 
             noise = (reference_error(coarser, name) + left) * before / value
             pairs[name] = CoarserPair(estimate * before / value, noise)
     e_y = {name: solution.scalars.get(f"error_estimate_y_{name}", (math.nan, "1"))[0] for name in FIGURES}
-    kept = {k: v for k, v in solution.scalars.items() if not k.startswith(("error_bound_", "observed_order_"))}
+    kept = {k: v for k, v in solution.scalars.items()
+            if not k.startswith(("error_bound_", "observed_order_", "unresolved_reason_"))}
     nodes = feature_nodes(solution, t_inlet)
     extra = stricter(bounds(solution, e_y, nodes, coarser_estimates(solution)), bounds(solution, e_y, nodes, pairs))
     return replace(solution, scalars={**kept, **extra})
@@ -487,10 +505,12 @@ def stricter(first: dict[str, tuple[float, str]], second: dict[str, tuple[float,
     figure unresolved by either is unresolved, else its bound is the larger; the observed order is the second's where
     it has one."""
     out = {**first, **second}
-    for key in (k for k in first if k.startswith("unresolved_")):
-        bound = f"error_bound_{key.removeprefix('unresolved_')}"
+    for name in (k.removeprefix("unresolved_") for k in first
+                 if k.startswith("unresolved_") and not k.startswith("unresolved_reason_")):
+        key, bound, reason = f"unresolved_{name}", f"error_bound_{name}", f"unresolved_reason_{name}"
         if first[key][0] == 1.0 or second.get(key, (0.0, "1"))[0] == 1.0:
             out[key] = (1.0, "1")
+            out[reason] = first[reason] if reason in first else second[reason]
             out.pop(bound, None)
         elif bound in first and bound in second:
             out[bound] = (max(first[bound][0], second[bound][0]), "1")
