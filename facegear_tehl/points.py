@@ -4,6 +4,7 @@ gear pair the contact path they lie on (gears/analysis.py)."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Mapping, Sequence
 
 from facegear_tehl.case import Case
@@ -24,8 +25,10 @@ class ContactAnalysis:
     warnings: tuple[str, ...] = ()
 
 
+@lru_cache(maxsize=4)  # `tehl run` asks twice for its case's (to select and warn, then to solve)
 def contact_analysis(case: Case) -> ContactAnalysis:
-    """A face gear pair: its meshing points and path; a plain case: one point, named 'contact'."""
+    """A face gear pair: its meshing points and path; a plain case: one point, named 'contact' (a case frozen and
+    hashable, its analysis kept for the next call with an equal case)."""
     body_1, body_2 = case.materials.body_1, case.materials.body_2
     if case.gear is not None:
         gear = analyse_gear_pair(case.gear, body_1, body_2)
