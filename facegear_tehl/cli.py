@@ -179,8 +179,9 @@ def run(
     if result.cycle:
         click.echo(CYCLE_TITLE + "\n" + cycle_table(result))
         click.echo(cycle_summary(result))
-    if verdict_text(result):
-        click.echo(verdict_text(result))
+    verdict = verdict_text(result)
+    if verdict:
+        click.echo(verdict)
     click.echo(f"result: {target} (status {result.status})")
     _exit_on_status(ctx, result)
 
@@ -618,8 +619,9 @@ def info_text(result: Result, si: bool = False) -> str:
         lines += ["", HEAT_TITLE, heat_budget_table(result)]
     if result.cycle:
         lines += ["", CYCLE_TITLE, cycle_table(result), cycle_summary(result)]
-    if verdict_text(result):
-        lines += ["", verdict_text(result)]
+    verdict = verdict_text(result)
+    if verdict:
+        lines += ["", verdict]
     lines += _point_sections(points)
     if result.contact_scalars:
         contact_rows = [_scalar_row(key, result.contact_units[key], [value], abs(value), si)

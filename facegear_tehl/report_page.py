@@ -120,10 +120,11 @@ def _engineering(key: str, value: Any) -> tuple[str, str]:
 
 def _verdict(result: Result) -> str:
     """The verdict as a table of (item, assessment), or why there is none."""
-    if not verdict_text(result):
+    text = verdict_text(result)
+    if not text:
         return "<p class=\"note\">The file has no /verdict group (a plain contact, or a file before the verdict).</p>"
     rows = []
-    for line in verdict_text(result).splitlines()[1:]:
+    for line in text.splitlines()[1:]:
         item, _, text = line.strip().partition("  ")
         rows.append((item, text.strip()))
     return _table(["item", "assessment"], rows, numeric_from=2)

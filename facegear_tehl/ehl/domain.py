@@ -146,4 +146,3 @@ def inlet_note(name: str, gap_ratio: float, chosen: bool) -> str:
     return (f"{name}: its inlet reaches {gap_ratio:.3g} central films (inlet_gap_ratio; target "
             f"{TUNING.inlet_gap_target:g}): the truncated inlet starves h_c by about {low:.2g}-{high:.2g} % "
             f"(docs/accuracy.md, domain size), {consequence}")
-
