@@ -256,12 +256,14 @@ def _on_one_domain(point: ContactPoint, case: Case, settings: list[SolverSetting
 
 
 def _quantities(grids: Sequence[int], solutions: Sequence[PointSolution], tolerance: float) -> tuple[Convergence, ...]:
-    """Every quantity of QUANTITIES that all grids give, non-zero (a relative change needs it). A grid whose
-    solve did not converge counts as NaN: no change, order or extrapolation is taken from it."""
+    """Every quantity of QUANTITIES that all grids whose solve converged give, non-zero (a relative change needs it).
+    A grid whose solve did not converge counts as NaN, whether or not it reports the quantity (a closed film reports
+    none): no change, order or extrapolation is taken from it."""
     table = []
+    converged = [s for s in solutions if s.converged]
     for name in QUANTITIES:
-        if all(name in s.scalars and s.scalar(name) != 0.0 for s in solutions):
-            units = solutions[0].scalars[name][1]
+        if converged and all(name in s.scalars and s.scalar(name) != 0.0 for s in converged):
+            units = converged[0].scalars[name][1]
             values = [s.scalar(name) if s.converged else math.nan for s in solutions]
             table.append(convergence(name, units, grids, values, tolerance))
     return tuple(table)

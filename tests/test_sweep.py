@@ -332,6 +332,22 @@ def test_a_grid_that_did_not_converge_enters_no_order_or_extrapolation():
     assert h_c.converged_grid is None
 
 
+def test_a_grid_whose_film_closed_leaves_the_others_tables_whole():
+    """The coarsest grid's film closes (no h_c reported, as a Barus contact at M = 478 on 65^2): the converged grids'
+    tables are still printed and written, the closed grid's entries NaN."""
+    def solve(point, lub, settings):
+        solved = synthetic.solution(point, converged=settings.grid > 17)
+        value = 1.0 + 0.3 / (settings.grid - 1) ** 2
+        scalars = {k: v for k, v in solved.scalars.items() if solved.converged or k not in ("h_c", "h_min", "p_max")}
+        return replace(solved, scalars={**scalars, **({"h_c": (value, "m")} if solved.converged else {})})
+
+    sweep = run_sweep(synthetic.ball_on_disc(), (17, 33, 65, 129), jobs=1, solver=solve)
+    h_c = next(q for q in sweep.quantities if q.name == "h_c")
+    assert math.isnan(h_c.values[0]) and h_c.values[1:] == pytest.approx([1.0 + 0.3 / n**2 for n in (32, 64, 128)])
+    assert h_c.order[3] == pytest.approx(2.0, rel=1e-9)
+    assert {"h_min", "p_max"} <= {q.name for q in sweep.quantities}
+
+
 # ------------------------------------------------------------------------------- grid convergence (CI)
 
 def _assert_converges(table, names, first, last, iteration_error=0.0):
