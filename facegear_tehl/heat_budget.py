@@ -116,7 +116,8 @@ def _friction_values(point: ContactPoint, solution: PointSolution, lubricant: Lu
     values["flash_temperature"] = heat.blok_flash_temperature(
         mu, point.load, point.sliding_speed, b, a,
         point.body_1.thermal_effusivity_speed(u1), point.body_2.thermal_effusivity_speed(u2))
-    values["surface_rise_max"] = max(sc["dT_surface_1_max"][0], sc["dT_surface_2_max"][0])
+    if "dT_surface_1_max" in sc and "dT_surface_2_max" in sc:  # (a thermal model's: an isothermal film has none)
+        values["surface_rise_max"] = max(sc["dT_surface_1_max"][0], sc["dT_surface_2_max"][0])
     return values
 
 

@@ -216,7 +216,8 @@ def _lowest_film_place(solve: Reported, level: Level) -> tuple[tuple[float, str]
 
 def _film_state_outputs(solve: Reported, level: Level, state: FilmState
                         ) -> tuple[dict[str, tuple[float, str]], dict[str, Field]]:
-    """Friction, temperatures, energy budget (thermal models) and surface stresses of a film state."""
+    """Friction, temperatures (their rises: thermal models), energy budget (thermal models) and surface stresses of a
+    film state."""
     scaling, lubricant, summaries = solve.scaling, solve.lubricant, solve.summaries
     t_in = lubricant.inlet_temperature
     mu, mu_1, mu_2 = friction_coefficients(state, level.pressure, cell_area(level, scaling), solve.point.load)
@@ -230,22 +231,25 @@ def _film_state_outputs(solve: Reported, level: Level, state: FilmState
         "mu": (mu, "1"),
         "mu_1": (mu_1, "1"),
         "mu_2": (mu_2, "1"),
-        "dT_max": (dT_max, "K"),
-        "dT_min": (float(temperature.min() - t_in), "K"),
-        "x_dT_min": (float(level.x[i_min]) * scaling.b, "m"),
-        "y_dT_min": (float(level.y[j_min]) * scaling.a, "m"),
-        "dT_mid_max": (float(temperature[middle].max() - t_in), "K"),
-        "dT_surface_1_max": (float(temperature[0].max() - t_in), "K"),
-        "dT_surface_2_max": (float(temperature[-1].max() - t_in), "K"),
         "thermal_iterations": (float(solve.history.outer), "1"),
-        "error_estimate_dT_max": (estimate(summaries, level, dT_max, "dT_max", ORDER_DT_MAX), "1"),
         "error_estimate_mu": (estimate(summaries, level, mu, "mu", ORDER_MU), "1"),
-        "error_estimate_dT_min": (estimate(summaries, level, float(temperature.min() - t_in), "dT_min",
-                                           ORDER_DT_MAX), "1"),
         "thermal_floor": (solve.history.thermal_floor, "K"),
         "viscosity_floor": (solve.history.viscosity_floor, "1"),
         "thermal_layers": (float(temperature.shape[0]), "1"),
     }
+    if solve.mode is not ThermalMode.OFF:  # an isothermal Ree-Eyring film's layers all hold the inlet temperature
+        scalars.update({
+            "dT_max": (dT_max, "K"),
+            "dT_min": (float(temperature.min() - t_in), "K"),
+            "x_dT_min": (float(level.x[i_min]) * scaling.b, "m"),
+            "y_dT_min": (float(level.y[j_min]) * scaling.a, "m"),
+            "dT_mid_max": (float(temperature[middle].max() - t_in), "K"),
+            "dT_surface_1_max": (float(temperature[0].max() - t_in), "K"),
+            "dT_surface_2_max": (float(temperature[-1].max() - t_in), "K"),
+            "error_estimate_dT_max": (estimate(summaries, level, dT_max, "dT_max", ORDER_DT_MAX), "1"),
+            "error_estimate_dT_min": (estimate(summaries, level, float(temperature.min() - t_in), "dT_min",
+                                               ORDER_DT_MAX), "1"),
+        })
     fields = {
         "temperature_mean": Field(np.tensordot(simpson_weights(temperature.shape[0]), temperature, axes=1), "K",
                                   "film-averaged temperature (Simpson across the layers)"),
