@@ -128,15 +128,38 @@ def comparison_figure(results: Sequence[Result], labels: Sequence[str]) -> Figur
     is within the combined estimates of the first file's."""
     fig = figure(width=8.0, height=2.4 * len(PLOTTED) + 0.8)
     axes = fig.subplots(len(PLOTTED), 1, sharex=True)
+    along_path = any("path_coordinate" in p.scalars for result in results for p in result.points.values())
     for ax, quantity in zip(axes, PLOTTED):
-        for k, (result, label) in enumerate(zip(results, labels)):
-            _series(ax, results[0], result, quantity, label, f"C{k}", k == 0)
+        if along_path:
+            for k, (result, label) in enumerate(zip(results, labels)):
+                _series(ax, results[0], result, quantity, label, f"C{k}", k == 0)
+        else:
+            _by_file(ax, results, labels, quantity)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize="small")
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize="small")
     axes[-1].set_xlabel(f"path coordinate s ({MILLIMETRE.label}); error bars: the solver's grid-error estimates; "
-                        "white: within them of the first file")
+                        "white: within them of the first file" if along_path else
+                        "file; error bars: the solver's grid-error estimates")
     fig.suptitle("comparison: " + " vs ".join(labels), fontsize="medium")
     return fig
+
+
+def _by_file(ax: Axes, results: Sequence[Result], labels: Sequence[str], quantity: str) -> None:
+    """Plain contacts (no contact path): each shared point's `quantity` over the files, with its estimates as error
+    bars."""
+    for k, name in enumerate(common_points(results)):
+        points = [result.points[name] for result in results]
+        if not all(quantity in p.scalars for p in points):
+            continue
+        unit = scalar_unit(quantity, points[0].units[quantity])
+        values = [unit(p.scalars[quantity]) for p in points]
+        errors = [abs(unit(np.nan_to_num(absolute_estimate(p, quantity, dict(QUANTITIES)[quantity]))) - unit(0.0))
+                  for p in points]
+        ax.errorbar(range(len(points)), values, yerr=errors, fmt="o-", markersize=4, capsize=3, color=f"C{k}",
+                    label=name)
+        ax.set_ylabel(f"{quantity} ({unit.label})" if unit.label != "-" else quantity)
+    ax.set_xticks(range(len(results)), labels)
 
 
 def _series(ax: Axes, first: Result, result: Result, quantity: str, label: str, colour: str, first_file: bool

@@ -12,8 +12,10 @@ import h5py
 import pytest
 
 from facegear_tehl.cli import tehl
-from facegear_tehl.compare import Significance, differences
-from facegear_tehl.results import read_result
+from facegear_tehl.compare import Significance, comparison_figure, differences
+from facegear_tehl.results import read_result, write_result
+
+import synthetic
 
 FACE_GEAR = "cases/facegear_110.yaml"
 
@@ -90,3 +92,16 @@ def test_bad_use_exits_2_with_one_line(design, tmp_path, args, message):
     files = [str(design)] if not args else [str(design), str(design)]
     result = CliRunner().invoke(tehl, ["compare", *files, *args])
     assert result.exit_code == 2 and message in result.output and result.output.count("\n") == 1
+
+
+def test_plain_contacts_are_compared_file_by_file(tmp_path):
+    """A plain contact has no contact path: each quantity is drawn over the files (the path figure was left with
+    empty panels), the point's values where the files hold them."""
+    paths = [write_result(synthetic.run_result(), tmp_path / f"{name}.h5") for name in ("a", "b")]
+    results = [read_result(path, fields=False) for path in paths]
+    figure = comparison_figure(results, ["a", "b"])
+    figure.canvas.draw()
+    h_min = figure.axes[0]
+    assert [tick.get_text() for tick in figure.axes[-1].get_xticklabels()] == ["a", "b"]  # the axes share x
+    (line,) = [line for line in h_min.get_lines() if line.get_marker() == "o" and line.get_linestyle() == "-"]
+    assert list(line.get_ydata()) == pytest.approx([0.6 * synthetic.H_C * 1e6] * 2)  # µm
