@@ -15,6 +15,7 @@ import warnings
 
 from click.testing import CliRunner
 import h5py
+from matplotlib.axes import Axes
 import numpy as np
 from PIL import Image
 import pytest
@@ -518,3 +519,20 @@ not in the reported history, -1, is not marked)."""
     levels = [float(line.get_ydata()[0]) for line in panel.get_lines()
               if line.get_linestyle() in ("--", ":") and len(line.get_ydata())]
     assert case.solver.thermal_tolerance in levels and len(levels) <= 2
+
+
+def test_the_true_scale_title_gives_both_axes_to_three_digits(ball_file, tmp_path, monkeypatch):
+    """The ball on disc is a circle (R_x = R_y): its overview's true-scale strip names 2a = 2b (2a was rounded to one
+    decimal, 0.2 mm against 2b's 0.16)."""
+    titles = []
+    set_title = Axes.set_title
+
+    def recorded(ax, text, *args, **kwargs):
+        titles.append(text)
+        return set_title(ax, text, *args, **kwargs)
+
+    monkeypatch.setattr(Axes, "set_title", recorded)
+    _plot(ball_file, tmp_path)
+    point = read_result(ball_file, fields=False).points["contact"]
+    a, b = (f"{2e3 * point.scalars[key]:.3g}" for key in ("a", "b"))
+    assert a == b and f"true scale: 2a = {a} mm, 2b = {b} mm" in titles

@@ -133,5 +133,5 @@ def _true_scale(ax: Axes, point: PointResult, m: FieldMap, limits: tuple[float, 
     ax.set_ylim(-STRIP_REACH * b_mm, STRIP_REACH * b_mm)
     ax.set_aspect("equal")
     ax.set_yticks([])
-    ax.set_title(f"true scale: 2a = {2 * a_mm:.1f} mm, 2b = {2 * b_mm:.2f} mm", fontsize="small")
+    ax.set_title(f"true scale: 2a = {2 * a_mm:.3g} mm, 2b = {2 * b_mm:.3g} mm", fontsize="small")
     ax.set_xlabel(f"$y$ ({MILLIMETRE.label}), pressure")
