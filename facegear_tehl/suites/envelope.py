@@ -22,6 +22,7 @@ import numpy as np
 from scipy import optimize
 
 from facegear_tehl.contact import ContactPoint
+from facegear_tehl.ehl.energy_balance import energy_unbalanced
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.hertz import ellipticity, hertz_contact
 from facegear_tehl.lubricant import KELVIN, Lubricant
@@ -232,8 +233,8 @@ def check_solution(solution: PointSolution) -> str:
     problems = [f"non-finite {', '.join(found)}"] if found else []
     if solution.converged and not scalar_or_nan(solution, "h_min") > 0.0:
         problems.append("converged with h_min <= 0")
-    imbalance = scalar_or_nan(solution, "energy_balance_error")
-    if solution.converged and abs(imbalance) > ENERGY_BALANCE_LIMIT:
+    if energy_unbalanced(solution):
+        imbalance = scalar_or_nan(solution, "energy_balance_error")
         problems.append(f"energy balance {100 * imbalance:.2g} % (limit {100 * ENERGY_BALANCE_LIMIT:g} %)")
     return "; ".join(problems) or "ok"
 
