@@ -286,6 +286,18 @@ def test_convergence_draws_the_tolerances_of_the_case(gear_file, tmp_path, monke
     assert {case.solver.tolerance, case.solver.load_tolerance} <= levels
 
 
+def test_convergence_ticks_the_nodes_panel_at_the_node_counts_the_file_holds(gear_file, tmp_path, monkeypatch):
+    """The nodes each cycle ran on span less than a decade (65-513): a log axis had no tick label at all."""
+    figures = _capture(monkeypatch)
+    _plot(gear_file, tmp_path, what=["convergence"])
+    with h5py.File(gear_file, "r") as h5:
+        taken = {int(v) for name in h5["points"] for v in h5["points"][name]["cycle_nodes_history"][()]}
+    panel = next(ax for ax in figures["convergence"].axes if ax.get_ylabel() == "nodes along x")
+    figures["convergence"].canvas.draw()
+    assert panel.get_yscale() == "linear"
+    assert {int(label.get_text()) for label in panel.get_yticklabels()} == taken
+
+
 def test_convergence_draws_the_settled_floor_bound_the_file_holds(gear_file, tmp_path, monkeypatch):
     """Plots read files only: the pressure's settled-floor bound is the file's band times the case's tolerance (a
     band rewritten in the file moves the line); a file without the bands (format 1.2) gets the tolerances alone."""

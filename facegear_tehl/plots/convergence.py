@@ -58,23 +58,26 @@ def _convergence_figure(result: Result, points: Sequence[PointResult], histories
     return fig
 
 
+# histories of counts, drawn as they are on a linear axis: their y label
+_COUNTS = {"cycle_nodes_history": "nodes along x"}
 _NAMES = {"thermal_h_c_history": "$h_c$", "thermal_change_history": "temperature change",
           "viscosity_change_history": r"change of ln($\eta^*/\eta$)"}
 
 
 def _history_panel(ax: Axes, points: Sequence[PointResult], key: str, bands: Mapping[str, float]) -> None:
-    """One per-cycle history of every point: errors and changes as magnitudes on a log axis, films in µm; the
+    """One per-cycle history of every point: errors and changes as magnitudes on a log axis, films in µm, counts (a
+    cycle's nodes) as they are; the
     temperature change relative to each point's rise (one tolerance line for all points); the first iterate of each
     later stage of the solve record marked as a restart."""
     first = next(p.history[key] for p in points if key in p.history)
-    film = first.units == "m"
+    film, counts = first.units == "m", key in _COUNTS
     shown = display(first.units)
     name = _NAMES.get(key, key.removesuffix("_history").replace("_", " "))
     relative = key == "thermal_change_history"
     for p in points:
         if key in p.history:
             values = np.asarray(p.history[key].values, dtype=float)
-            if film:
+            if film or counts:
                 values = shown(values)
                 line = ax.plot(np.arange(len(values)), values, "o-", markersize=3, label=plain(p.name))[0]
             else:
@@ -83,7 +86,10 @@ def _history_panel(ax: Axes, points: Sequence[PointResult], key: str, bands: Map
                 line = ax.semilogy(np.arange(len(values)), values, "o-", markersize=3, label=plain(p.name))[0]
             _mark_restarts(ax, p, first.description, values, line.get_color())
     units = shown.label if film else first.units
-    if relative:
+    if counts:
+        _count_ticks(ax, points, key)
+        ax.set_ylabel(_COUNTS[key])
+    elif relative:
         ax.set_ylabel(r"|temperature change| / $\Delta T_{max}$")
     else:
         ax.set_ylabel(f"{name} ({units})" if film else f"|{name}|" + ("" if units in ("", "1") else f" ({units})"))
@@ -93,6 +99,13 @@ def _history_panel(ax: Axes, points: Sequence[PointResult], key: str, bands: Map
     ax.yaxis.set_minor_locator(NullLocator())  # decades suffice; minor ticks of 5 log panels cost a second
     ax.grid(alpha=0.3)
     legend(ax, fontsize="small", ncols=2)
+
+
+def _count_ticks(ax: Axes, points: Sequence[PointResult], key: str) -> None:
+    """A count history on a linear axis ticked at the counts it takes (a level's nodes: 65, 129, 257, ...)."""
+    taken = sorted({int(v) for p in points if key in p.history for v in p.history[key].values if np.isfinite(v)})
+    ax.set_yticks(taken)
+    ax.yaxis.set_major_formatter(FormatStrFormatter("%d"))
 
 
 def _rise(point: PointResult, bands: Mapping[str, float]) -> float:
