@@ -16,6 +16,7 @@ import warnings
 from click.testing import CliRunner
 import h5py
 from matplotlib.axes import Axes
+from matplotlib.backends.backend_agg import FigureCanvasAgg
 import numpy as np
 from PIL import Image
 import pytest
@@ -110,6 +111,19 @@ def _check_images(report: PlotReport, out: Path, stems: list[str]) -> None:
 
 def _skipped(report: PlotReport, what: str) -> list[str]:
     return [line for line in report.skipped if line.startswith(f"skipped {what}")]
+
+
+def test_the_overview_title_of_a_single_contact_stays_within_its_sheet(ball_file, tmp_path, monkeypatch):
+    """One point makes the narrowest sheet; its title (the case, the subject, the note on the grid's stepped outlines)
+    is wrapped to the sheet's width, not cut at both edges."""
+    figures = _capture(monkeypatch)
+    _plot(ball_file, tmp_path, what=["overview"])
+    fig = figures["overview"]
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    box, sheet = fig._suptitle.get_window_extent(canvas.get_renderer()), fig.bbox
+    assert "stepped outlines" in fig._suptitle.get_text()
+    assert sheet.x0 <= box.x0 and box.x1 <= sheet.x1
 
 
 def test_plain_contact_draws_centre_line_overview_and_convergence_and_skips_the_rest(ball_file, tmp_path):

@@ -6,9 +6,11 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 import math
+import textwrap
 
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+from matplotlib.font_manager import FontProperties
 from matplotlib.image import AxesImage
 import numpy as np
 
@@ -69,8 +71,17 @@ def overview_figure(result: Result, rows: Sequence[tuple[PointResult, dict[str, 
     for ax in axes[-1, : len(columns)]:
         ax.set_xlabel("$x/b$ (inlet −, outlet +)")
     subject = "pressure, film and temperature rise" if "temperature_mid" in columns else "pressure and film"
-    fig.suptitle(title(result, f"{subject} at every point") + "\n" + _grid_note(rows[0][0], rows[0][1][columns[0]]))
+    heading = title(result, f"{subject} at every point") + "\n" + _grid_note(rows[0][0], rows[0][1][columns[0]])
+    fig.suptitle(_fitted(heading, fig))
     return fig
+
+
+def _fitted(text: str, fig: Figure) -> str:
+    """`text` broken into lines as wide as the sheet at the title's size (a one-point sheet is narrower than the grid
+    note; a character of the default sans serif is about 0.55 em wide)."""
+    size = FontProperties(size="large").get_size_in_points()
+    width = max(int(fig.get_figwidth() * 72.0 / (0.55 * size)), 20)
+    return "\n".join(textwrap.fill(line, width) for line in text.split("\n"))
 
 
 def _grid_note(point: PointResult, m: FieldMap) -> str:
