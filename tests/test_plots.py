@@ -312,6 +312,18 @@ def test_convergence_ticks_the_nodes_panel_at_the_node_counts_the_file_holds(gea
     assert {int(label.get_text()) for label in panel.get_yticklabels()} == taken
 
 
+def test_convergence_labels_the_films_per_cycle_by_their_values_and_names(gear_file, tmp_path, monkeypatch):
+    """A film that settles in its fifth digit was labelled by matplotlib's offset ("1e-5+2.262e-1") under the key's
+    words ("cycle h c"): the ticks now read the film in µm and the label names it."""
+    figures = _capture(monkeypatch)
+    _plot(gear_file, tmp_path, what=["convergence"])
+    fig = figures["convergence"]
+    FigureCanvasAgg(fig).draw()
+    panels = {ax.get_ylabel(): ax for ax in fig.axes}
+    for label in ("$h_c$ (µm)", "$h_{min}$ (µm)"):
+        assert label in panels and panels[label].yaxis.get_offset_text().get_text() == ""
+
+
 def test_convergence_draws_the_settled_floor_bound_the_file_holds(gear_file, tmp_path, monkeypatch):
     """Plots read files only: the pressure's settled-floor bound is the file's band times the case's tolerance (a
     band rewritten in the file moves the line); a file without the bands (format 1.2) gets the tolerances alone."""

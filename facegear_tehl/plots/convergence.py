@@ -60,7 +60,8 @@ def _convergence_figure(result: Result, points: Sequence[PointResult], histories
 
 # histories of counts, drawn as they are on a linear axis: their y label
 _COUNTS = {"cycle_nodes_history": "nodes along x"}
-_NAMES = {"thermal_h_c_history": "$h_c$", "thermal_change_history": "temperature change",
+_NAMES = {"thermal_h_c_history": "$h_c$", "cycle_h_c_history": "$h_c$", "cycle_h_min_history": "$h_{min}$",
+          "thermal_change_history": "temperature change",
           "viscosity_change_history": r"change of ln($\eta^*/\eta$)"}
 
 
@@ -86,6 +87,8 @@ def _history_panel(ax: Axes, points: Sequence[PointResult], key: str, bands: Map
                 line = ax.semilogy(np.arange(len(values)), values, "o-", markersize=3, label=plain(p.name))[0]
             _mark_restarts(ax, p, first.description, values, line.get_color())
     units = shown.label if film else first.units
+    if film:
+        ax.ticklabel_format(axis="y", useOffset=False)  # a film that settles in its 5th digit: values, not an offset
     if counts:
         _count_ticks(ax, points, key)
         ax.set_ylabel(_COUNTS[key])
