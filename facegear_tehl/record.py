@@ -46,6 +46,7 @@ class Action(Enum):
 
     NEXT_RELAXATION = "solved again with the next relaxation"
     FINER_COARSEST_GRID = "the start begun again from a finer coarsest grid"
+    COARSEST_TO_ITS_LOAD = "the start's coarsest grid cycled until it carries its load, the start climbed again"
     COARSEST_GRID_AGAIN = "the coarse stage begun again from the coarsest grid"
     COUPLED_ON_FINEST = "coupled on the finest grid alone from its isothermal solution"
     FINEST_AGAIN = "the finest grid solved again from the converged coarse stage with the next relaxation"
