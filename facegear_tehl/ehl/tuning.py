@@ -118,6 +118,7 @@ class Tuning:
     coarse_estimate: float = 0.1  # a converged solve estimating its h_c or h_min error above this is refined
     side_lobe: float = 0.5  # |y| / a beyond which the lowest film lies in a side lobe: rows alone are doubled
     damped_attempt: int = 3  # the first attempt (1-based) with the damped relaxation
+    damped_film_step: float = 2.0  # ... whose ln(eta*/eta) moves by at most this per update (a continuation in eta*)
     venner_first_nodes: int = 64  # a finest grid with fewer X nodes across 2b tries Venner's switch before the scaled
     # --- the accuracy target (accuracy_target.py, solver.accuracy)
     accuracy_start_grid: int = 129  # x nodes it starts on: the coarsest on which the inlet is lengthened as on finer
