@@ -57,6 +57,7 @@ class Action(Enum):
     FIRST_KEPT = "no retry did better: the first attempt reported"
     COLD_START = "solved again from the cold start"
     BUDGET_SPENT = "not refined: the next grid would pass the point's time budget, the best solution so far kept"
+    NOT_RESOLVABLE = "not refined: no grid within the caps resolves the film the formula predicts"
 
 
 @dataclass(frozen=True)

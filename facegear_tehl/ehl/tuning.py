@@ -117,6 +117,8 @@ class Tuning:
     unresolved_h_min: float = 0.1  # an unconverged solve estimating its h_min error above this is refined
     coarse_estimate: float = 0.1  # a converged solve estimating its h_c or h_min error above this is refined
     side_lobe: float = 0.5  # |y| / a beyond which the lowest film lies in a side lobe: rows alone are doubled
+    closure_nodes: int = 3  # a closed film is not refined where its predicted constriction spans fewer nodes on
+    # the finest grid reachable (closure.py): the feature_nodes a resolved feature needs
     damped_attempt: int = 3  # the first attempt (1-based) with the damped relaxation
     venner_first_nodes: int = 64  # a finest grid with fewer X nodes across 2b tries Venner's switch before the scaled
     # --- the accuracy target (accuracy_target.py, solver.accuracy)
