@@ -133,3 +133,56 @@ def test_the_slow_face_gear_reports_its_closed_film_at_once(tmp_path):
     assert point.scalars["grid"] == 129  # the start's level the load continuation closed on, below 257 x 65
     assert [r.action for r in point.record.retries][-1] is Action.NOT_RESOLVABLE
     assert "no grid within the caps opens it" in point.message
+    assert "film closed          S3: the film closes on the grids solved, no film solved; Hamrock & Dowson (1977) " \
+           "formula, not solved" in result.stdout
+
+
+# ------------------------------------------------------------------------------- the verdict of a closed film
+
+def _formula_film(task: SolveTask) -> float:
+    from facegear_tehl.ehl.scaling import scaling_for
+
+    s = scaling_for(task.point, task.lubricant)
+    return hamrock_dowson_minimum(s.hamrock_u, s.hamrock_g, s.hamrock_w, s.ellipticity) * task.point.radius_x
+
+
+def _closed_run(case_file: Path, outcome: Outcome = Outcome.FILM_CLOSED):
+    """A run of the case's S3 alone whose film closed (as the EHL solver reports one: no film scalars, no fields)."""
+    from facegear_tehl.results import RunResult
+
+    case = load_case(case_file)
+    point = next(p for p in contact_analysis(case).points if p.name == "S3")
+    solution = synthetic.solution(point)
+    scalars = {k: v for k, v in solution.scalars.items() if k not in ("h_min", "h_c")}
+    return RunResult(case=case, points=(replace(solution, outcome=outcome, scalars=scalars, fields={},
+                                                message="the film closes on the grid"),))
+
+
+def test_the_verdict_gives_the_formula_film_of_a_closed_point_labelled_as_such(tmp_path):
+    """The verdict of a point whose film closed: Hamrock & Dowson's h_min and its lambda over the composite roughness
+    (both worked out here from the formula and the case's R_q), the regime by lambda < 1, and a line that says it is
+    the formula's and not solved; the point itself gets no film."""
+    from facegear_tehl.results import read_result, write_result
+    from facegear_tehl.verdict import assess, verdict_text
+
+    case_file = _slow_case(tmp_path, 20.0)
+    run = assess(_closed_run(case_file))
+    film = _formula_film(_point_and_task(case_file))
+    sigma = math.hypot(3.0e-7, 3.0e-7)  # the case's R_q of both flanks
+    assert run.verdict["h_min_formula_closed"][0] == pytest.approx(film, rel=1e-12)
+    assert run.verdict["lambda_formula_closed"][0] == pytest.approx(film / sigma, rel=1e-12) and film / sigma < 1.0
+    assert run.verdict_labels["film_closed_formula_regime"] == "boundary"
+    assert "lambda_min" not in run.verdict and "h_min" not in run.points[0].scalars
+    text = verdict_text(read_result(write_result(run, tmp_path / "closed.h5"), fields=False))
+    line = next(line for line in text.splitlines() if line.startswith("  film closed"))
+    assert f"Hamrock & Dowson (1977) formula, not solved: h_min {1e9 * film:.3g} nm at S3" in line
+    assert f"lambda {film / sigma:.2g}: boundary" in line and "the smooth-film model does not apply" in line
+
+
+def test_a_point_that_did_not_converge_otherwise_gets_no_formula_film(tmp_path):
+    """Only a closed film is estimated by the formula: a stalled point is left out as before."""
+    from facegear_tehl.verdict import assess
+
+    run = assess(_closed_run(_slow_case(tmp_path, 20.0), Outcome.NOT_CONVERGED))
+    assert "h_min_formula_closed" not in run.verdict and "film_closed_points" not in run.verdict_labels
+    assert run.verdict_labels["left_out"] == "S3"
