@@ -46,6 +46,7 @@ class Action(Enum):
 
     NEXT_RELAXATION = "solved again with the next relaxation"
     FINER_COARSEST_GRID = "the start begun again from a finer coarsest grid"
+    COARSEST_TO_ITS_LOAD = "the start's coarsest grid cycled until it carries its load, the start climbed again"
     COARSEST_GRID_AGAIN = "the coarse stage begun again from the coarsest grid"
     COUPLED_ON_FINEST = "coupled on the finest grid alone from its isothermal solution"
     FINEST_AGAIN = "the finest grid solved again from the converged coarse stage with the next relaxation"
@@ -57,6 +58,7 @@ class Action(Enum):
     FIRST_KEPT = "no retry did better: the first attempt reported"
     COLD_START = "solved again from the cold start"
     BUDGET_SPENT = "not refined: the next grid would pass the point's time budget, the best solution so far kept"
+    NOT_RESOLVABLE = "not refined: no grid within the caps resolves the film the formula predicts"
 
 
 @dataclass(frozen=True)

@@ -11,7 +11,8 @@ from facegear_tehl.accuracy_target import solve_to_accuracy, three_grid_checked
 from facegear_tehl.case import Case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.cycle import MeshCycle, mesh_cycle, with_film_parameter
-from facegear_tehl.ehl.domain import inlet_note, solution_domain
+from facegear_tehl.ehl.closure import unresolvable
+from facegear_tehl.ehl.domain import inlet_note, side_note, solution_domain
 from facegear_tehl.ehl.energy_balance import energy_note
 from facegear_tehl.ehl.retry import POLICY, estimates
 from facegear_tehl.ehl.scaling import scaling_for
@@ -133,10 +134,12 @@ def run_case(
 def _model_notes(tasks: Sequence[SolveTask], solved: Sequence[PointSolution]) -> tuple[str, ...]:
     """Warnings on the converged solves whose film is not the one their error bounds stand for: an energy balance
     that misses (energy_balance.energy_note), an inlet short of its target (domain.inlet_note: where the solver chose
-    the domain, or starved beyond the bounds where the case gave it)."""
+    the domain, or starved beyond the bounds where the case gave it), sides short of theirs (domain.side_note)."""
     notes = [energy_note(s) for s in solved]
     notes += [inlet_note(s.name, s.scalar("inlet_gap_ratio"), chosen=task.settings.domain_x is None)
               for task, s in zip(tasks, solved) if s.converged and "inlet_gap_ratio" in s.scalars]
+    notes += [side_note(s.name, s.scalar("side_pressure_ratio")) for s in solved
+              if s.converged and "side_pressure_ratio" in s.scalars]
     return tuple(note for note in notes if note)
 
 
@@ -150,6 +153,7 @@ class Refinement:
     tried: str = ""  # a finer grid whose solve did not converge, the coarser converged solution kept ("" if none)
     outcome: str = ""  # how the solve on `tried` ended
     stopped: str = ""  # the finer grid not started: it would have passed the point's time budget ("" if none)
+    unresolvable: str = ""  # why no grid within the caps opens its closed film (closure.Unresolvable; "" if not so)
 
 
 def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver | PathSolver, *, jobs: int | None = None,
@@ -157,31 +161,34 @@ def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver | P
                    ) -> tuple[list[PointSolution], tuple[int, ...], dict[str, Refinement]]:
     """`parallel.solve_all`, then every point whose grid could not resolve its film (RetryPolicy.unresolved, or
     converged with an error estimate above coarse_estimate, RetryPolicy.coarse, unless asked on a trial grid) solved
-    again on grids twice as fine until it can or the grid would pass the largest refined grid (a finer grid also lets
-    the retry's start begin on a finer coarsest grid). A finer solve that does not converge after a converged one
-    ends the refinement of that point with the converged one; one that converges after a converged one has its bounds
-    checked against it where it is the third grid (accuracy_target.three_grid_checked). Returns the solutions in task
-    order (a refined point's wall time counts its coarser attempts), the indices of those that raised, and per refined
-    point what the solver did."""
+    again on grids twice as fine until it can, the grid would pass the largest refined grid or the time budget, or
+    its film closed where no grid within the caps resolves the film predicted (`_closed_for_good`). A finer solve
+    that does not converge after a converged one ends the refinement of that point with the converged one; one that
+    converges after a converged one has its bounds checked against it where it is the third grid
+    (accuracy_target.three_grid_checked). Returns the solutions in task order (a refined point's wall time counts
+    its coarser attempts), the indices of those that raised, and per refined point what the solver did."""
     tasks = list(tasks)
     solved, failed = solve_all(tasks, solver, jobs=jobs, progress=progress)
     refined: dict[str, Refinement] = {}
     asked = {task.point.name: _shape(task.settings) for task in tasks}
     # points whose converged solution stays as it is: asked on a trial grid, or a finer grid failed after it
     kept = {i for i, task in enumerate(tasks) if task.settings.grid < TUNING.min_lengthened_nodes}
+    closed_for_good: set[int] = set()  # points whose closed film no grid within the caps opens (`_closed_for_good`)
     while True:
         next_grids = {i: _next_grid(tasks[i], s) for i, s in enumerate(solved)
-                      if POLICY.unresolved(s) or (POLICY.coarse(s) and i not in kept)}
+                      if (POLICY.unresolved(s) or (POLICY.coarse(s) and i not in kept)) and i not in closed_for_good}
+        for i, name in [(i, tasks[i].point.name) for i in next_grids]:  # a closed film no grid opens stays closed
+            stop = _closed_for_good(tasks[i], solved[i], refined.get(name, Refinement(asked[name], asked[name], "")))
+            if stop is not None:
+                (solved[i], refined[name]), _ = stop, next_grids.pop(i)
+                closed_for_good.add(i)
         for i in [i for i, settings in next_grids.items() if settings is not None and _over_budget(tasks[i], settings,
                                                                                                    solved[i])]:
             name = tasks[i].point.name
             first = refined.get(name, Refinement(asked[name], asked[name], _coarse_reason(solved[i])))
             refined[name] = replace(first, stopped=_shape(next_grids.pop(i)))
             kept.add(i)
-            solved[i] = _noted(solved[i], RetryRecord(Reason.UNRESOLVED if POLICY.unresolved(solved[i]) else
-                                                      Reason.COARSE_ESTIMATE, Action.BUDGET_SPENT, 0,
-                                                      f"{refined[name].stopped}: time budget "
-                                                      f"{tasks[i].settings.time_budget:g} s"))
+            solved[i] = _budget_spent(tasks[i], solved[i], refined[name])
         closed = [i for i, settings in next_grids.items() if settings is not None]
         if not closed:
             return solved, failed, refined
@@ -209,6 +216,27 @@ def solve_refining(tasks: Sequence[SolveTask], solver: Solver | StagedSolver | P
                 r for r in previous.record.retries if r.action is Action.FINER_GRID)  # this point's refinement so far
             solved[i] = _noted(solution, RetryRecord(reason, Action.FINER_GRID, 0, detail), earlier,
                                scalars={**solution.scalars, **spent.scalars()})
+
+
+def _budget_spent(task: SolveTask, solution: PointSolution, refinement: Refinement) -> PointSolution:
+    """The solution of a point whose next grid (`refinement.stopped`) would pass its time budget, noted so."""
+    reason = Reason.UNRESOLVED if POLICY.unresolved(solution) else Reason.COARSE_ESTIMATE
+    return _noted(solution, RetryRecord(reason, Action.BUDGET_SPENT, 0, f"{refinement.stopped}: time budget "
+                                                                      f"{task.settings.time_budget:g} s"))
+
+
+def _closed_for_good(task: SolveTask, solution: PointSolution,
+                     refinement: Refinement) -> tuple[PointSolution, Refinement] | None:
+    """A point whose film closed where no grid within the caps resolves the film Hamrock & Dowson predict
+    (closure.unresolvable): the solution with why in its message and record, and the refinement with it; else None."""
+    if solution.outcome is not Outcome.FILM_CLOSED:
+        return None
+    found = unresolvable(task.point, task.lubricant, task.settings, POLICY.largest_grid(solution))
+    if found is None:
+        return None
+    retry = RetryRecord(Reason.FILM_CLOSED, Action.NOT_RESOLVABLE, 0, found.words())
+    return (_noted(solution, retry, message=f"{solution.message}; {found.words()}"),
+            replace(refinement, unresolvable=found.words()))
 
 
 def _kept_coarser(previous: PointSolution, refinement: Refinement, spent: Spent) -> PointSolution:
@@ -242,7 +270,10 @@ def _over_budget(task: SolveTask, finer: SolverSettings, solution: PointSolution
 
 def refinement_note(name: str, refinement: Refinement, solution: PointSolution) -> str:
     """What the solver did about a grid that did not resolve the film of point `name`, and how it ended."""
-    if refinement.stopped:
+    if refinement.unresolvable:
+        done = f"not refined: {refinement.unresolvable}; the result is the {refinement.grid} solution, " \
+               f"{solution.outcome.value}"
+    elif refinement.stopped:
         done = (f"{refinement.stopped} not started: it would have passed the point's time budget "
                 f"(solver.time_budget); the result is the {refinement.grid} solution, {solution.outcome.value}")
     elif refinement.tried:

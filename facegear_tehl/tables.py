@@ -74,8 +74,8 @@ ABSOLUTE_TEMPERATURE_KEYS = ("contact_temperature_1", "contact_temperature_2", "
 # `tehl info`: the per-point scalars by theme, in this order; a scalar of none of them is listed under "other".
 SCALAR_GROUPS = (
     ("film", ("h_c", "h_min", "film_parameter", "film_parameter_central", "x_h_min", "y_h_min", "inlet_gap_ratio",
-              "error_estimate_h_c", "error_estimate_h_min", "error_estimate_y_h_c", "error_estimate_y_h_min",
-              "error_bound_h_c", "error_bound_h_min", "unresolved_h_c", "unresolved_h_min")),
+              "side_pressure_ratio", "error_estimate_h_c", "error_estimate_h_min", "error_estimate_y_h_c",
+              "error_estimate_y_h_min", "error_bound_h_c", "error_bound_h_min", "unresolved_h_c", "unresolved_h_min")),
     ("pressure", ("p_max", "p_hertz", "load", "a", "b", "ellipticity", "radius_x", "radius_y", "moes_m",
                   "moes_l", "path_coordinate", "error_estimate_p_max", "error_estimate_y_p_max", "error_bound_p_max",
                   "unresolved_p_max")),

@@ -8,8 +8,10 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import replace
+import math
 
 from facegear_tehl.cycle import composite_roughness
+from facegear_tehl.ehl.closure import predicted_minimum_film
 from facegear_tehl.film_regime import (
     FULL_FILM_LAMBDA,
     Regime,
@@ -19,10 +21,11 @@ from facegear_tehl.film_regime import (
     with_central_film_parameter,
 )
 from facegear_tehl.lubricant import Lubricant
+from facegear_tehl.points import contact_analysis
 from facegear_tehl.ratings import rate
 from facegear_tehl.results import Result, RunResult
 from facegear_tehl.scuffing import flash_safety
-from facegear_tehl.solution import PointSolution
+from facegear_tehl.solution import Outcome, PointSolution
 from facegear_tehl.units import CELSIUS, MILLIMETRE, PERCENT
 
 # The recommended mesh power loss: the solved film's sliding traction times the sliding speed (cycle.py's
@@ -49,6 +52,9 @@ def assess(run: RunResult) -> RunResult:
                       warnings=run.warnings + ((warning,) if warning else ()))
     converged = [p for p in run.points if p.converged]  # another point's figures are its last iterate's
     scalars, labels = _film_verdict(converged)
+    closed_scalars, closed_labels = _closed_film_verdict(run, sigma)
+    scalars.update(closed_scalars)
+    labels.update(closed_labels)
     scalars.update(_temperature_verdict(run, converged))
     scalars.update(_scuffing_verdict(run.case.lubricant, scalars))
     scalars.update(_efficiency_verdict(run.cycle_scalars))
@@ -75,6 +81,28 @@ def _film_verdict(points: Sequence[PointSolution]) -> tuple[dict[str, tuple[floa
     if "path_coordinate" in lowest.scalars:
         scalars["lambda_min_s"] = (lowest.scalar("path_coordinate"), "m")
     return scalars, {"lambda_min_point": lowest.name, "regime": regime(lowest.scalar("film_parameter")).value}
+
+
+def _closed_film_verdict(run: RunResult, sigma: float) -> tuple[dict[str, tuple[float, str]], dict[str, str]]:
+    """For the points whose film closed (no film solved): Hamrock & Dowson's (1977) minimum film of the thinnest, as
+    the formula's estimate (`h_min_formula_closed`, and over sigma `lambda_formula_closed` with its regime), never a
+    solved figure; labels naming the points and the one estimated."""
+    closed = [p.name for p in run.points if p.outcome is Outcome.FILM_CLOSED]
+    if not closed:
+        return {}, {}
+    points = {p.name: p for p in contact_analysis(run.case).points}
+    films = {name: predicted_minimum_film(points[name], run.case.lubricant) for name in closed if name in points}
+    films = {name: film for name, film in films.items() if math.isfinite(film) and film > 0.0}
+    labels = {"film_closed_points": ", ".join(closed)}
+    if not films:
+        return {}, labels
+    thinnest = min(films, key=films.__getitem__)
+    scalars = {"h_min_formula_closed": (films[thinnest], "m")}
+    labels["film_closed_formula_point"] = thinnest
+    if sigma > 0.0:
+        scalars["lambda_formula_closed"] = (films[thinnest] / sigma, "1")
+        labels["film_closed_formula_regime"] = regime(films[thinnest] / sigma).value
+    return scalars, labels
 
 
 def _temperature_verdict(run: RunResult, points: Sequence[PointSolution]) -> dict[str, tuple[float, str]]:
@@ -123,8 +151,8 @@ def _efficiency_verdict(cycle: Mapping[str, tuple[float, str]]) -> dict[str, tup
 
 def verdict_text(result: Result) -> str:
     """The verdict of a result file, a few lines; '' when it has none."""
-    lines = [*_film_lines(result), *_temperature_lines(result), *_scuffing_lines(result),
-             *_standard_lines(result), *_efficiency_lines(result)]
+    lines = [*_film_lines(result), *_closed_film_lines(result), *_temperature_lines(result),
+             *_scuffing_lines(result), *_standard_lines(result), *_efficiency_lines(result)]
     labels = result.verdict_labels
     if "left_out" in labels:
         lines.append(f"  left out             {labels['left_out']} (not converged: no result to assess)")
@@ -173,6 +201,23 @@ def _film_lines(result: Result) -> list[str]:
     central = f", lambda_c {v['lambda_central_at_min']:.2f} there" if "lambda_central_at_min" in v else ""
     return [f"  film                 lambda_min {v['lambda_min']:.2f} at {where}{central}: {labels['regime']} "
             f"(full film from lambda {FULL_FILM_LAMBDA:g})"]
+
+
+def _closed_film_lines(result: Result) -> list[str]:
+    """The line of the points whose film closed: no solved film; Hamrock & Dowson's, labelled as the formula's."""
+    v, labels = result.verdict, result.verdict_labels
+    if "film_closed_points" not in labels:
+        return []
+    line = f"  film closed          {labels['film_closed_points']}: the film closes on the grids solved, no film solved"
+    if "h_min_formula_closed" not in v:
+        return [line]
+    line += (f"; Hamrock & Dowson (1977) formula, not solved: h_min {1e9 * v['h_min_formula_closed']:.3g} nm at "
+             f"{labels['film_closed_formula_point']}")
+    if "lambda_formula_closed" in v:
+        line += f", lambda {v['lambda_formula_closed']:.2g}: {labels['film_closed_formula_regime']}"
+        if labels["film_closed_formula_regime"] == Regime.BOUNDARY.value:
+            line += " (asperities carry the load: the smooth-film model does not apply)"
+    return [line]
 
 
 def _temperature_lines(result: Result) -> list[str]:

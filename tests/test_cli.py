@@ -233,8 +233,8 @@ def test_the_command_line_loads_no_solver_kernels():
     probe = ("import sys, facegear_tehl.cli; print(sorted(m for m in sys.modules if m in ('numba', 'h5py', "
              "'matplotlib', 'scipy', 'dask', 'distributed') or m.startswith('facegear_tehl.ehl.')))")
     loaded = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True).stdout
-    expected = ["domain", "energy_balance", "relaxation", "retry", "richardson", "scaling", "stopwatch", "tuning",
-                "unresolved"]  # no kernels
+    expected = ["closure", "domain", "energy_balance", "relaxation", "retry", "richardson", "scaling", "stopwatch",
+                "tuning", "unresolved"]  # no kernels
     assert loaded.strip() == str([f"facegear_tehl.ehl.{name}" for name in expected])
 
 

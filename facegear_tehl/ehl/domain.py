@@ -20,6 +20,8 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 import math
 
+import numpy as np
+
 from facegear_tehl.ehl.scaling import Scaling
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.film_formulas import hamrock_dowson_central
@@ -85,6 +87,20 @@ def rigid_gap_ratio(x: tuple[float, float], y: tuple[float, float], scaling: Sca
     return ((exit_x * scaling.b) ** 2 / (2.0 * radius_x) + (exit_y * scaling.a) ** 2 / (2.0 * radius_y)) / h_c
 
 
+def side_pressure_ratio(pressure: np.ndarray, x: np.ndarray, y: np.ndarray, scaling: Scaling) -> float:
+    """The largest pressure within SIDE_BAND of the domain's width from its sides (the boundaries along the
+    entrainment, across the axis the inlet leaves by), over the largest pressure (pressure on the (ny, nx) nodes x, y
+    in Hertzian units). An elastic film's pressure is confined to the Hertzian ellipse and its inlet; a light load's
+    film spreads along the contact line up to the sides, whose zero pressure then cuts it short as a short inlet
+    cuts its inflow."""
+    axis, _, _ = inlet_exit((float(x[0]), float(x[-1])), (float(y[0]), float(y[-1])), scaling)
+    across = y if axis == "x" else x
+    band = SIDE_BAND * (across[-1] - across[0])
+    near = (across <= across[0] + band) | (across >= across[-1] - band)
+    side = pressure[near, :] if axis == "x" else pressure[:, near]
+    return float(side.max() / max(float(pressure.max()), 1e-300))
+
+
 def predicted_central_film(scaling: Scaling) -> float:
     """Hamrock & Dowson's (1977) isothermal central film of the point, m."""
     s = scaling
@@ -146,3 +162,31 @@ def inlet_note(name: str, gap_ratio: float, chosen: bool) -> str:
     return (f"{name}: its inlet reaches {gap_ratio:.3g} central films (inlet_gap_ratio; target "
             f"{TUNING.inlet_gap_target:g}): the truncated inlet starves h_c by about {low:.2g}-{high:.2g} % "
             f"(docs/accuracy.md, domain size), {consequence}")
+
+
+# the band of the domain's width next to each side read by `side_pressure_ratio`: the outer sixth of each half
+SIDE_BAND = 1.0 / 12.0
+# the sides' h_c error is at most SIDE_FILM_ERROR times side_pressure_ratio (docs/accuracy.md, domain size: the sides)
+SIDE_FILM_ERROR = 3.0
+
+
+def starved_sides(pressure_ratio: float) -> bool:
+    """Whether a film whose pressure at its sides is `pressure_ratio` of its peak (`side_pressure_ratio`) is starved
+    beyond what its figures' bounds stand for: the sides' h_c error, at most SIDE_FILM_ERROR times the ratio, reaches
+    TUNING.asymptotic_estimate."""
+    return SIDE_FILM_ERROR * pressure_ratio > TUNING.asymptotic_estimate
+
+
+def side_note(name: str, pressure_ratio: float) -> str:
+    """A warning for point `name` whose sides' h_c error (at most SIDE_FILM_ERROR times `pressure_ratio`) may exceed
+    TUNING.side_film_warning ("" otherwise), and whether its figures are then unresolved. The solver does not widen
+    the domain: a film whose footprint reaches that far along a tooth depends on the flank's face width and its ends,
+    which the local contact of two paraboloids does not hold."""
+    error = SIDE_FILM_ERROR * pressure_ratio
+    if not error > TUNING.side_film_warning:
+        return ""
+    consequence = ("so no figure is bounded" if starved_sides(pressure_ratio) else
+                   "which its error bounds (grid and iteration) do not include")
+    return (f"{name}: its pressure at the domain's sides is {100.0 * pressure_ratio:.2g} % of its peak "
+            f"(side_pressure_ratio): a light load's film spreads along the contact line beyond them, which starves "
+            f"h_c by up to {100.0 * error:.2g} % (docs/accuracy.md, domain size), {consequence}")

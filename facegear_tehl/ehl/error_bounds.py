@@ -35,7 +35,8 @@ film's compression, not its shear, sets its temperatures through the outlet spik
 figure of a thermal solve whose energy balance misses TUNING.max_energy_imbalance (`energy_unbalanced`: its film state
 is not a solution of the discrete energy equation, so neither its temperatures nor the viscosities they set are known
 to the loop's tolerance); and every figure of a film whose inlet reaches fewer than TUNING.min_inlet_gap_ratio central
-films (`domain.starved_inlet`: the truncated inlet starves h_c by more than asymptotic_estimate).
+films (`domain.starved_inlet`: the truncated inlet starves h_c by more than asymptotic_estimate), or whose domain's
+sides hold a pressure whose h_c error may reach asymptotic_estimate (`domain.starved_sides`).
 docs/accuracy.md (error bounds) holds the calibration that chose these rules.
 """
 
@@ -51,7 +52,7 @@ import numpy as np
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.asymptotic_range import CoarserPair, observed_order, three_grid_estimate
 from facegear_tehl.ehl.convergence import drifting
-from facegear_tehl.ehl.domain import starved_inlet
+from facegear_tehl.ehl.domain import starved_inlet, starved_sides
 from facegear_tehl.ehl.energy_balance import energy_unbalanced
 from facegear_tehl.ehl.grid import hierarchy_shapes
 from facegear_tehl.ehl.report import ORDER_DT_MAX, ORDER_MU, LevelSummary
@@ -406,6 +407,8 @@ def unresolved_figure(solution: PointSolution, name: str, e_x: float, along_y: f
         return Why.NEVER
     if starved_inlet(solution.scalars.get("inlet_gap_ratio", (math.inf, "1"))[0]):
         return Why.STARVED_INLET
+    if starved_sides(solution.scalars.get("side_pressure_ratio", (0.0, "1"))[0]):
+        return Why.STARVED_SIDES
     if energy_unbalanced(solution):
         return Why.ENERGY_BALANCE
     if not (math.isfinite(e_x) and math.isfinite(along_y)):

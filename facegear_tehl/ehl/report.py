@@ -13,7 +13,7 @@ from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl import grid
 from facegear_tehl.ehl.composite import Composite
 from facegear_tehl.ehl.convergence import History
-from facegear_tehl.ehl.domain import rigid_gap_ratio
+from facegear_tehl.ehl.domain import rigid_gap_ratio, side_pressure_ratio
 from facegear_tehl.ehl.energy import dissipated_power, energy_budget
 from facegear_tehl.ehl.friction import friction_coefficients
 from facegear_tehl.ehl.layers import simpson_weights
@@ -89,7 +89,7 @@ def inlet_gap_ratio(level: Level, scaling: Scaling, radius_x: float, radius_y: f
 # at 124 m/s, Moes M = 3.7), or a film of 1e14 um: no film of the contact.
 UNBALANCED_LOAD = 0.05
 FILM_SCALARS = ("h_c", "h_min", "x_h_min", "y_h_min", "p_max", "error_estimate_h_c", "error_estimate_h_min",
-                "error_estimate_p_max", "algebraic_floor", "inlet_gap_ratio")
+                "error_estimate_p_max", "algebraic_floor", "inlet_gap_ratio", "side_pressure_ratio")
 
 
 class Reported(Protocol):
@@ -205,6 +205,7 @@ def _film_scalars(solve: Reported, level: Level, spent: Spent) -> dict[str, tupl
         "algebraic_floor": (history.floor, "1"),
         "inlet_gap_ratio": (inlet_gap_ratio(level, scaling, point.radius_x, point.radius_y,
                                             fine.h_c * film_scale), "1"),
+        "side_pressure_ratio": (side_pressure_ratio(level.pressure, level.x, level.y, scaling), "1"),
     }
 
 

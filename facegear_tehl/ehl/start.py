@@ -75,15 +75,17 @@ class Starting(Protocol):
 def start(solve: Starting, below_top: int) -> tuple[int, Status]:
     """Full multigrid from the Hertz start up to `below_top` levels below the finest. With `escalate_start`, a start
     that runs away is begun again from a coarsest grid twice as fine, as long as the hierarchy keeps the levels
-    asked for (a heavy load's film and spike are not resolved by coarse grids). Returns the finest level that
-    stayed sound (a level that runs away is undone) and the status."""
+    asked for (a heavy load's film and spike are not resolved by coarse grids); from the last coarsest grid the
+    hierarchy allows, a first step that runs away has the coarsest grid cycled to its load first (`_balanced`).
+    Returns the finest level that stayed sound (a level that runs away is undone) and the status."""
     settings = solve.settings
     while True:
-        index, status = _full_multigrid(solve, len(solve.solver.levels) - 1 - below_top)
         finer = 2 * solve.coarsest - 1
         shapes = solve.hierarchy(finer)
-        if (not (status.diverged and solve.escalate_start) or finer > min(settings.grid, settings.nodes_y)
-                or len(shapes) <= below_top):
+        last = finer > min(settings.grid, settings.nodes_y) or len(shapes) <= below_top
+        index, status = _full_multigrid(solve, len(solve.solver.levels) - 1 - below_top,
+                                        balance=solve.escalate_start and last)
+        if not (status.diverged and solve.escalate_start) or last:
             return index, status
         solve.new_hierarchy(shapes)
         solve.retries.append(RetryRecord(Reason.START_RAN_AWAY, Action.FINER_COARSEST_GRID, solve.attempt,
@@ -101,10 +103,11 @@ def hierarchy_shapes(settings: SolverSettings, coarsest: int, problem: Problem,
     return grid.hierarchy_shapes(settings.grid, settings.nodes_y, coarsest)
 
 
-def _full_multigrid(solve: Starting, last: int) -> tuple[int, Status]:
+def _full_multigrid(solve: Starting, last: int, balance: bool = False) -> tuple[int, Status]:
     """Full multigrid from the Hertz start on the coarsest grid up to level `last`; appends a summary per level.
-    With a start_load_fraction below 1, level `last` is started at that fraction of the load and its load raised to
-    the full load (_continued)."""
+    With `balance`, a first step that runs away is taken again from the coarsest grid cycled to its load
+    (`_balanced`). With a start_load_fraction below 1, level `last` is started at that fraction of the load and its
+    load raised to the full load (_continued)."""
     if solve.start_load_fraction < 1.0:
         return _continued(solve, last)
     solver, index = solve.solver, 0
@@ -113,6 +116,11 @@ def _full_multigrid(solve: Starting, last: int) -> tuple[int, Status]:
         _hertz_start(solver, solve.scaling, solve.settings.cycles_per_level, 1.0)
         solve.summaries.append(summarise(solver.levels[0]))
         index, status = _climb(solve, 1, last)
+        if balance and status.diverged and index == 0 and _balanced(solver):
+            solve.retries.append(RetryRecord(Reason.START_RAN_AWAY, Action.COARSEST_TO_ITS_LOAD, solve.attempt,
+                                             status.message))
+            solve.summaries[-1] = summarise(solver.levels[0])
+            index, status = _climb(solve, 1, last)
     finally:
         solver.update_film(solver.levels[index])
     return index, status
@@ -125,6 +133,22 @@ def _hertz_start(solver: MultigridSolver, scaling: Scaling, cycles: int, fractio
     solver.start_from_hertz(central * fraction ** FILM_LOAD_EXPONENT)
     for _ in range(cycles):
         solver.cycle(0)
+
+
+def _balanced(solver: MultigridSolver) -> bool:
+    """The coarsest grid (made the finest again) cycled on until it carries its load, |g| within start_balance_error
+    of it, in at most start_balance_cycles V-cycles; whether it does. For a start whose first full-multigrid step ran
+    away: the predicted central film that set H_0 was far from the film of the domain solved. Hamrock & Dowson's
+    (1977) fit holds in the elastic-piezoviscous regime; a light load's rigid-isoviscous film over a lengthened inlet
+    is several times thicker (docs/tuning.md), and the start's few cycles per level cannot move H_0 that far before
+    the next level is judged to run away."""
+    level = solver.levels[0]
+    bound = TUNING.start_balance_error * solver.problem.load_integral
+    for _ in range(TUNING.start_balance_cycles):
+        if not finite(level) or abs(solver.force_error(level)) <= bound:
+            break
+        solver.cycle(0)
+    return finite(level) and abs(solver.force_error(level)) <= bound
 
 
 def _continued(solve: Starting, last: int) -> tuple[int, Status]:

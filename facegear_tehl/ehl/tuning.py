@@ -24,6 +24,8 @@ class Tuning:
     max_lengthened_nodes: int = 2049  # nodes of a lengthened axis at most (its length then never depends on the grid)
     # --- full-multigrid start and load continuation
     diverged_load_error: float = 0.5  # |load error| after a full cycle beyond which the iteration is running away
+    start_balance_error: float = 0.05  # |load error| a coarsest start running away is cycled down to (H_0 near root)
+    start_balance_cycles: int = 100  # ... in at most this many V-cycles (a few ms each on the coarsest grid)
     eyring_start_cycles: int = 1  # V-cycles of an isothermal Ree-Eyring film's finest start grid: its loop follows
     continuation_moes_m: float = 1000.0  # Moes M from which the last attempt starts at a fraction of the load
     load_step: float = 1.25  # the largest load factor of a continuation step (2 ran away at once)
@@ -117,7 +119,10 @@ class Tuning:
     unresolved_h_min: float = 0.1  # an unconverged solve estimating its h_min error above this is refined
     coarse_estimate: float = 0.1  # a converged solve estimating its h_c or h_min error above this is refined
     side_lobe: float = 0.5  # |y| / a beyond which the lowest film lies in a side lobe: rows alone are doubled
+    closure_nodes: int = 3  # a closed film is not refined where its predicted constriction spans fewer nodes on
+    # the finest grid reachable (closure.py): the feature_nodes a resolved feature needs
     damped_attempt: int = 3  # the first attempt (1-based) with the damped relaxation
+    damped_film_step: float = 2.0  # ... whose ln(eta*/eta) moves by at most this per update (a continuation in eta*)
     venner_first_nodes: int = 64  # a finest grid with fewer X nodes across 2b tries Venner's switch before the scaled
     # --- the accuracy target (accuracy_target.py, solver.accuracy)
     accuracy_start_grid: int = 129  # x nodes it starts on: the coarsest on which the inlet is lengthened as on finer
@@ -142,6 +147,8 @@ class Tuning:
     # below this inlet gap ratio G the truncated inlet starves h_c by more than asymptotic_estimate (140-200 G^-1.5 %,
     # docs/accuracy.md, domain size): the film is not the flooded one its figures' bounds are of
     min_inlet_gap_ratio: float = 7.4
+    # a side pressure whose h_c error may exceed this share is warned of (docs/accuracy.md, domain size: the sides)
+    side_film_warning: float = 0.02
     drift_floor: float = 1e-3  # a film moving one way by less than this per cycle (relative) is wandering at its floor
     feature_nodes: int = 3  # a minimum, hot or cold spot spanning fewer nodes along x or y is unresolved ...
     feature_depth: float = 0.1  # ... counted where the figure is within this share of its extreme

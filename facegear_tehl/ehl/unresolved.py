@@ -7,7 +7,8 @@ from enum import IntEnum
 
 
 class Why(IntEnum):
-    """The reasons error_bounds.bounds leaves a figure unresolved, in the order it checks them."""
+    """The reasons error_bounds.bounds leaves a figure unresolved (the codes stored in result files, fixed once given;
+    error_bounds.unresolved_figure gives the order it checks them in)."""
 
     NOT_CONVERGED = 1
     NEVER = 2
@@ -19,6 +20,7 @@ class Why(IntEnum):
     COMPRESSION_HELD = 8
     ITERATION_ERROR = 9
     THREE_GRIDS = 10
+    STARVED_SIDES = 11
 
     @property
     def words(self) -> str:
@@ -30,6 +32,8 @@ _WORDS = {
     Why.NOT_CONVERGED: "the solve did not converge",
     Why.NEVER: "never bounded: the outlet spike grows with every refinement",
     Why.STARVED_INLET: "the truncated inlet starves the film beyond the bounds (inlet_gap_ratio)",
+    Why.STARVED_SIDES: "the domain's sides cut the film's spread along the contact line short beyond the bounds "
+                       "(side_pressure_ratio)",
     Why.ENERGY_BALANCE: "the film's energy balance misses 1 %: its state does not solve the energy equation",
     Why.NO_ESTIMATE: "no grid estimate along x or y (a figure of zero, a coarsest grid, a failed check, or another "
                      "model's levels)",
