@@ -83,12 +83,18 @@ def figure_bound(solution: PointSolution, name: str) -> Bound:
 
 
 def never_refined(solution: PointSolution, name: str) -> bool:
-    """A figure no finer grid bounds: p_max (NEVER_BOUNDED), and dT_max where the solve reports it unresolved because
+    """A figure no finer grid bounds: p_max (NEVER_BOUNDED), any figure unresolved because the domain starves the film
+    (its inlet or its sides: a finer grid keeps the domain), and dT_max where the solve reports it unresolved because
     the film's compression sets its temperatures through an outlet spike it does not resolve (error_bounds.
     compression_held: the hot spot grows with the spike under refinement, as p_max does)."""
     if name in NEVER_BOUNDED:
         return True
     from facegear_tehl.ehl.error_bounds import compression_held  # here: the command line loads no solver kernels
+    from facegear_tehl.ehl.unresolved import Why
+
+    reason = solution.scalars.get(f"unresolved_reason_{name}", (0.0, "1"))[0]
+    if reason in (Why.STARVED_INLET, Why.STARVED_SIDES):  # the domain starves the film: no grid moves its edges
+        return True
 
     flagged = solution.scalars.get("unresolved_dT_max", (0.0, "1"))[0] != 0.0
     return name == "dT_max" and flagged and compression_held(solution)

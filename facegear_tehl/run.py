@@ -11,7 +11,7 @@ from facegear_tehl.accuracy_target import solve_to_accuracy, three_grid_checked
 from facegear_tehl.case import Case
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.cycle import MeshCycle, mesh_cycle, with_film_parameter
-from facegear_tehl.ehl.closure import unresolvable
+from facegear_tehl.ehl.closure import closed_on_the_centre_line, unresolvable
 from facegear_tehl.ehl.domain import inlet_note, side_note, solution_domain
 from facegear_tehl.ehl.energy_balance import energy_note
 from facegear_tehl.ehl.retry import POLICY, estimates
@@ -229,7 +229,8 @@ def _closed_for_good(task: SolveTask, solution: PointSolution,
                      refinement: Refinement) -> tuple[PointSolution, Refinement] | None:
     """A point whose film closed where no grid within the caps resolves the film Hamrock & Dowson predict
     (closure.unresolvable): the solution with why in its message and record, and the refinement with it; else None."""
-    if solution.outcome is not Outcome.FILM_CLOSED:
+    if solution.outcome is not Outcome.FILM_CLOSED or not closed_on_the_centre_line(solution, task.point,
+                                                                                   task.lubricant):
         return None
     found = unresolvable(task.point, task.lubricant, task.settings, POLICY.largest_grid(solution))
     if found is None:

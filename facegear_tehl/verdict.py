@@ -23,6 +23,7 @@ from facegear_tehl.film_regime import (
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.points import contact_analysis
 from facegear_tehl.ratings import rate
+from facegear_tehl.record import Action
 from facegear_tehl.results import Result, RunResult
 from facegear_tehl.scuffing import flash_safety
 from facegear_tehl.solution import Outcome, PointSolution
@@ -62,7 +63,7 @@ def assess(run: RunResult) -> RunResult:
     scalars.update(rated)
     if not_rated:
         labels["not_rated"] = "; ".join(not_rated)
-    left_out = [p.name for p in run.points if not p.converged]
+    left_out = [p.name for p in run.points if not p.converged and p.outcome is not Outcome.FILM_CLOSED]
     if left_out:
         labels["left_out"] = ", ".join(left_out)
     return replace(run, verdict=scalars, verdict_labels=labels)
@@ -84,14 +85,18 @@ def _film_verdict(points: Sequence[PointSolution]) -> tuple[dict[str, tuple[floa
 
 
 def _closed_film_verdict(run: RunResult, sigma: float) -> tuple[dict[str, tuple[float, str]], dict[str, str]]:
-    """For the points whose film closed (no film solved): Hamrock & Dowson's (1977) minimum film of the thinnest, as
-    the formula's estimate (`h_min_formula_closed`, and over sigma `lambda_formula_closed` with its regime), never a
-    solved figure; labels naming the points and the one estimated."""
+    """For the points whose film closed (no film solved): Hamrock & Dowson's (1977) minimum film of the thinnest of
+    those no grid within the caps resolves (Action.NOT_RESOLVABLE; a film that closed in a failed iteration has no
+    such evidence), as the formula's estimate (`h_min_formula_closed`, and over sigma `lambda_formula_closed` with its
+    regime), never a solved figure; labels naming the points and the one estimated."""
     closed = [p.name for p in run.points if p.outcome is Outcome.FILM_CLOSED]
     if not closed:
         return {}, {}
     points = {p.name: p for p in contact_analysis(run.case).points}
-    films = {name: predicted_minimum_film(points[name], run.case.lubricant) for name in closed if name in points}
+    unresolvable = [p.name for p in run.points if p.outcome is Outcome.FILM_CLOSED and p.record is not None
+                    and any(r.action is Action.NOT_RESOLVABLE for r in p.record.retries)]
+    films = {name: predicted_minimum_film(points[name], run.case.lubricant)
+             for name in unresolvable if name in points}
     films = {name: film for name, film in films.items() if math.isfinite(film) and film > 0.0}
     labels = {"film_closed_points": ", ".join(closed)}
     if not films:

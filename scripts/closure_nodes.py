@@ -11,22 +11,23 @@ from __future__ import annotations
 import argparse
 
 from facegear_tehl.case import load_case
-from facegear_tehl.ehl.closure import constriction_width, finest_spacing, predicted_minimum_film
-from facegear_tehl.ehl.scaling import scaling_for
+from facegear_tehl.contact import ContactPoint
+from facegear_tehl.ehl.closure import constriction_nodes
 from facegear_tehl.ehl.tuning import TUNING
+from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.points import contact_analysis
+from facegear_tehl.settings import SolverSettings
 from facegear_tehl.suites.envelope import envelope_cases
 from facegear_tehl.suites.wide_envelope import wide_cases
 
 
-def nodes(point, lubricant, settings) -> tuple[float, float, int]:
-    """Hamrock & Dowson's h_min (m), the finest grid's nodes along x, and the nodes its constriction spans there."""
+def nodes(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings) -> tuple[float, int, float]:
+    """Hamrock & Dowson's h_min (m), the finest grid's nodes along x, and the nodes its constriction spans there, on
+    the largest grid the refinement may reach (RetryPolicy.largest_grid's caps for the settings' thermal model)."""
     thermal = settings.thermal != "off"
     largest = TUNING.max_refined_thermal_grid if thermal else TUNING.max_refined_grid
-    scaling = scaling_for(point, lubricant)
-    film = predicted_minimum_film(point, lubricant)
-    spacing, nx = finest_spacing(scaling, settings, largest)
-    return film, nx, constriction_width(film / scaling.film_scale) / spacing + 1.0
+    found = constriction_nodes(point, lubricant, settings, largest)
+    return found.film, found.nx, found.nodes
 
 
 def main() -> None:

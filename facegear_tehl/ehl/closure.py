@@ -14,8 +14,10 @@ lobes' constriction alike: docs/envelope.md), which a grid of X spacing dX holds
 Hamrock & Dowson (1977) predict spans fewer than TUNING.closure_nodes nodes even on the finest grid along x that the
 refinement may reach (the largest refined grid over the point's domain), no grid within the caps resolves it: the
 refinement of a closed film stops there (`unresolvable`). The formula is the only film available for a film that
-closed; it is an estimate (10-30 % from full solutions, film_formulas.py), which the margin of TUNING.closure_nodes
-covers (docs/tuning.md).
+closed; it is an estimate (10-30 % from full solutions, film_formulas.py), and a contact near TUNING.closure_nodes
+may go either way (docs/tuning.md). The rule reads the X spacing and the outlet past the Hertzian edge along x: it
+applies to entrainment along x and a film closed near the centre line (`closed_on_the_centre_line`); a film closed in
+a side lobe is refined in its rows (retry.RetryPolicy.finer_settings), which the rule does not read.
 """
 
 from __future__ import annotations
@@ -30,6 +32,7 @@ from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.film_formulas import hamrock_dowson_minimum
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.settings import SolverSettings
+from facegear_tehl.solution import PointSolution
 
 EDGE_GAP = 2.0 * math.sqrt(2.0) / 3.0  # H = EDGE_GAP xi^(3/2) just past the Hertzian edge (the module's derivation)
 
@@ -45,12 +48,23 @@ def constriction_width(film: float) -> float:
     return (max(film, 0.0) / EDGE_GAP) ** (2.0 / 3.0)
 
 
+def closed_on_the_centre_line(solution: PointSolution, point: ContactPoint, lubricant: Lubricant) -> bool:
+    """The film closed within side_lobe semi-axes a of the centre line, the entrainment leaving the domain along x:
+    the outlet constriction the rule reads (module docstring)."""
+    scalars = solution.scalars
+    y = scalars.get("y_film_closed", scalars.get("y_h_min", (math.nan, "m")))[0]
+    a = scalars.get("a", (math.nan, "m"))[0]
+    scaling = scaling_for(point, lubricant)
+    along_x = abs(scaling.wedge_x) >= abs(scaling.wedge_y)
+    return along_x and abs(y) <= TUNING.side_lobe * a
+
+
 def finest_spacing(scaling: Scaling, settings: SolverSettings, largest: int) -> tuple[float, int]:
     """The X spacing (semi-axes b) of the finest grid along x the refinement may reach from `settings` (x doubled as
     long as the point's domain keeps at most `largest` nodes along x, ehl.domain), and that grid's nodes along x."""
-    grid = settings.grid
-    while solution_domain(scaling, replace(settings, grid=2 * grid - 1)).nx <= largest:
-        grid = 2 * grid - 1
+    grid, nx = settings.grid, solution_domain(scaling, settings).nx
+    while (finer := solution_domain(scaling, replace(settings, grid=2 * grid - 1)).nx) <= largest and finer > nx:
+        grid, nx = 2 * grid - 1, finer
     domain = solution_domain(scaling, replace(settings, grid=grid))
     return (domain.x[1] - domain.x[0]) / (domain.nx - 1), domain.nx
 
@@ -72,13 +86,20 @@ class Unresolvable:
                 f"{TUNING.closure_nodes} a film needs to be resolved: no grid within the caps opens it")
 
 
-def unresolvable(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
-                 largest: int) -> Unresolvable | None:
-    """The evidence that no grid up to `largest` nodes resolves the point's film (module docstring), or None."""
+def constriction_nodes(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
+                       largest: int) -> Unresolvable:
+    """Hamrock & Dowson's film of the point, the finest grid along x within `largest` nodes and its spacing, and the
+    nodes that film's outlet constriction spans there (module docstring)."""
     scaling = scaling_for(point, lubricant)
     film = predicted_minimum_film(point, lubricant)
     spacing, nx = finest_spacing(scaling, settings, largest)
-    nodes = constriction_width(film / scaling.film_scale) / spacing + 1.0
-    if not math.isfinite(nodes) or nodes >= TUNING.closure_nodes:
+    return Unresolvable(film, nx, spacing, constriction_width(film / scaling.film_scale) / spacing + 1.0)
+
+
+def unresolvable(point: ContactPoint, lubricant: Lubricant, settings: SolverSettings,
+                 largest: int) -> Unresolvable | None:
+    """The evidence that no grid up to `largest` nodes resolves the point's film (module docstring), or None."""
+    found = constriction_nodes(point, lubricant, settings, largest)
+    if not math.isfinite(found.nodes) or found.nodes >= TUNING.closure_nodes:
         return None
-    return Unresolvable(film, nx, spacing, nodes)
+    return found

@@ -88,15 +88,16 @@ def rigid_gap_ratio(x: tuple[float, float], y: tuple[float, float], scaling: Sca
 
 
 def side_pressure_ratio(pressure: np.ndarray, x: np.ndarray, y: np.ndarray, scaling: Scaling) -> float:
-    """The largest pressure within SIDE_BAND of the domain's width from its sides (the boundaries along the
-    entrainment, across the axis the inlet leaves by), over the largest pressure (pressure on the (ny, nx) nodes x, y
-    in Hertzian units). An elastic film's pressure is confined to the Hertzian ellipse and its inlet; a light load's
-    film spreads along the contact line up to the sides, whose zero pressure then cuts it short as a short inlet
-    cuts its inflow."""
+    """The largest pressure on the nodes within SIDE_BAND of the domain's width from its sides (the boundaries along
+    the entrainment, across the axis the inlet leaves by; at least the first interior row or column, the sides' own
+    held at zero), over the largest pressure (pressure on the (ny, nx) nodes x, y in Hertzian units). An elastic
+    film's pressure is confined to the Hertzian ellipse and its inlet; a light load's film spreads along the contact
+    line up to the sides, whose zero pressure then cuts it short as a short inlet cuts its inflow."""
     axis, _, _ = inlet_exit((float(x[0]), float(x[-1])), (float(y[0]), float(y[-1])), scaling)
-    across = y if axis == "x" else x
-    band = SIDE_BAND * (across[-1] - across[0])
-    near = (across <= across[0] + band) | (across >= across[-1] - band)
+    nodes = y.size if axis == "x" else x.size
+    band = max(1, math.ceil(SIDE_BAND * (nodes - 1)))
+    near = np.zeros(nodes, dtype=bool)
+    near[: band + 1] = near[nodes - 1 - band:] = True
     side = pressure[near, :] if axis == "x" else pressure[:, near]
     return float(side.max() / max(float(pressure.max()), 1e-300))
 
@@ -157,11 +158,12 @@ def inlet_note(name: str, gap_ratio: float, chosen: bool) -> str:
     if not gap_ratio < (TUNING.inlet_gap_target if chosen else TUNING.min_inlet_gap_ratio):
         return ""
     low, high = (100.0 * c * gap_ratio**-1.5 for c in STARVED_FILM_ERROR)
-    consequence = ("so no figure is bounded" if starved_inlet(gap_ratio) else
-                   "which its error bounds (grid and iteration) do not include")
+    if starved_inlet(gap_ratio):
+        starved = f"by more than {100.0 * TUNING.asymptotic_estimate:.0f} %, so no figure is bounded"
+    else:
+        starved = f"by about {low:.2g}-{high:.2g} %, which its error bounds (grid and iteration) do not include"
     return (f"{name}: its inlet reaches {gap_ratio:.3g} central films (inlet_gap_ratio; target "
-            f"{TUNING.inlet_gap_target:g}): the truncated inlet starves h_c by about {low:.2g}-{high:.2g} % "
-            f"(docs/accuracy.md, domain size), {consequence}")
+            f"{TUNING.inlet_gap_target:g}): the truncated inlet starves h_c {starved} (docs/accuracy.md, domain size)")
 
 
 # the band of the domain's width next to each side read by `side_pressure_ratio`: the outer sixth of each half
@@ -185,8 +187,10 @@ def side_note(name: str, pressure_ratio: float) -> str:
     error = SIDE_FILM_ERROR * pressure_ratio
     if not error > TUNING.side_film_warning:
         return ""
-    consequence = ("so no figure is bounded" if starved_sides(pressure_ratio) else
-                   "which its error bounds (grid and iteration) do not include")
-    return (f"{name}: its pressure at the domain's sides is {100.0 * pressure_ratio:.2g} % of its peak "
-            f"(side_pressure_ratio): a light load's film spreads along the contact line beyond them, which starves "
-            f"h_c by up to {100.0 * error:.2g} % (docs/accuracy.md, domain size), {consequence}")
+    if starved_sides(pressure_ratio):
+        starved = f"by more than {100.0 * TUNING.asymptotic_estimate:.0f} %, so no figure is bounded"
+    else:
+        starved = f"by up to {100.0 * error:.1f} %, which its error bounds (grid and iteration) do not include"
+    return (f"{name}: its pressure near the domain's sides is {100.0 * pressure_ratio:.3g} % of its peak "
+            f"(side_pressure_ratio): the sides cut the film short and starve h_c {starved} (docs/accuracy.md, "
+            f"domain size: the sides)")

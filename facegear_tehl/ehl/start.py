@@ -106,8 +106,8 @@ def hierarchy_shapes(settings: SolverSettings, coarsest: int, problem: Problem,
 def _full_multigrid(solve: Starting, last: int, balance: bool = False) -> tuple[int, Status]:
     """Full multigrid from the Hertz start on the coarsest grid up to level `last`; appends a summary per level.
     With `balance`, a first step that runs away is taken again from the coarsest grid cycled to its load
-    (`_balanced`). With a start_load_fraction below 1, level `last` is started at that fraction of the load and its
-    load raised to the full load (_continued)."""
+    (`_climbed_balanced`). With a start_load_fraction below 1, level `last` is started at that fraction of the load
+    and its load raised to the full load (_continued; `balance` does not apply there)."""
     if solve.start_load_fraction < 1.0:
         return _continued(solve, last)
     solver, index = solve.solver, 0
@@ -116,14 +116,24 @@ def _full_multigrid(solve: Starting, last: int, balance: bool = False) -> tuple[
         _hertz_start(solver, solve.scaling, solve.settings.cycles_per_level, 1.0)
         solve.summaries.append(summarise(solver.levels[0]))
         index, status = _climb(solve, 1, last)
-        if balance and status.diverged and index == 0 and _balanced(solver):
-            solve.retries.append(RetryRecord(Reason.START_RAN_AWAY, Action.COARSEST_TO_ITS_LOAD, solve.attempt,
-                                             status.message))
-            solve.summaries[-1] = summarise(solver.levels[0])
-            index, status = _climb(solve, 1, last)
+        if balance and status.diverged and index == 0:
+            index, status = _climbed_balanced(solve, last, status)
     finally:
         solver.update_film(solver.levels[index])
     return index, status
+
+
+def _climbed_balanced(solve: Starting, last: int, failed: Status) -> tuple[int, Status]:
+    """The start climbed again from the coarsest grid cycled to its load (`_balanced`) after its first step ran away
+    (`failed`); the coarsest grid as it was, and `failed`, where the cycles do not carry the load."""
+    solver = solve.solver
+    saved = solver.snapshot(0)
+    if not _balanced(solver):
+        solver.restore(0, saved)
+        return 0, failed
+    solve.retries.append(RetryRecord(Reason.START_RAN_AWAY, Action.COARSEST_TO_ITS_LOAD, solve.attempt, failed.message))
+    solve.summaries[-1] = summarise(solver.levels[0])
+    return _climb(solve, 1, last)
 
 
 def _hertz_start(solver: MultigridSolver, scaling: Scaling, cycles: int, fraction: float) -> None:

@@ -25,7 +25,7 @@ class Tuning:
     # --- full-multigrid start and load continuation
     diverged_load_error: float = 0.5  # |load error| after a full cycle beyond which the iteration is running away
     start_balance_error: float = 0.05  # |load error| a coarsest start running away is cycled down to (H_0 near root)
-    start_balance_cycles: int = 100  # ... in at most this many V-cycles (a few ms each on the coarsest grid)
+    start_balance_cycles: int = 100  # ... in at most this many V-cycles (of the coarsest grid: cheap)
     eyring_start_cycles: int = 1  # V-cycles of an isothermal Ree-Eyring film's finest start grid: its loop follows
     continuation_moes_m: float = 1000.0  # Moes M from which the last attempt starts at a fraction of the load
     load_step: float = 1.25  # the largest load factor of a continuation step (2 ran away at once)
@@ -119,8 +119,9 @@ class Tuning:
     unresolved_h_min: float = 0.1  # an unconverged solve estimating its h_min error above this is refined
     coarse_estimate: float = 0.1  # a converged solve estimating its h_c or h_min error above this is refined
     side_lobe: float = 0.5  # |y| / a beyond which the lowest film lies in a side lobe: rows alone are doubled
-    closure_nodes: int = 3  # a closed film is not refined where its predicted constriction spans fewer nodes on
-    # the finest grid reachable (closure.py): the feature_nodes a resolved feature needs
+    # a closed film is not refined where its predicted constriction spans fewer nodes on the finest grid reachable
+    # (closure.py): the feature_nodes a resolved feature needs
+    closure_nodes: int = 3
     damped_attempt: int = 3  # the first attempt (1-based) with the damped relaxation
     damped_film_step: float = 2.0  # ... whose ln(eta*/eta) moves by at most this per update (a continuation in eta*)
     venner_first_nodes: int = 64  # a finest grid with fewer X nodes across 2b tries Venner's switch before the scaled
