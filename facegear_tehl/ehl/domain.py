@@ -95,7 +95,7 @@ def side_pressure_ratio(pressure: np.ndarray, x: np.ndarray, y: np.ndarray, scal
     line up to the sides, whose zero pressure then cuts it short as a short inlet cuts its inflow."""
     axis, _, _ = inlet_exit((float(x[0]), float(x[-1])), (float(y[0]), float(y[-1])), scaling)
     nodes = y.size if axis == "x" else x.size
-    band = max(1, math.ceil(SIDE_BAND * (nodes - 1)))
+    band = max(1, math.floor(SIDE_BAND * (nodes - 1)))  # the nodes within the band's width, 1 at least
     near = np.zeros(nodes, dtype=bool)
     near[: band + 1] = near[nodes - 1 - band:] = True
     side = pressure[near, :] if axis == "x" else pressure[:, near]
@@ -158,39 +158,33 @@ def inlet_note(name: str, gap_ratio: float, chosen: bool) -> str:
     if not gap_ratio < (TUNING.inlet_gap_target if chosen else TUNING.min_inlet_gap_ratio):
         return ""
     low, high = (100.0 * c * gap_ratio**-1.5 for c in STARVED_FILM_ERROR)
+    amount = f"by about {low:.2g}-{high:.2g} %" if high < 100.0 else f"by {low:.0f} % or more"
     if starved_inlet(gap_ratio):
-        starved = f"by more than {100.0 * TUNING.asymptotic_estimate:.0f} %, so no figure is bounded"
+        starved = f"{amount}, so no figure is bounded"
     else:
-        starved = f"by about {low:.2g}-{high:.2g} %, which its error bounds (grid and iteration) do not include"
+        starved = f"{amount}, which its error bounds (grid and iteration) do not include"
     return (f"{name}: its inlet reaches {gap_ratio:.3g} central films (inlet_gap_ratio; target "
             f"{TUNING.inlet_gap_target:g}): the truncated inlet starves h_c {starved} (docs/accuracy.md, domain size)")
 
 
 # the band of the domain's width next to each side read by `side_pressure_ratio`: the outer sixth of each half
 SIDE_BAND = 1.0 / 12.0
-# the sides' h_c error is at most SIDE_FILM_ERROR times side_pressure_ratio (docs/accuracy.md, domain size: the sides)
-SIDE_FILM_ERROR = 3.0
 
 
 def starved_sides(pressure_ratio: float) -> bool:
-    """Whether a film whose pressure at its sides is `pressure_ratio` of its peak (`side_pressure_ratio`) is starved
-    beyond what its figures' bounds stand for: the sides' h_c error, at most SIDE_FILM_ERROR times the ratio, reaches
-    TUNING.asymptotic_estimate."""
-    return SIDE_FILM_ERROR * pressure_ratio > TUNING.asymptotic_estimate
+    """Whether a film whose pressure near its sides is `pressure_ratio` of its peak (`side_pressure_ratio`) is cut
+    short by them beyond what its figures' bounds stand for: above TUNING.max_side_pressure."""
+    return pressure_ratio > TUNING.max_side_pressure
 
 
 def side_note(name: str, pressure_ratio: float) -> str:
-    """A warning for point `name` whose sides' h_c error (at most SIDE_FILM_ERROR times `pressure_ratio`) may exceed
-    TUNING.side_film_warning ("" otherwise), and whether its figures are then unresolved. The solver does not widen
-    the domain: a film whose footprint reaches that far along a tooth depends on the flank's face width and its ends,
-    which the local contact of two paraboloids does not hold."""
-    error = SIDE_FILM_ERROR * pressure_ratio
-    if not error > TUNING.side_film_warning:
+    """A warning for point `name` whose sides starve its film (`starved_sides`; "" otherwise). The solver does not
+    widen the domain: a film whose footprint reaches that far along a gear tooth depends on the flank's face width and
+    its ends, which the local contact of two paraboloids does not hold; a plain contact's case may give a wider
+    `solver.domain`."""
+    if not starved_sides(pressure_ratio):
         return ""
-    if starved_sides(pressure_ratio):
-        starved = f"by more than {100.0 * TUNING.asymptotic_estimate:.0f} %, so no figure is bounded"
-    else:
-        starved = f"by up to {100.0 * error:.1f} %, which its error bounds (grid and iteration) do not include"
     return (f"{name}: its pressure near the domain's sides is {100.0 * pressure_ratio:.3g} % of its peak "
-            f"(side_pressure_ratio): the sides cut the film short and starve h_c {starved} (docs/accuracy.md, "
-            f"domain size: the sides)")
+            f"(side_pressure_ratio, above {100.0 * TUNING.max_side_pressure:g} %): the sides cut the film short, "
+            f"thinning h_c by a few to tens of per cent (docs/accuracy.md, domain size: the sides), so no figure is "
+            f"bounded")

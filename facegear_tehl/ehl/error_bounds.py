@@ -36,7 +36,7 @@ figure of a thermal solve whose energy balance misses TUNING.max_energy_imbalanc
 is not a solution of the discrete energy equation, so neither its temperatures nor the viscosities they set are known
 to the loop's tolerance); and every figure of a film whose inlet reaches fewer than TUNING.min_inlet_gap_ratio central
 films (`domain.starved_inlet`: the truncated inlet starves h_c by more than asymptotic_estimate), or whose domain's
-sides hold a pressure whose h_c error may reach asymptotic_estimate (`domain.starved_sides`).
+sides hold more than TUNING.max_side_pressure of its peak pressure (`domain.starved_sides`).
 docs/accuracy.md (error bounds) holds the calibration that chose these rules.
 """
 

@@ -148,8 +148,9 @@ class Tuning:
     # below this inlet gap ratio G the truncated inlet starves h_c by more than asymptotic_estimate (140-200 G^-1.5 %,
     # docs/accuracy.md, domain size): the film is not the flooded one its figures' bounds are of
     min_inlet_gap_ratio: float = 7.4
-    # a side pressure whose h_c error may exceed this share is warned of (docs/accuracy.md, domain size: the sides)
-    side_film_warning: float = 0.02
+    # a film whose pressure near the domain's sides passes this share of its peak is starved by them beyond its bounds
+    # (domain.starved_sides; docs/accuracy.md, domain size: the sides)
+    max_side_pressure: float = 0.01
     drift_floor: float = 1e-3  # a film moving one way by less than this per cycle (relative) is wandering at its floor
     feature_nodes: int = 3  # a minimum, hot or cold spot spanning fewer nodes along x or y is unresolved ...
     feature_depth: float = 0.1  # ... counted where the figure is within this share of its extreme
