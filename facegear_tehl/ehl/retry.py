@@ -55,8 +55,7 @@ class Attempt:
         return self.relaxation.describe() + (", from a fraction of the load" if self.load_continuation else "")
 
 
-# Gauss-Seidel / Jacobi changes halved, the film state's ln(eta*/eta) moved by a bounded step per update
-DAMPED = Relaxation(scale_switch=False, under_gs=0.15, under_jd=0.1, film_step=TUNING.damped_film_step)
+DAMPED = Relaxation(scale_switch=False, under_gs=0.15, under_jd=0.1)  # Gauss-Seidel / Jacobi changes halved
 ATTEMPTS = (
     Attempt(Relaxation()),  # the ellipse-scaled switch
     Attempt(Relaxation(scale_switch=False)),  # Venner's switch
