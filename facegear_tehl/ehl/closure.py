@@ -27,6 +27,7 @@ import math
 
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.domain import solution_domain
+from facegear_tehl.ehl.retry import in_side_lobe
 from facegear_tehl.ehl.scaling import Scaling, scaling_for
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.film_formulas import hamrock_dowson_minimum
@@ -51,21 +52,19 @@ def constriction_width(film: float) -> float:
 def closed_on_the_centre_line(solution: PointSolution, point: ContactPoint, lubricant: Lubricant) -> bool:
     """The film closed within side_lobe semi-axes a of the centre line, the entrainment leaving the domain along x:
     the outlet constriction the rule reads (module docstring)."""
-    scalars = solution.scalars
-    y = scalars.get("y_film_closed", scalars.get("y_h_min", (math.nan, "m")))[0]
-    a = scalars.get("a", (math.nan, "m"))[0]
     scaling = scaling_for(point, lubricant)
-    along_x = abs(scaling.wedge_x) >= abs(scaling.wedge_y)
-    return along_x and abs(y) <= TUNING.side_lobe * a
+    return abs(scaling.wedge_x) >= abs(scaling.wedge_y) and not in_side_lobe(solution)
 
 
 def finest_spacing(scaling: Scaling, settings: SolverSettings, largest: int) -> tuple[float, int]:
     """The X spacing (semi-axes b) of the finest grid along x the refinement may reach from `settings` (x doubled as
     long as the point's domain keeps at most `largest` nodes along x, ehl.domain), and that grid's nodes along x."""
-    grid, nx = settings.grid, solution_domain(scaling, settings).nx
-    while (finer := solution_domain(scaling, replace(settings, grid=2 * grid - 1)).nx) <= largest and finer > nx:
-        grid, nx = 2 * grid - 1, finer
-    domain = solution_domain(scaling, replace(settings, grid=grid))
+    grid, domain = settings.grid, solution_domain(scaling, settings)
+    while True:
+        finer = solution_domain(scaling, replace(settings, grid=2 * grid - 1))
+        if finer.nx > largest or finer.nx <= domain.nx:  # past the cap, or the lengthened axis no longer grows
+            break
+        grid, domain = 2 * grid - 1, finer
     return (domain.x[1] - domain.x[0]) / (domain.nx - 1), domain.nx
 
 

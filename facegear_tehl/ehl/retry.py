@@ -189,7 +189,7 @@ class RetryPolicy:
         its lowest film lies in a side lobe (|y| > side_lobe a) and the grid has fewer rows than columns, else
         twice as fine along each axis; None beyond the largest refined grid."""
         largest = self.largest_grid(solution)
-        if _in_side_lobe(solution) and settings.nodes_y < settings.grid and 2 * settings.nodes_y - 1 <= largest:
+        if in_side_lobe(solution) and settings.nodes_y < settings.grid and 2 * settings.nodes_y - 1 <= largest:
             return replace(settings, grid_y=2 * settings.nodes_y - 1)
         if 2 * max(settings.grid, settings.nodes_y) - 1 > largest:
             return None
@@ -214,7 +214,7 @@ def reported_nodes(solution: PointSolution) -> int:
     return len(axes["x"].values) * len(axes["y"].values) if "x" in axes and "y" in axes else 0
 
 
-def _in_side_lobe(solution: PointSolution) -> bool:
+def in_side_lobe(solution: PointSolution) -> bool:
     """The lowest film of the solve (or where it closed) lies beyond side_lobe semi-axes a from the centre line."""
     scalars = solution.scalars
     y = scalars.get("y_h_min", scalars.get("y_film_closed", (math.nan, "m")))[0]
