@@ -343,10 +343,17 @@ def test_convergence_draws_the_settled_floor_bound_the_file_holds(gear_file, tmp
         assert bounds == expected
 
 
-def test_sweep_file_draws_error_vs_grid_and_cost(sweep_file, tmp_path):
+def test_sweep_file_draws_error_vs_grid_and_cost(sweep_file, tmp_path, monkeypatch):
+    figures = _capture(monkeypatch)
     report = _plot(sweep_file, tmp_path, what=["trends", "friction", "convergence"])
     _check_images(report, tmp_path, ["convergence", "sweep_error"])
     assert len(_skipped(report, "trends")) == 1 and len(_skipped(report, "friction")) == 1
+    fig = figures["sweep_error"]
+    FigureCanvasAgg(fig).draw()
+    for ax in fig.axes:  # the figures named as on the other sheets, the errors as plain numbers
+        assert {text.get_text() for text in ax.get_legend().get_texts()} <= {"$p_{max}$", "$h_c$", "$h_{min}$"}
+        labels = [tick.get_text() for tick in ax.get_yticklabels() if tick.get_text()]
+        assert labels and all(float(label) > 0.0 for label in labels)
 
 
 def test_friction_from_the_heat_table_alone(gear_run, tmp_path):

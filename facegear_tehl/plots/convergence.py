@@ -197,6 +197,10 @@ def _levels_panel(ax: Axes, points: Sequence[PointResult]) -> None:
     legend(ax, fontsize="small", ncols=2)
 
 
+# the swept figures (sweep.QUANTITIES) as the other figures name them
+_SWEPT = {"p_max": "$p_{max}$", "h_c": "$h_c$", "h_min": "$h_{min}$", "dT_max": r"$\Delta T_{max}$", "mu": r"$\mu$"}
+
+
 def _sweep_errors(sweep: Mapping[str, Field]) -> dict[str, np.ndarray]:
     """|relative error| per grid of each swept quantity (columns `<quantity>_error`; NaN where undefined)."""
     errors = {
@@ -218,8 +222,11 @@ def _sweep_figure(result: Result, sweep: Mapping[str, Field]) -> Figure:
         x = np.asarray(sweep[key].values, dtype=float)
         for name, error in errors.items():
             keep = np.isfinite(error) & (error > 0.0)
-            ax.plot(x[keep], PERCENT(error[keep]), "o-", label=name)
+            ax.plot(x[keep], PERCENT(error[keep]), "o-", label=_SWEPT.get(name, name))
         ax.set_yscale("log")
+        ax.yaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))  # 0.5, 1, 2, 5 rather than 6×10⁰
+        ax.yaxis.set_major_formatter(FormatStrFormatter("%g"))
+        ax.yaxis.set_minor_formatter(NullFormatter())
         if key == "grid":
             ax.set_xscale("log", base=2)
             ax.set_xticks(x, [f"{n:.0f}" for n in x])
