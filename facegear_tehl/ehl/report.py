@@ -305,8 +305,8 @@ def _histories(solve: Reported) -> dict[str, Field]:
         "load_error_history": Field(np.array(history.loads), "1", "relative load-balance error after each cycle"),
         **_film_histories(history, film_scale),
         "level_h_c": Field(np.array([s.h_c * film_scale for s in summaries]), "m",
-                           "central film on each full-multigrid level as solved there (isothermal start; "
-                           "the last two levels with their film state in the reduced model), coarsest first"),
+                           "central film on each level as solved there, coarsest first (the full-multigrid "
+                           "start's levels Newtonian and isothermal, a coupled stage's with its film state)"),
         "level_h_min": Field(np.array([s.h_min * film_scale for s in summaries]), "m",
                              "minimum film on each full-multigrid level as solved there, coarsest first"),
         "level_nodes": Field(np.array([float(s.n) for s in summaries]), "1", "nodes per side of each level"),
