@@ -115,12 +115,14 @@ def energy_forcing(changes: list[float]) -> float:
 
 
 def next_film_state(accelerator: Anderson, temperature: np.ndarray, factor: np.ndarray, update: FilmState,
-                    scale: float, rise: float | None) -> tuple[np.ndarray, np.ndarray, float, float]:
+                    scale: float, rise: float | None,
+                    film_step: float = math.inf) -> tuple[np.ndarray, np.ndarray, float, float]:
     """The next layer temperatures (K) and eta*/eta from the current ones and the film state `update` evaluated at
     them, and the largest changes of the plain step at the full relaxation (K; of ln(eta*/eta)). The plain step is
     under-relaxed (thermal_relaxation and viscosity_relaxation times `scale`; eyring_relaxation without the energy
     equation; eta*/eta in log space) and Anderson-accelerated, the temperatures weighted by 1/rise (K) against
-    ln(eta*/eta); the accelerated temperatures move by at most max_temperature_step, as a plain update does. The
+    ln(eta*/eta); the accelerated temperatures move by at most max_temperature_step, as a plain update does, and the
+    accelerated ln(eta*/eta) by at most `film_step` (the relaxation's Relaxation.film_step: a continuation in eta*). The
     changes returned are those of `scale` 1 (the step over `scale`): a loop whose relaxation a stall halved is judged,
     and its iteration error estimated, by the same measure as before, not by a change the halving alone shrank.
     rise None: no energy equation (the temperatures stay)."""
@@ -128,18 +130,27 @@ def next_film_state(accelerator: Anderson, temperature: np.ndarray, factor: np.n
         log_factor, residual = np.empty(factor.shape), np.empty(factor.shape)
         largest = rheology.log_factor_change(factor, update.viscosity_factor, log_factor, residual)
         step_f = residual * (scale * TUNING.eyring_relaxation)
-        return (temperature, np.exp(accelerator.step(log_factor, step_f)), 0.0, TUNING.viscosity_relaxation * largest)
+        stepped = _bounded(accelerator.step(log_factor, step_f), log_factor, film_step)
+        return temperature, np.exp(stepped), 0.0, TUNING.viscosity_relaxation * largest
     size = temperature.size
     x, f = np.empty(2 * size), np.empty(2 * size)
     np.log(factor.ravel(), out=x[size:])
     np.log(update.viscosity_factor.ravel(), out=f[size:])
     thermal_change, viscosity_change = relaxed_steps(temperature, update.temperature, scale * TUNING.thermal_relaxation,
                                                      scale * TUNING.viscosity_relaxation, x, f)
-    x = accelerator.step(x, f, (1.0 / rise, 1.0))
-    accelerated = x[:size].reshape(temperature.shape)
+    stepped = accelerator.step(x, f, (1.0 / rise, 1.0))
+    accelerated = stepped[:size].reshape(temperature.shape)
     step = TUNING.max_temperature_step
     np.clip(accelerated, temperature - step, temperature + step, out=accelerated)
-    return accelerated, np.exp(x[size:]).reshape(temperature.shape), thermal_change / scale, viscosity_change / scale
+    log_factor = _bounded(stepped[size:], x[size:], film_step)
+    return accelerated, np.exp(log_factor).reshape(temperature.shape), thermal_change / scale, viscosity_change / scale
+
+
+def _bounded(stepped: np.ndarray, before: np.ndarray, film_step: float) -> np.ndarray:
+    """ln(eta*/eta) `stepped` within `film_step` of `before` (in place; as it is when unbounded)."""
+    if math.isfinite(film_step):
+        np.clip(stepped, before - film_step, before + film_step, out=stepped)
+    return stepped
 
 
 class CoupledLoop:
@@ -170,7 +181,8 @@ class CoupledLoop:
             update = target.evaluate(temperature, forcing)
             rise = max(float(temperature.max() - self.t_inlet), TUNING.min_rise)
             temperature, factor, thermal_change, viscosity_change = next_film_state(
-                self.accelerator, temperature, factor, update, relaxation, rise if self.energy else None)
+                self.accelerator, temperature, factor, update, relaxation, rise if self.energy else None,
+                self.pressure.solver.relaxation.film_step)
             target.constrain(temperature)
             last_change = thermal_change if self.energy else viscosity_change
             loop.changes.append(last_change)

@@ -4,6 +4,7 @@ loading the solver's kernels)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
+import math
 
 
 @dataclass(frozen=True)
@@ -22,9 +23,12 @@ class Relaxation:
     force_damping: float = 1.0  # fraction of the secant step taken
     alternate_above: float = 0.25  # add Y-line sweeps when |c_y| > this * |c_x| (entrainment skewed > 14 deg)
     scale_switch: bool = True  # scale xi_switch for long ellipses (see Level); False: Venner's value as is
+    # largest change of ln(eta*/eta) per update of the coupled loop's film state (coupled.next_film_state); inf: none
+    film_step: float = math.inf
 
     def describe(self) -> str:
-        """The words a solve record names this relaxation by: its switch, and "damped" where its Gauss-Seidel changes
-        are under-relaxed below the default."""
+        """The words a solve record names this relaxation by: its switch, "damped" where its Gauss-Seidel changes
+        are under-relaxed below the default, and a bounded film_step."""
         switch = "the ellipse-scaled switch" if self.scale_switch else "Venner's switch"
-        return switch + (", damped" if self.under_gs < Relaxation.under_gs else "")
+        bounded = ", the film state's step bounded" if math.isfinite(self.film_step) else ""
+        return switch + (", damped" if self.under_gs < Relaxation.under_gs else "") + bounded

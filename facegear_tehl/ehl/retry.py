@@ -18,7 +18,10 @@ In the order a failing solve meets them:
    converges, on a hierarchy that coarsens only the strongly coupled axes (load continuation, start.py); an attempt
    whose coarse stage converged and whose finest grid failed has that grid solved again from its coarse stage first,
    with the next attempt's under-relaxation that differs from the failed one, on the coarse stage's switch
-   (`finest_again`);
+   (`finest_again`); a point without the continued start whose damped attempt ran away at the first film-state
+   updates of its isothermal Ree-Eyring loop, the first made at the Newtonian pressure of the start, has one more:
+   that damped attempt with ln(eta*/eta) moved by at most rescue_film_step per update (`RESCUE`, `rescues`), a path
+   only a solve that fails otherwise takes;
 6. the grid does not resolve the film (it closes, a start's load continuation stops short of the load, or an
    estimate exceeds its bound): the point is solved again on a finer grid, up to a cap (`finer_settings`, run.py),
    twice the rows alone where the film closes in a side lobe;
@@ -62,6 +65,8 @@ ATTEMPTS = (
     Attempt(DAMPED),
     Attempt(DAMPED, load_continuation=True),
 )
+# after all of ATTEMPTS a point takes, where its damped attempt ran away at its first film-state update (`rescues`)
+RESCUE = Attempt(replace(DAMPED, film_step=TUNING.rescue_film_step))
 
 
 @dataclass(frozen=True)
@@ -69,6 +74,21 @@ class RetryPolicy:
     """The one retry policy (see the module's list)."""
 
     attempts: tuple[Attempt, ...] = ATTEMPTS
+    rescue: Attempt = RESCUE  # numbered after `attempts`
+
+    @property
+    def rescue_attempt(self) -> int:
+        """The number (1-based) of the rescue attempt: the one after `attempts`."""
+        return len(self.attempts) + 1
+
+    def numbered(self, attempt: int) -> Attempt:
+        """Attempt `attempt` (1-based) as listed: one of `attempts`, or the rescue after them."""
+        return self.rescue if attempt == self.rescue_attempt else self.attempts[attempt - 1]
+
+    def carries(self, attempt: int) -> bool:
+        """Attempt `attempt`, converged, is where a path's next check begins (seeded.CheckPath): one of `attempts`
+        without the continued start; not the rescue, which no attempt that converges otherwise reaches."""
+        return attempt < self.rescue_attempt and not self.attempts[attempt - 1].load_continuation
 
     def attempt(self, attempt: int, spacing: float) -> Attempt:
         """Attempt `attempt` (1-based) on a finest grid of X spacing `spacing` (X = x/b): as listed, but on a grid
@@ -77,7 +97,7 @@ class RetryPolicy:
         stalls where Venner's converges; on finer grids Venner's runs away where the scaled one converges."""
         if attempt <= 2 and spacing > 2.0 / TUNING.venner_first_nodes:
             return self.attempts[2 - attempt]
-        return self.attempts[attempt - 1]
+        return self.numbered(attempt)
 
     # --- within an attempt
     def escalates_start(self, attempt: int) -> bool:
@@ -97,7 +117,12 @@ class RetryPolicy:
         one after an undamped attempt's stall (a limit cycle), and after a retry's film that closed in a stall; for a
         point above Moes M = continuation_moes_m the start at a fraction of the load after a damped attempt that ran
         away or closed the film, or a retry whose film closed in a converged iteration. The first attempt's closed
-        film is left to a finer grid (`finer_settings`)."""
+        film is left to a finer grid (`finer_settings`). After the attempts, the rescue where `rescues` says so."""
+        following = self._listed_next(solution)
+        return self.rescue_attempt if following is None and self.rescues(solution) else following
+
+    def _listed_next(self, solution: PointSolution) -> int | None:
+        """The attempt of `attempts` after `solution`'s, or None (`next_attempt`)."""
         attempt = int(solution.scalar("attempts"))
         if solution.outcome is Outcome.DIVERGED:
             following = attempt + 1
@@ -112,6 +137,22 @@ class RetryPolicy:
             return None
         heavy = solution.scalar("moes_m") > TUNING.continuation_moes_m
         return following if heavy or not self.attempts[following - 1].load_continuation else None
+
+    @staticmethod
+    def rescues(solution: PointSolution) -> bool:
+        """`solution`, with no listed attempt after it, is the damped attempt of an isothermal Ree-Eyring film that ran
+        away in the V-cycles after one of its loop's first rescue_updates film-state updates. The first update is made
+        at the Newtonian pressure of the full-multigrid start, whose spike under an exponential viscosity asks for an
+        eta*/eta many e-folds below the film's fixed point: the rescue moves ln(eta*/eta) there by a bounded step per
+        update (RESCUE). Every attempt before it is as it was."""
+        record = solution.record
+        if (solution.outcome is not Outcome.DIVERGED or record is None or not record.stages
+                or int(solution.scalar("attempts")) != TUNING.damped_attempt
+                or solution.models.get("thermal", "off") != ThermalMode.OFF.value):
+            return False
+        last = record.stages[-1]
+        return (last.stage is Stage.FINEST and last.outcome is Outcome.DIVERGED
+                and 1 <= last.outer <= TUNING.rescue_updates)
 
     def finest_again(self, solution: PointSolution, relaxation: Relaxation,
                      spacing: float) -> tuple[int, Relaxation] | None:
@@ -182,7 +223,7 @@ class RetryPolicy:
         did not carry the full load and the load was raised on its finest grid (start.py); nothing bounds its film
         (docs/envelope.md, the heavy ellipses of the wide envelope)."""
         attempt = int(solution.scalars.get("attempts", (1.0, "1"))[0])
-        return self.attempts[attempt - 1].load_continuation and "error_estimate_h_min" not in solution.scalars
+        return self.numbered(attempt).load_continuation and "error_estimate_h_min" not in solution.scalars
 
     def finer_settings(self, settings: SolverSettings, solution: PointSolution) -> SolverSettings | None:
         """The settings on the next finer grid for a film that `solution` did not resolve: twice the rows alone when

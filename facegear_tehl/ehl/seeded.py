@@ -195,8 +195,8 @@ class CheckPath:
     """The error bounds' checks of a path's points (error_bounds.y_estimates: the same point on half the rows), each
     solved like its point: seeded from the check of the point before (`solve_seeded`, unbounded; the first cold), and
     with the relaxation of the retry policy's attempt that converged that check (the checks of neighbours run away on
-    the same attempts). `source` and `attempt` say how the last check started ('': with no seed; 1: the first
-    attempt)."""
+    the same attempts; not the rescue: RetryPolicy.carries). `source` and `attempt` say how the last check started
+    ('': with no seed; 1: the first attempt)."""
 
     def __init__(self) -> None:
         self.seed: Seed | None = None
@@ -213,7 +213,7 @@ class CheckPath:
         self.source = self.seed.source if seeded else ""
         self.attempt = self.following if as_led else 1
         self.seed = following
-        carried = solution.converged and not POLICY.attempts[record.attempt - 1].load_continuation
+        carried = solution.converged and POLICY.carries(record.attempt)
         self.following = record.attempt if carried else 1
         return solution
 

@@ -31,14 +31,15 @@ def retry_options(retry_after: PointSolution) -> tuple[int, dict]:
     continuation where the attempt has it."""
     attempt = POLICY.next_attempt(retry_after)
     return attempt, {"elapsed": spent_on(retry_after), "max_doublings": TUNING.retry_inlet_doublings,
-                     "load_continuation": POLICY.attempts[attempt - 1].load_continuation}
+                     "load_continuation": POLICY.numbered(attempt).load_continuation}
 
 
 def noted_retry(solve: PointSolve, retry_after: PointSolution, attempt: int) -> PointSolve:
     """`solve`, the retry `attempt` after `retry_after`, with the earlier retries and this one in its record."""
     solve.retries.extend(() if retry_after.record is None else retry_after.record.retries)
+    failed = int(retry_after.scalar("attempts")) if attempt == POLICY.rescue_attempt else attempt - 1
     solve.retries.append(RetryRecord(POLICY.reason(retry_after), Action.NEXT_RELAXATION, attempt,
-                                     f"attempt {attempt - 1}: {retry_after.message}"))
+                                     f"attempt {failed}: {retry_after.message}"))
     return solve
 
 

@@ -126,6 +126,8 @@ class Tuning:
     # (closure.py): the feature_nodes a resolved feature needs
     closure_nodes: int = 3
     damped_attempt: int = 3  # the first attempt (1-based) with the damped relaxation
+    rescue_film_step: float = 2.0  # ln(eta*/eta) per update of retry.RESCUE: 2 e-folds, as 50 K at beta = 0.04 1/K
+    rescue_updates: int = 2  # ... after a damped attempt run away within this many updates (the start's transient)
     venner_first_nodes: int = 64  # a finest grid with fewer X nodes across 2b tries Venner's switch before the scaled
     # --- the accuracy target (accuracy_target.py, solver.accuracy)
     accuracy_start_grid: int = 129  # x nodes it starts on: the coarsest on which the inlet is lengthened as on finer
