@@ -58,8 +58,8 @@ class Tuning:
     min_energy_forcing: float = 0.1  # ... but never below this share
     min_rise: float = 1.0  # K: tolerances relative to the temperature rise use at least this rise
     grid_mode_wet: float = 0.05  # share of the peak pressure from which a node lies in the loaded film (grid_mode.py)
-    grid_mode_amplitude: float = 0.015  # alternating share of the film in a grid mode (smooth films: below 0.7 %)
-    grid_mode_nodes: int = 8  # consecutive alternating nodes in a grid mode (the one found: 17 rows)
+    grid_mode_amplitude: float = 0.015  # alternating share of the film at each node of a grid mode (found: 2.8-18 %)
+    grid_mode_nodes: int = 8  # consecutive alternating nodes of a grid mode (found: 17; smooth films: no 8 at 1.5 %)
     steady_updates: int = 5  # a loop stops on its tolerance only with h_c steady over this many updates
     thermal_floor_window: int = 8  # outer iterations (or cycles) over which a stall is judged
     thermal_floor_stall: float = 0.5  # stalled: the window's later half's smallest change above this share ...
