@@ -42,7 +42,7 @@ from facegear_tehl.suites.envelope import (
     scalar_or_nan,
     select,
 )
-from facegear_tehl.tables import format_table
+from facegear_tehl.tables import UNRESOLVED_REASON, format_table
 
 OUTCOME_COLOURS = {
     Outcome.CONVERGED: "tab:green",
@@ -62,7 +62,7 @@ def _estimate(solution: PointSolution, figure: str) -> str:
     """The error estimate of `figure` in per cent, or why it is unresolved (the solve bounds no error there: a starved
     domain, a feature the grid does not resolve, ...; ehl.unresolved.Why)."""
     if scalar_or_nan(solution, f"unresolved_{figure}") == 1.0:
-        reason = scalar_or_nan(solution, f"unresolved_reason_{figure}")
+        reason = scalar_or_nan(solution, f"{UNRESOLVED_REASON}{figure}")
         return "unresolved" if math.isnan(reason) else f"unresolved: {Why(int(reason)).name.lower().replace('_', ' ')}"
     return _cell(solution, f"error_estimate_{figure}", 100.0, ".2g")
 

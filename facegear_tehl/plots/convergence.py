@@ -60,7 +60,10 @@ def _convergence_figure(result: Result, points: Sequence[PointResult], histories
 
 # histories of counts, drawn as they are on a linear axis: their y label
 _COUNTS = {"cycle_nodes_history": "nodes along x"}
-_NAMES = {"thermal_h_c_history": "$h_c$", "cycle_h_c_history": "$h_c$", "cycle_h_min_history": "$h_{min}$",
+# the reported figures (sweep.QUANTITIES) as every panel names them
+_FIGURES = {"p_max": "$p_{max}$", "h_c": "$h_c$", "h_min": "$h_{min}$", "dT_max": r"$\Delta T_{max}$", "mu": r"$\mu$"}
+_NAMES = {"thermal_h_c_history": _FIGURES["h_c"], "cycle_h_c_history": _FIGURES["h_c"],
+          "cycle_h_min_history": _FIGURES["h_min"],
           "thermal_change_history": "temperature change",
           "viscosity_change_history": r"change of ln($\eta^*/\eta$)"}
 
@@ -197,10 +200,6 @@ def _levels_panel(ax: Axes, points: Sequence[PointResult]) -> None:
     legend(ax, fontsize="small", ncols=2)
 
 
-# the swept figures (sweep.QUANTITIES) as the other figures name them
-_SWEPT = {"p_max": "$p_{max}$", "h_c": "$h_c$", "h_min": "$h_{min}$", "dT_max": r"$\Delta T_{max}$", "mu": r"$\mu$"}
-
-
 def _sweep_errors(sweep: Mapping[str, Field]) -> dict[str, np.ndarray]:
     """|relative error| per grid of each swept quantity (columns `<quantity>_error`; NaN where undefined)."""
     errors = {
@@ -222,7 +221,7 @@ def _sweep_figure(result: Result, sweep: Mapping[str, Field]) -> Figure:
         x = np.asarray(sweep[key].values, dtype=float)
         for name, error in errors.items():
             keep = np.isfinite(error) & (error > 0.0)
-            ax.plot(x[keep], PERCENT(error[keep]), "o-", label=_SWEPT.get(name, name))
+            ax.plot(x[keep], PERCENT(error[keep]), "o-", label=_FIGURES.get(name, name))
         ax.set_yscale("log")
         ax.yaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))  # 0.5, 1, 2, 5 rather than 6×10⁰
         ax.yaxis.set_major_formatter(FormatStrFormatter("%g"))
