@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -14,6 +15,7 @@ from facegear_tehl.ehl.multigrid import at_load_fraction
 from facegear_tehl.ehl.retry import ATTEMPTS, DAMPED, POLICY
 from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.ehl.solve import PointSolve, problem_for
+from facegear_tehl.ehl.staged import noted_retry
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.film_formulas import nijenbanning_central
 from facegear_tehl.lubricant import KELVIN, Lubricant
@@ -329,3 +331,16 @@ def test_a_continued_solve_without_an_estimate_is_refined_like_a_coarse_one():
     assert POLICY.unestimated(bare) and POLICY.coarse(bare)
     first = replaced(bare, scalars={**bare.scalars, "attempts": (1.0, "1")})
     assert not POLICY.unestimated(first) and not POLICY.coarse(first)
+
+
+@pytest.mark.parametrize(("outcome", "attempt", "moes_m", "iteration"), [
+    (Outcome.NOT_CONVERGED, 1, 10.0, STALL),  # attempt 1's stall is retried by attempt 3
+    (Outcome.DIVERGED, 3, 1e5, Outcome.DIVERGED),
+    (Outcome.FILM_CLOSED, 2, 1e5, CLOSED),  # attempt 2's closed film is retried by attempt 4
+])
+def test_the_retry_record_names_the_attempt_that_failed(outcome, attempt, moes_m, iteration):
+    failed = replace(_solution(outcome, attempt, moes_m, iteration), message="the failure")
+    following = POLICY.next_attempt(failed)
+    retried = noted_retry(SimpleNamespace(retries=[]), failed, following)
+    (record,) = retried.retries
+    assert (record.attempt, record.detail) == (following, f"attempt {attempt}: the failure")

@@ -37,7 +37,7 @@ def retry_options(retry_after: PointSolution) -> tuple[int, dict]:
 def noted_retry(solve: PointSolve, retry_after: PointSolution, attempt: int) -> PointSolve:
     """`solve`, the retry `attempt` after `retry_after`, with the earlier retries and this one in its record."""
     solve.retries.extend(() if retry_after.record is None else retry_after.record.retries)
-    failed = int(retry_after.scalar("attempts")) if attempt == POLICY.rescue_attempt else attempt - 1
+    failed = int(retry_after.scalar("attempts"))  # not attempt - 1: a stall of attempt 1 goes on to the damped 3
     solve.retries.append(RetryRecord(POLICY.reason(retry_after), Action.NEXT_RELAXATION, attempt,
                                      f"attempt {failed}: {retry_after.message}"))
     return solve
