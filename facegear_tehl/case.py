@@ -104,6 +104,7 @@ class Case:
     gear: GearSpec | None = None  # a face gear pair; exactly one of contact and gear is set
     warnings: tuple[str, ...] = ()  # '<key path>: <remark>' for each valid but unusual value
     derived: tuple[str, ...] = ()  # '<key path> = <value>: <source>' for each input derived from others (oils.py)
+    missing_thermal: tuple[str, ...] = ()  # lubricant keys a thermal model needs, neither given nor derived
 
     def with_grid(self, grid: int) -> Case:
         """The same case on another finest grid (validated like the YAML key solver.grid)."""
@@ -175,8 +176,14 @@ def _materials(block: Block) -> Materials:
     return materials
 
 
-def _lubricant(block: Block) -> tuple[Lubricant, tuple[str, ...]]:
-    """The lubricant and the lines saying which of its values were derived (from an ISO grade or nu_40, nu_100)."""
+# the lubricant keys a thermal model (solver.thermal reduced | full | auto) needs, and what each is
+THERMAL_NEEDS = {"temperature_viscosity": "beta = -d ln(eta)/dT at the inlet temperature, 1/K (about 0.02-0.06 for "
+                                          "gear oils; given by an oil's grade or nu40 and nu100)"}
+
+
+def _lubricant(block: Block) -> tuple[Lubricant, tuple[str, ...], tuple[str, ...]]:
+    """The lubricant, the lines saying which of its values were derived (from an ISO grade or nu_40, nu_100), and
+    the keys a thermal model needs that the block neither gives nor derives (THERMAL_NEEDS)."""
     d = _LUBRICANT
     rheology = block.choice("rheology", RHEOLOGY_MODELS, d["rheology"])
     eyring = d["eyring_stress"]
@@ -224,6 +231,14 @@ def _lubricant(block: Block) -> tuple[Lubricant, tuple[str, ...]]:
                                             hint="lambda_GFT of the oil's FZG GF-C/8.3/90 test"),
         lubrication=block.choice("lubrication", LUBRICATION_METHODS, d["lubrication"]),
     )
+    _check_lubricant(block, lubricant)
+    block.finish()
+    missing = tuple(key for key in THERMAL_NEEDS if not block.has(key) and key not in oil)
+    return lubricant, tuple(line for line in derived if not block.has(line.split(" = ")[0].split(".")[-1])), missing
+
+
+def _check_lubricant(block: Block, lubricant: Lubricant) -> None:
+    """The checks across the lubricant's keys."""
     check(lubricant.micropitting_stage is None or lubricant.micropitting_test_film is None,
           block.key_path("micropitting_test_film"), lubricant.micropitting_test_film,
           "either micropitting_stage (its lambda_GFT is computed) or micropitting_test_film, not both")
@@ -233,8 +248,6 @@ def _lubricant(block: Block) -> tuple[Lubricant, tuple[str, ...]]:
         lubricant.viscosity,
         "a viscosity above the Roelands asymptote 6.3e-5 Pa s (use viscosity_model: barus otherwise)",
     )
-    block.finish()
-    return lubricant, tuple(line for line in derived if not block.has(line.split(" = ")[0].split(".")[-1]))
 
 
 def _inlet_temperature(block: Block) -> float:
@@ -512,9 +525,21 @@ def _case(raw: Any, text: str, name: str) -> Case:
         output=attempt(lambda: _output(top.block("output", {}))),
         gear=gear,
         derived=lubricant[1] if lubricant else (),
+        missing_thermal=lubricant[2] if lubricant else (),
     )
+    if case.solver is not None:
+        check_thermal_inputs(case, "solver.thermal")
     top.finish()
     return case
+
+
+def check_thermal_inputs(case: Case, key: str) -> None:
+    """CaseError where the case's thermal model (`key`: the YAML key or the option that set it) is not off and the
+    lubricant leaves out a key that model needs: with no temperature-viscosity coefficient its oil would be heated
+    without thinning, a film state no thermal EHL analysis means (an explicit 0 is taken as given)."""
+    for missing in case.missing_thermal:
+        check(case.solver.thermal == "off", f"lubricant.{missing}", None,
+              f"this key to be present with {key} {case.solver.thermal} (or thermal off): {THERMAL_NEEDS[missing]}")
 
 
 def load_case(path: str | Path) -> Case:

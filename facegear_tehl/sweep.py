@@ -41,7 +41,7 @@ from pathlib import Path
 import numpy as np
 
 from facegear_tehl.atomic_files import remove_stale, temporary_beside
-from facegear_tehl.case import THERMAL_MODELS, Case
+from facegear_tehl.case import THERMAL_MODELS, Case, check_thermal_inputs
 from facegear_tehl.contact import ContactPoint
 from facegear_tehl.ehl.domain import solution_domain
 from facegear_tehl.ehl.richardson import ORDER
@@ -184,7 +184,9 @@ def check_tolerance(tolerance: float) -> None:
 def with_thermal(case: Case, thermal: str) -> Case:
     """The case with solver.thermal replaced (CaseError under --thermal for an unknown model)."""
     check(thermal in THERMAL_MODELS, "--thermal", thermal, "one of " + ", ".join(THERMAL_MODELS))
-    return replace(case, solver=replace(case.solver, thermal=thermal))
+    chosen = replace(case, solver=replace(case.solver, thermal=thermal))
+    check_thermal_inputs(chosen, "--thermal")
+    return chosen
 
 
 def run_sweep(

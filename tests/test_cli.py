@@ -279,16 +279,45 @@ def test_run_grid_and_points_reach_the_solver(tmp_path, monkeypatch, fake_solver
     assert "tehl run: ball_on_disc: contact on a 33x33 grid, thermal off" in result.stderr
 
 
+def _with_beta(folder: Path) -> Path:
+    """The ball-on-disc case (thermal: off) with the oil's temperature-viscosity coefficient a thermal model needs."""
+    text = synthetic.BALL_ON_DISC.read_text().replace("  rheology: newtonian\n",
+                                                       "  rheology: newtonian\n  temperature_viscosity: 0.042\n")
+    path = folder / "ball_on_disc.yaml"
+    path.write_text(text)
+    return path
+
+
 @pytest.mark.parametrize("thermal", ["reduced", "full", "auto"])
 def test_run_thermal_overrides_the_case(tmp_path, monkeypatch, fake_solver, thermal):
     monkeypatch.chdir(tmp_path)
-    result = _invoke("run", synthetic.BALL_ON_DISC, "--thermal", thermal)  # the case says thermal: off
+    result = _invoke("run", _with_beta(tmp_path), "--thermal", thermal)  # the case says thermal: off
     assert result.exit_code == 0, result.output
     (_, _, settings), = fake_solver.calls
     assert settings.thermal == thermal
     written = read_result(tmp_path / "ball_on_disc.h5")
     assert written.overrides == {"thermal": thermal} and written.models["thermal"] == thermal
     assert f"thermal {thermal}" in result.stderr.splitlines()[0]
+
+
+@pytest.mark.parametrize("thermal", ["reduced", "full", "auto"])
+def test_a_thermal_model_without_the_temperature_viscosity_coefficient_is_bad_input(tmp_path, monkeypatch,
+                                                                                       fake_solver, thermal):
+    # the oil's viscosity would not fall with the temperature the thermal model computes (beta = 0 unless given)
+    monkeypatch.chdir(tmp_path)
+    result = _invoke("run", synthetic.BALL_ON_DISC, "--thermal", thermal)
+    _assert_one_line_error(result.exit_code, result.stderr, result.stdout, "lubricant.temperature_viscosity",
+                           f"with --thermal {thermal} (or thermal off)")
+    assert fake_solver.calls == [] and _files(tmp_path) == []
+    case = tmp_path / "case.yaml"
+    case.write_text(synthetic.BALL_ON_DISC.read_text().replace("thermal: off", f"thermal: {thermal}"))
+    result = _invoke("validate", case)
+    _assert_one_line_error(result.exit_code, result.stderr, result.stdout, "lubricant.temperature_viscosity",
+                           f"with solver.thermal {thermal} (or thermal off)")
+    explicit = tmp_path / "explicit.yaml"  # an explicit 0 is taken as meant
+    explicit.write_text(case.read_text().replace("  rheology: newtonian\n",
+                                                 "  rheology: newtonian\n  temperature_viscosity: 0\n"))
+    assert _invoke("validate", explicit).exit_code == 0
 
 
 def test_run_rejects_an_unknown_thermal_model(tmp_path, monkeypatch, fake_solver):

@@ -58,7 +58,8 @@ def test_every_solver_key_round_trips():
     block = {f.name: getattr(written, f.name) for f in fields(SolverSettings)}
     block = {name: value.value if isinstance(value, Enum) else value for name, value in block.items()}  # YAML words
     block["domain"] = {"x": list(block.pop("domain_x")), "y": list(block.pop("domain_y"))}
-    text = MINIMAL + yaml.safe_dump({"solver": block, "output": {"file": "out/run.h5"}})
+    thermal_oil = MINIMAL.replace("2.2e-8}", "2.2e-8, temperature_viscosity: 0.04}")  # thermal full needs beta
+    text = thermal_oil + yaml.safe_dump({"solver": block, "output": {"file": "out/run.h5"}})
     case = parse_case(text)
     assert case.solver == written
     assert case.output == OutputSettings(file="out/run.h5")

@@ -279,11 +279,13 @@ def test_a_thermal_model_the_solver_did_not_run_is_reported():
     def solve(point, lub, settings):
         return synthetic.solution(point)
 
-    sweep = run_sweep(synthetic.ball_on_disc(), (17, 33, 65), thermal="full", jobs=1, solver=solve)
+    case = synthetic.ball_on_disc()
+    case = replace(case, lubricant=replace(case.lubricant, temperature_viscosity=0.042), missing_thermal=())
+    sweep = run_sweep(case, (17, 33, 65), thermal="full", jobs=1, solver=solve)
     assert sweep.run.warnings == tuple(f"contact@{n}: thermal model 'full' asked for, the solver used 'off'"
                                        for n in (17, 33, 65))
     assert sweep.run.case.solver.thermal == "full" and sweep.run.overrides["thermal"] == "full"
-    assert run_sweep(synthetic.ball_on_disc(), (17, 33, 65), thermal="off", jobs=1, solver=solve).run.warnings == ()
+    assert run_sweep(case, (17, 33, 65), thermal="off", jobs=1, solver=solve).run.warnings == ()
 
 
 def test_a_dt_max_change_within_the_thermal_loops_iteration_error_is_warned_of():
