@@ -1,4 +1,5 @@
-"""Command line: `tehl init | validate | contact | run | info | plot | sweep` (docs/cli.md).
+"""Command line: `tehl init | validate | contact | run | info | plot | report | compare | sweep | study`
+(docs/cli.md).
 
 Exit codes: 0 ok; 1 unexpected error (or a point whose solve failed; its result is still written);
 2 bad input (case file, options, not a result file): one line `error: <key path>: ...` per problem, no
@@ -331,7 +332,8 @@ Examples:
 def study(ctx: click.Context, study_file: str, output: str | None, workers: int | None, scheduler: str | None,
           accuracy: str | None, force: bool) -> None:
     """Run every variant of STUDY (a base case and the keys it varies) on a Dask cluster: one result file per
-    variant, named by the hash of its case, and index.csv; variants already finished are skipped."""
+    variant, named by its varied values (a hash suffix only where needed), and index.csv; variants already finished
+    are skipped."""
     # Imported here: only this command needs Dask.
     from facegear_tehl.study import check_folder, run_study
     from facegear_tehl.study_file import load_study

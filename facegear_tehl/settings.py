@@ -72,7 +72,7 @@ class SolverSettings:
     # first only where the one before moved dT_max or mu by more than 2 % or 1 %, or left the estimate reported
     # after it above them (`auto`)
     outlet_patches: int = MAX_OUTLET_PATCHES
-    # s: wall time a point may take with the finer grids the solver chooses for a film its grid does not resolve; the
+    # s: CPU time a point may take with the finer grids the solver chooses for a film its grid does not resolve; the
     # next grid is not started when the time spent times the next grid's node ratio would pass it (the point then
     # reports its best solution so far, with its estimate and why); several times the envelope's slowest point
     time_budget: float = 600.0

@@ -93,10 +93,9 @@ def uncovered_pairs(combos: list[Combo]) -> set[tuple[int, str, int, str]]:
 ALL = list(itertools.product(*OPTIONS))
 FAST = {PLAIN: pairwise_subset(), GEAR: pairwise_subset(flip_rheology=True)}
 
-# Combinations expected to fail, each marked xfail(strict): (contact name, combo) -> reason. Empty: at commit
-# cd662c7 all 8 thermal off + ree_eyring combinations (plain and gear) exited 1 with no file (KeyError:
-# 'dissipated_power' in the heat budget) and failed here; with ehl/report.py reporting dissipated_power for
-# every film-state solve they exit 0 or 3 with a file.
+# Combinations expected to fail, each marked xfail(strict): (contact name, combo) -> reason. Empty: every
+# combination exits 0 or 3 with a file (the thermal off + ree_eyring ones included: ehl/report.py reports
+# dissipated_power for every film-state solve, which the heat budget reads).
 KNOWN_FAILURES: dict[tuple[str, Combo], str] = {}
 
 

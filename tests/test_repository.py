@@ -159,15 +159,16 @@ def test_code_map_names_every_module():
 
 
 def test_every_solver_constant_has_its_reason_in_the_tuning_ledger():
-    """Every field of ehl.tuning.Tuning is named in docs/tuning.md (the one place its rationale is found), and the
-    ledger names no field the object does not have."""
+    """Every field of ehl.tuning.Tuning and of the pressure cycles' ehl.relaxation.Relaxation is named in
+    docs/tuning.md (the one place its rationale is found), and the ledger names no field they do not have."""
     from dataclasses import fields
     import re
 
+    from facegear_tehl.ehl.relaxation import Relaxation
     from facegear_tehl.ehl.tuning import Tuning
 
     ledger = (ROOT / "docs" / "tuning.md").read_text(encoding="utf-8")
-    names = {f.name for f in fields(Tuning)}
+    names = {f.name for f in (*fields(Tuning), *fields(Relaxation))}
     assert sorted(name for name in names if f"`{name}`" not in ledger) == []
     entries = set(re.findall(r"\*\*`([a-z_0-9]+)`", ledger)) | set(re.findall(r", `([a-z_0-9]+)` =", ledger))
     assert sorted(entries - names) == []

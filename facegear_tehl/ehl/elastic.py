@@ -47,10 +47,8 @@ def influence_coefficients(nx: int, ny: int, hx: float, hy: float, ellipticity: 
     return rect / ellipticity
 
 
-# Grids of at most this many nodes (the coarsest grid of a hierarchy, 17 x 17 by default) convolve by the dense
-# matrix of K (the sum itself, without the transforms' round-off): on 17 x 17 8 us per product against 29 us for the
-# transforms, whose cost there is the calls' overhead; on 33 x 33 the 9.5 MB matrix takes 354 us against 47 us
-# (one machine, one BLAS thread). The coarsest grid is relaxed about 40 times per V-cycle.
+# Grids of at most this many nodes (the coarsest, 17 x 17 by default) convolve by the dense matrix of K: there the
+# transforms' cost is their calls' overhead (docs/tuning.md, pressure cycles)
 DENSE_NODES = 400
 
 

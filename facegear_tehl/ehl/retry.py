@@ -58,7 +58,7 @@ class Attempt:
         return self.relaxation.describe() + (", from a fraction of the load" if self.load_continuation else "")
 
 
-DAMPED = Relaxation(scale_switch=False, under_gs=0.15, under_jd=0.1)  # Gauss-Seidel / Jacobi changes halved
+DAMPED = Relaxation(scale_switch=False, under_gs=0.15, under_jd=0.1)  # Gauss-Seidel halved, Jacobi 0.15 -> 0.1
 ATTEMPTS = (
     Attempt(Relaxation()),  # the ellipse-scaled switch
     Attempt(Relaxation(scale_switch=False)),  # Venner's switch
