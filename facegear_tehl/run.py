@@ -13,7 +13,6 @@ from facegear_tehl.contact import ContactPoint
 from facegear_tehl.cycle import MeshCycle, mesh_cycle, with_film_parameter
 from facegear_tehl.ehl.closure import closed_on_the_centre_line, unresolvable
 from facegear_tehl.ehl.domain import inlet_note, side_note, solution_domain
-from facegear_tehl.ehl.energy_balance import energy_note
 from facegear_tehl.ehl.retry import POLICY, estimates
 from facegear_tehl.ehl.scaling import scaling_for
 from facegear_tehl.ehl.stopwatch import Spent, spent_on
@@ -132,11 +131,10 @@ def run_case(
 
 
 def _model_notes(tasks: Sequence[SolveTask], solved: Sequence[PointSolution]) -> tuple[str, ...]:
-    """Warnings on the converged solves whose film is not the one their error bounds stand for: an energy balance
-    that misses (energy_balance.energy_note), an inlet short of its target (domain.inlet_note: where the solver chose
-    the domain, or starved beyond the bounds where the case gave it), sides short of theirs (domain.side_note)."""
-    notes = [energy_note(s) for s in solved]
-    notes += [inlet_note(s.name, s.scalar("inlet_gap_ratio"), chosen=task.settings.domain_x is None)
+    """Warnings on the converged solves whose film is not the one their error bounds stand for: an inlet short of its
+    target (domain.inlet_note: where the solver chose the domain, or starved beyond the bounds where the case gave
+    it), sides short of theirs (domain.side_note)."""
+    notes = [inlet_note(s.name, s.scalar("inlet_gap_ratio"), chosen=task.settings.domain_x is None)
               for task, s in zip(tasks, solved) if s.converged and "inlet_gap_ratio" in s.scalars]
     notes += [side_note(s.name, s.scalar("side_pressure_ratio")) for s in solved
               if s.converged and "side_pressure_ratio" in s.scalars]

@@ -1,6 +1,7 @@
 """The film's energy balance as a check on a converged thermal solve (energy.energy_budget computes it): at a solution
 of the discrete equations heat generated + mass defect = heat conducted + convected up to round-off, so an imbalance
-beyond TUNING.max_energy_imbalance says the film state is not one, and error_bounds.py bounds none of its figures."""
+beyond TUNING.max_energy_imbalance says the film state is not one: the solve reports it not converged
+(solve.PointSolve.report), and error_bounds.py bounds none of its figures."""
 
 from __future__ import annotations
 
@@ -15,11 +16,9 @@ def energy_unbalanced(solution: PointSolution) -> bool:
     return solution.outcome is Outcome.CONVERGED and abs(imbalance) > TUNING.max_energy_imbalance
 
 
-def energy_note(solution: PointSolution) -> str:
-    """Why an `energy_unbalanced` solve bounds no figure ("" for any other)."""
-    if not energy_unbalanced(solution):
-        return ""
+def energy_failure(solution: PointSolution) -> str:
+    """The message of an `energy_unbalanced` solve reported not converged: its own, and why."""
     imbalance = 100.0 * solution.scalar("energy_balance_error")
-    return (f"{solution.name}: the film's energy balance is off by {imbalance:.2g} % of the heat generated (beyond "
-            f"{100.0 * TUNING.max_energy_imbalance:g} %): its film state does not solve the energy equation, so every "
-            "figure is unresolved")
+    return "; ".join(part for part in (solution.message, (
+        f"the film's energy balance is off by {imbalance:.2g} % of the heat generated (beyond "
+        f"{100.0 * TUNING.max_energy_imbalance:g} %): its film state does not solve the energy equation")) if part)

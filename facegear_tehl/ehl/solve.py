@@ -24,6 +24,7 @@ from facegear_tehl.ehl import grid
 from facegear_tehl.ehl.convergence import History, at_thermal_floor, h_c_error, h_c_steady, pressure_settled, stalled
 from facegear_tehl.ehl.coupled import CoupledLoop, Ending, LoopState, film_closed
 from facegear_tehl.ehl.domain import solution_domain, venner_lubrecht_domain
+from facegear_tehl.ehl.energy_balance import energy_failure, energy_unbalanced
 from facegear_tehl.ehl.grid_mode import grid_mode
 from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem, Relaxation
 from facegear_tehl.ehl.outlet import Composite, needs_outlet_patch, outlet_stages
@@ -406,7 +407,8 @@ class PointSolve:
 
     def report(self, index: int, status: Status, state: FilmState | None) -> PointSolution:
         """The PointSolution of level `index`; a film that closes (h_min <= 0) is never reported as converged, nor one
-        whose rows or columns alternate node to node (grid_mode.py: reported as an iteration that ran away)."""
+        whose rows or columns alternate node to node (grid_mode.py: reported as an iteration that ran away), nor a
+        thermal film state whose energy balance misses (energy_balance.py: reported as a loop that stopped short)."""
         level = self.solver.levels[index]
         iteration = status.outcome
         if film_closed(level.film):
@@ -416,6 +418,8 @@ class PointSolve:
         elif status.converged and (mode := grid_mode(level.film, level.pressure)) is not None:
             status = Status(Outcome.DIVERGED, mode.message(level.nx, level.ny))
         solution = point_solution(self, level, status, state, self._clock.spent(), self.record(iteration))
+        if energy_unbalanced(solution):
+            solution = replace(solution, outcome=Outcome.NOT_CONVERGED, message=energy_failure(solution))
         if self.load_reached < 1.0:  # its film is that of a lighter contact: not this one's
             return self._lighter_contact(solution)
         return solution
