@@ -553,6 +553,8 @@ def next_step(point: Progressing, target: float) -> tuple[Progressing, SolveTask
         bounds = point.bounds()
         still = [name for name in point.not_following if bounds[name].bound + point.effects.get(name, 0.0) > target]
         beyond += f"; {', '.join(still)} not met, not converging as planned" if still else ""
+        if not any(math.isfinite(bound.bound) for bound in bounds.values()):  # nothing to hold the target against
+            return replace(point, stop=f"no figure bounded: the target is not checked{beyond}"), None
         return replace(point, stop=f"every bounded figure within the target{beyond}"), None
     finer, why = planned(point, missing, target)
     above = ", ".join(missing)

@@ -420,7 +420,7 @@ def _solver(block: Block) -> SolverSettings:
         thermal=thermal,
         coarsest_grid=coarsest,
         cycles_per_level=block.integer("cycles_per_level", d["cycles_per_level"], low=1, high=20),
-        max_cycles=block.integer("max_cycles", d["max_cycles"], low=0, high=1000),
+        max_cycles=block.integer("max_cycles", d["max_cycles"], low=1, high=1000),
         tolerance=block.number("tolerance", d["tolerance"], positive=True, high=0.1),
         load_tolerance=block.number("load_tolerance", d["load_tolerance"], positive=True, high=0.1),
         thermal_layers=block.integer("thermal_layers", d["thermal_layers"], low=3, high=41),
@@ -443,7 +443,11 @@ def _check_grids(block: Block, grid: int, coarsest: int, grid_y: int) -> None:
     """solver.grid, coarsest_grid and grid_y: each 2^n + 1, the coarsest the smallest."""
     _check_grid(grid, block.key_path("grid"))
     _check_grid(coarsest, block.key_path("coarsest_grid"))
-    check(coarsest <= grid, block.key_path("coarsest_grid"), coarsest, f"at most solver.grid = {grid}")
+    if block.has("coarsest_grid"):
+        check(coarsest <= grid, block.key_path("coarsest_grid"), coarsest, f"at most solver.grid = {grid}")
+    else:  # the default coarsest grid: the grid given is the one too small
+        check(coarsest <= grid, block.key_path("grid"), grid,
+              f"at least solver.coarsest_grid = {coarsest} (its default)")
     if block.has("grid_y"):
         _check_grid(grid_y, block.key_path("grid_y"))
         check(coarsest <= grid_y, block.key_path("grid_y"), grid_y, f"at least solver.coarsest_grid = {coarsest}")

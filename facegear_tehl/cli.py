@@ -3,7 +3,8 @@
 
 Exit codes: 0 ok; 1 unexpected error (or a point whose solve failed; its result is still written);
 2 bad input (case file, options, not a result file): one line `error: <key path>: ...` per problem, no
-output file; 3 not converged (result written, flagged), or a variant of a study that failed (the others written);
+output file; 3 not converged (result written, flagged), or a variant of a study that did not converge or failed
+(the others written);
 130 interrupted by Ctrl-C, 143 by SIGTERM (docs/guarantees.md).
 Warnings (valid but unusual input) go to stderr.
 """
@@ -364,8 +365,8 @@ def study(ctx: click.Context, study_file: str, output: str | None, workers: int 
     for outcome in report.failed:
         click.echo(f"failed: variant {outcome.variant.index + 1} ({outcome.variant.label}): {outcome.message}",
                    err=True)
-    if report.failed:
-        ctx.exit(EXIT_NOT_CONVERGED)
+    if report.failed or any(o.status in ("not_converged", "failed") for o in report.outcomes):
+        ctx.exit(EXIT_NOT_CONVERGED)  # as tehl run: every variant is in the index, one did not converge or failed
 
 
 def _announce_study(count: int) -> None:
@@ -844,9 +845,10 @@ def _report_progress(solution: PointSolution, done: int, total: int) -> None:
 
 
 def _point_names(option: str | None) -> list[str] | None:
+    """The names of a --points option as given (a name given twice is refused where points are solved, as in YAML)."""
     if option is None:
         return None
-    return list(dict.fromkeys(name.strip() for name in option.split(",") if name.strip()))
+    return [name.strip() for name in option.split(",") if name.strip()]
 
 
 def _output_path(case_file: Path, case: Case, option: str | None, force: bool) -> Path:

@@ -5,7 +5,8 @@ Per meshing point present in every file, and per quantity, the value of each fil
 the first and the combined estimate e = sqrt(e_1^2 + e_2^2) of the two values' grid errors (each e_i the file's
 relative estimate times its value: Richardson's, ehl/report.py). A difference no larger than e is marked not
 significant: the grids cannot tell the designs apart there. A quantity without an estimate is compared without a
-verdict. The figure overlays the quantities along the contact path with their estimates as error bars.
+verdict; a point that did not converge in a file is not compared (its values are an iterate's, not a film's) and
+not drawn. The figure overlays the quantities along the contact path with their estimates as error bars.
 """
 
 from __future__ import annotations
@@ -39,6 +40,7 @@ class Significance(Enum):
     SIGNIFICANT = "yes"
     NOT_SIGNIFICANT = "no (within the estimates)"
     UNKNOWN = "no estimate"
+    NOT_CONVERGED = "not compared (not converged)"
 
 
 @dataclass(frozen=True)
@@ -89,7 +91,10 @@ def differences(a: Result, b: Result) -> list[Difference]:
                 continue
             combined = math.hypot(absolute_estimate(pa, quantity, estimate), absolute_estimate(pb, quantity, estimate))
             va, vb = float(pa.scalars[quantity]), float(pb.scalars[quantity])
-            if math.isnan(combined):
+            if not (pa.converged and pb.converged):
+                va, vb = (v if p.converged else math.nan for v, p in ((va, pa), (vb, pb)))
+                combined, significance = math.nan, Significance.NOT_CONVERGED
+            elif math.isnan(combined):
                 significance = Significance.UNKNOWN
             else:
                 significance = Significance.SIGNIFICANT if abs(vb - va) > combined else Significance.NOT_SIGNIFICANT
@@ -108,7 +113,8 @@ def comparison_table(results: Sequence[Result], labels: Sequence[str]) -> str:
         for pair in pairs:
             match = next((d for d in pair if (d.point, d.quantity) == (first.point, first.quantity)), None)
             cells += ["-"] * 4 if match is None else [
-                _number(unit(match.b)), _number(unit(match.difference) - unit(0.0)),
+                _number(unit(match.b)),
+                "-" if math.isnan(match.difference) else _number(unit(match.difference) - unit(0.0)),
                 "-" if math.isnan(match.estimate) else _number(unit(match.estimate) - unit(0.0)),
                 match.significance.value]
         rows.append(cells)
@@ -119,7 +125,7 @@ def comparison_table(results: Sequence[Result], labels: Sequence[str]) -> str:
 
 
 def _number(value: float) -> str:
-    return f"{value:.4g}"
+    return "not converged" if math.isnan(value) else f"{value:.4g}"
 
 
 def comparison_figure(results: Sequence[Result], labels: Sequence[str]) -> Figure:
@@ -150,7 +156,7 @@ def _by_file(ax: Axes, results: Sequence[Result], labels: Sequence[str], quantit
     bars."""
     for k, name in enumerate(common_points(results)):
         points = [result.points[name] for result in results]
-        if not all(quantity in p.scalars for p in points):
+        if not all(quantity in p.scalars and p.converged for p in points):
             continue
         unit = scalar_unit(quantity, points[0].units[quantity])
         values = [unit(p.scalars[quantity]) for p in points]
@@ -166,7 +172,8 @@ def _series(ax: Axes, first: Result, result: Result, quantity: str, label: str, 
             ) -> None:
     """One file's `quantity` along the path: lines per continuous run, error bars, open markers where the difference
     to the first file is not significant."""
-    points = [p for p in result.points.values() if quantity in p.scalars and "path_coordinate" in p.scalars]
+    points = [p for p in result.points.values()
+              if p.converged and quantity in p.scalars and "path_coordinate" in p.scalars]
     if not points:
         return
     unit = scalar_unit(quantity, points[0].units[quantity])

@@ -50,12 +50,14 @@ def contact_analysis(case: Case) -> ContactAnalysis:
 
 
 def select_points(available: Sequence[ContactPoint], names: Sequence[str], key: str = "--points") -> list[ContactPoint]:
-    """The points named in `names`, in the case's order; CaseError (under `key`) for an unknown name or an
-    empty selection."""
+    """The points named in `names`, in the case's order; CaseError (under `key`) for an unknown name, a name given
+    twice (as the case's gear.points) or an empty selection."""
     known = [p.name for p in available]
-    for name in names:
+    for index, name in enumerate(names):
         if name not in known:
             raise CaseError(key, name, "point names among: " + ", ".join(known))
+        if name in names[:index]:
+            raise CaseError(key, name, "each point named once")
     if not names:
         raise CaseError(key, "", "at least one point name among: " + ", ".join(known))
     return [p for p in available if p.name in names]

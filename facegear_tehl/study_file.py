@@ -191,7 +191,9 @@ def _values(key: str, raw: Any) -> tuple[Any, ...]:
     """The values of one varied key: a non-empty list of distinct values."""
     where = f"vary.{key}"
     check(isinstance(raw, list) and len(raw) > 0, where, raw, "a non-empty list of values, e.g. [250, 500, 750]")
-    shown = [value_text(value) for value in raw]
+    # a number by its value (1 and 1.0 make one case), anything else by its text
+    shown = [float(value) if isinstance(value, (int, float)) and not isinstance(value, bool) else value_text(value)
+             for value in raw]
     repeated = next((value for value, text in zip(raw, shown) if shown.count(text) > 1), None)
     check(len(set(shown)) == len(shown), where, repeated, "distinct values (a value given twice makes one variant "
                                                           "twice)")

@@ -105,3 +105,19 @@ def test_plain_contacts_are_compared_file_by_file(tmp_path):
     assert [tick.get_text() for tick in figure.axes[-1].get_xticklabels()] == ["a", "b"]  # the axes share x
     (line,) = [line for line in h_min.get_lines() if line.get_marker() == "o" and line.get_linestyle() == "-"]
     assert list(line.get_ydata()) == pytest.approx([0.6 * synthetic.H_C * 1e6] * 2)  # µm
+
+
+def test_a_point_that_did_not_converge_is_not_compared(design, tmp_path):
+    """A diverged point's scalars are its last iterate's (μ of 1e13 were seen): no difference, no verdict, not drawn."""
+    b_path = _variant(design, tmp_path / "b.h5", {"mu": 1e15})
+    with h5py.File(b_path, "r+") as h5:
+        h5["points/S1"].attrs["converged"] = False
+        h5["points/S1"].attrs["outcome"] = "diverged"
+    found = {(d.point, d.quantity): d for d in differences(read_result(design), read_result(b_path))}
+    mu = found["S1", "mu"]
+    assert mu.significance is Significance.NOT_CONVERGED and math.isnan(mu.b) and math.isnan(mu.difference)
+    assert found["S3", "mu"].significance is Significance.NOT_SIGNIFICANT  # the other point as before
+    result = CliRunner().invoke(tehl, ["compare", str(design), str(b_path), "-o", str(tmp_path / "cmp.png")])
+    assert result.exit_code == 0, result.output
+    row = next(line for line in result.output.splitlines() if re.match(r"S1\s+mu\s", line))
+    assert "not converged" in row and "e+1" not in row

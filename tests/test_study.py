@@ -243,6 +243,7 @@ def test_a_failing_variant_is_recorded_and_the_others_are_done(cluster, tmp_path
         ("  contact.load: 5.0\n", "", "vary.contact.load: got 5.0; expected a non-empty list of values"),
         ("  contact.load: []\n", "", "vary.contact.load: got []; expected a non-empty list of values"),
         ("  contact.load: [1.0, 1.0]\n", "", "vary.contact.load: got 1.0; expected distinct values"),
+        ("  contact.load: [1, 1.0]\n", "", "vary.contact.load: got 1; expected distinct values"),  # one number
         ("  contact.load.x: [1.0]\n", "", "vary.contact.load.x: got 1.0; expected a path through blocks of the case "
                                           "(contact.load is 6.272, not a block)"),
         ("  output.file: [a.h5]\n", "", "vary.output.file: got 'output.file'; expected a case key outside output"),

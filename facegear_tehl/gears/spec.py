@@ -19,7 +19,7 @@ reaches below the pinion base circle, no contact under the given misalignment.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 import math
 
 import numpy as np
@@ -206,15 +206,31 @@ def _misalignment_key(spec: GearSpec, block: Block) -> str:
     return block.key_path("shaft_angle")
 
 
+# deg: the pressure angle tried in its place to tell which key makes a drive without face-width limits (25 deg, the
+# Litvin et al. 2000 example set of cases/facegear_110.yaml)
+USUAL_PRESSURE_ANGLE = 25.0
+
+
+def _face_width_limits(geo: PairGeometry) -> tuple[float, float] | None:
+    """The undercut and pointing limits L1, L2 (m), or None where the drive has none."""
+    try:
+        with np.errstate(over="raise", invalid="raise"):  # a shaft angle near 0 overflows or divides by 0
+            return undercut_limit(geo), pointing_limit(geo)
+    except (ValueError, ArithmeticError):
+        return None
+
+
 def _check_feasible(spec: GearSpec, block: Block) -> None:
     """Cross-key checks that need the geometry: L1, L2, path limits, contact ratio, face width."""
     geo = spec.geometry
-    try:
-        with np.errstate(over="raise", invalid="raise"):  # a shaft angle near 0 overflows or divides by 0
-            l1, l2 = undercut_limit(geo), pointing_limit(geo)
-    except (ValueError, ArithmeticError):
-        raise CaseError(block.key_path("shaft_angle"), math.degrees(spec.shaft_angle),
-                        "a shaft angle for which the face gear has an undercut and a pointing limit") from None
+    limits = _face_width_limits(geo)
+    if limits is None:  # the key to blame: the pressure angle where the usual one gives this drive its limits
+        usual = _face_width_limits(replace(geo, pressure_angle=math.radians(USUAL_PRESSURE_ANGLE)))
+        key, value = ("pressure_angle", spec.pressure_angle) if usual is not None else ("shaft_angle", spec.shaft_angle)
+        raise CaseError(block.key_path(key), math.degrees(value),
+                        f"a {key.replace('_', ' ')} for which the face gear of this drive has an undercut and a "
+                        "pointing limit") from None
+    l1, l2 = limits
     check(l2 > l1, block.key_path("face_gear_teeth"), spec.face_gear_teeth,
           f"a face gear with pointing limit L2 = {l2:.4g} m above undercut limit L1 = {l1:.4g} m")
     try:
