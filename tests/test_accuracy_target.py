@@ -670,3 +670,21 @@ def test_a_model_that_costs_more_is_not_called_a_saving():
     assert "saves" not in reason and f"costs {-100 * TUNING.accuracy_saving_layers:.0f} % more" in reason
     cheaper = Cheaper("thermal", "reduced", lambda task: task, lambda task: True, TUNING.accuracy_saving_reduced)
     assert f"saves {100 * TUNING.accuracy_saving_reduced:.0f} %" in _not_checked(cheaper, expected=4, start=1).reason
+
+
+class StarvedSolver(AnalyticSolver):
+    """The analytic solver's films with 5 % of their peak pressure at the domain's sides: every figure unresolved
+    (ehl/error_bounds.py, starved sides), and no finer grid bounds one (a finer grid keeps the domain)."""
+
+    def __call__(self, point, lubricant, settings) -> PointSolution:
+        solution = super().__call__(point, lubricant, settings)
+        starved = replace(solution, scalars={**solution.scalars, "side_pressure_ratio": (0.05, "1")})
+        return replace(starved, scalars={**starved.scalars, **bounds(starved, {})})
+
+
+def test_a_point_with_no_bounded_figure_does_not_report_the_target_met():
+    """'every bounded figure within the target' would be true of nothing: the record says the target is unchecked."""
+    (solution,) = solve_to_accuracy([_task()], StarvedSolver(), jobs=1)
+    record = solution.accuracy
+    assert all(f.verdict is Verdict.UNRESOLVED for f in record.figures)
+    assert record.stop.startswith("no figure bounded: the target is not checked"), record.stop

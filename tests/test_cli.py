@@ -82,6 +82,8 @@ BAD_CASES = {
     "grid 100": (_replace("  grid: 257", "  grid: 100"), "solver.grid", "2^n + 1"),
     "grid_y 100": (_replace("  grid: 257", "  grid: 257\n  grid_y: 100"), "solver.grid_y", "2^n + 1"),
     "grid_y 9": (_replace("  grid: 257", "  grid: 257\n  grid_y: 9"), "solver.grid_y", "at least solver.coarsest_grid"),
+    "grid 9": (_replace("  grid: 257", "  grid: 9"), "solver.grid", "at least solver.coarsest_grid = 17 (its default)"),
+    "no V-cycles": (_replace("  grid: 257", "  grid: 257\n  max_cycles: 0"), "solver.max_cycles", "1"),
     "domain without the contact": (_replace("x: [-4.5, 1.5]", "x: [-0.5, 1.5]"), "solver.domain.x", "containing"),
     "broken yaml": (_replace("  radius_x: 0.0127", "  radius_x: [0.0127"), "(file)", "syntax error at line 7"),
     "duplicate key": (_replace("  load: 6.272", "  load: 6.272\n  load: 7.0"), "(file)", "duplicate key 'load'"),

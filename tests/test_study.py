@@ -397,3 +397,14 @@ def test_a_damaged_file_is_named_and_run_again(cluster, tmp_path):
     assert f"warning: variant 1 (contact.load=4.0): {damaged}: damaged tehl result (/points/loop:" in again.stderr
     assert "1 variants computed, 1 already finished" in again.output
     assert "loop" not in read_result(damaged).points
+
+
+def test_a_variant_that_did_not_converge_exits_3_as_tehl_run_does(cluster, tmp_path):
+    """One V-cycle on the finest grid does not meet the tolerances: each variant's file is written and flagged, the
+    index says so, and the exit code is 3 (a failure is reported in the exit code, as `tehl run` reports it)."""
+    study = _study(tmp_path, "  contact.load: [6.272]\n", "set: {solver.grid: 33, solver.max_cycles: 1}\n")
+    out = tmp_path / "out"
+    done = _invoke("study", study, "-o", out, "--scheduler", cluster.scheduler_address)
+    assert done.exit_code == 3, done.output
+    (row,) = _index(out)
+    assert row["converged"] == "no" and (out / row["file"]).is_file()

@@ -226,8 +226,8 @@ def _check_feasible(spec: GearSpec, block: Block) -> None:
     limits = _face_width_limits(geo)
     if limits is None:  # the key to blame: the pressure angle where the usual one gives this drive its limits
         usual = _face_width_limits(replace(geo, pressure_angle=math.radians(USUAL_PRESSURE_ANGLE)))
-        key, value = ("pressure_angle", spec.pressure_angle) if usual is not None else ("shaft_angle", spec.shaft_angle)
-        raise CaseError(block.key_path(key), math.degrees(value),
+        key = "pressure_angle" if usual is not None else "shaft_angle"
+        raise CaseError(block.key_path(key), block.raw.get(key),
                         f"a {key.replace('_', ' ')} for which the face gear of this drive has an undercut and a "
                         "pointing limit") from None
     l1, l2 = limits

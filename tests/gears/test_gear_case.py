@@ -30,6 +30,7 @@ from gear_examples import CASE_FILE, EXAMPLE_A, EXAMPLE_B, MM, STEEL, analysis, 
         ({"pinion_speed": 0}, "gear.pinion_speed", "positive"),
         ({"shaft_angle": 180}, "gear.shaft_angle", "< 180"),
         ({"shaft_angle": 0}, "gear.shaft_angle", "> 0"),
+        ({"pressure_angle": 10.0}, "gear.pressure_angle", "an undercut and a pointing limit"),  # 25 deg would have
         ({"pinion_addendum": 0.5 * 6.35e-3, "face_gear_addendum": 0.5 * 6.35e-3}, "gear.pinion_addendum",
          "contact ratio in [1, 2)"),
         ({"inner_radius": 0.5075, "outer_radius": 0.548}, "gear.inner_radius", "covering the contact path"),
