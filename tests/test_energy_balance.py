@@ -3,30 +3,30 @@ ehl/energy_balance.py): at a solution of the discrete energy equation the balanc
 
 from __future__ import annotations
 
-from click.testing import CliRunner
+import dataclasses
 
-from facegear_tehl.cli import tehl
+from test_thermal import SLIDING, plain
+
+from facegear_tehl.ehl import report
+from facegear_tehl.ehl.staged import solve_point
 from facegear_tehl.ehl.tuning import TUNING
-from facegear_tehl.results import read_result
-
-import synthetic
-
-# The sliding ball-on-disc case with a Newtonian oil and the disc turning slowly backwards (SRR 2.01) on a 65-node
-# grid: its loop stopped with the film's energy balance off by about 300 % (mu 144, p_max 6 p_h) and was reported
-# converged, with exit 0.
-UNBALANCED = (synthetic.CASES / "ball_on_disc_sliding.yaml").read_text().replace(
-    "rheology: ree_eyring", "rheology: newtonian").replace("slide_roll_ratio: 1.0", "slide_roll_ratio: 2.01").replace(
-    "grid: 129", "grid: 65")
+from facegear_tehl.solution import Outcome
 
 
-def test_a_film_state_off_its_energy_balance_is_not_reported_converged(tmp_path):
-    case = tmp_path / "unbalanced.yaml"
-    case.write_text(UNBALANCED)
-    out = tmp_path / "unbalanced.h5"
-    result = CliRunner().invoke(tehl, ["run", str(case), "--jobs", "1", "-o", str(out)])
-    point = read_result(out).points["contact"]
-    imbalance = abs(point.scalars.get("energy_balance_error", 0.0))
-    assert point.converged == (imbalance <= TUNING.max_energy_imbalance)
-    assert not point.converged, point.message  # this film ends off its balance on every attempt
-    assert result.exit_code == 3 and read_result(out).status == "not_converged"
-    assert "energy balance is off by" in point.message
+def test_a_film_state_off_its_energy_balance_is_not_reported_converged(monkeypatch):
+    """The sliding ball (Ree-Eyring, thermal full, SRR 1) on 33 nodes converges with its balance closed; the same
+    solve whose every reported budget is made to miss by 2 % of the heat generated (as a loop that stopped short
+    would) is a stall: not converged, the reason in its message, on every attempt."""
+    point, lubricant, settings = plain(SLIDING, grid=33)
+    closed = solve_point(point, lubricant, settings)
+    assert closed.converged and abs(closed.scalar("energy_balance_error")) <= TUNING.max_energy_imbalance
+
+    def missing(*args, **kwargs):
+        budget = energy_budget(*args, **kwargs)
+        return {**budget, "energy_balance_error": budget["energy_balance_error"] + 0.02}
+
+    energy_budget = report.energy_budget
+    monkeypatch.setattr(report, "energy_budget", missing)
+    unbalanced = solve_point(point, lubricant, dataclasses.replace(settings))
+    assert unbalanced.outcome is Outcome.NOT_CONVERGED
+    assert "the film's energy balance is off by" in unbalanced.message
