@@ -634,13 +634,15 @@ def info_text(result: Result, si: bool = False) -> str:
 
 
 def _point_sections(points: list[PointResult]) -> list[str]:
-    """The thermal model `thermal: auto` chose at each point and why, then each point's solve record and accuracy
-    record, for `tehl info`."""
+    """The thermal model each point ran where it is not the case's (`thermal: auto`'s choice, `reduced` solved
+    `full` on a grid too coarse for its coarse stage) and why, then each point's solve record and accuracy record,
+    for `tehl info`."""
     lines = []
     choices = [f"  {p.name}: {p.models['thermal']} ({p.models['thermal_reason']})" for p in points
-               if p.models.get("thermal_reason", "").startswith("auto")]
+               if p.models.get("thermal_reason", "").startswith("auto") or "solved full" in p.models.get(
+                   "thermal_reason", "")]
     if choices:
-        lines += ["", "thermal model chosen by `thermal: auto` (docs/accuracy.md):", *choices]
+        lines += ["", "thermal model each point ran, where not the case's (docs/accuracy.md):", *choices]
     reasons = [f"  {p.name} {key.removeprefix(UNRESOLVED_REASON)}: {Why(int(code)).words}" for p in points
                for key, code in p.scalars.items()
                if key.startswith(UNRESOLVED_REASON) and code in set(Why) and Why(int(code)) is not Why.NEVER]

@@ -48,11 +48,27 @@ def test_the_plan_follows_the_hierarchy():
     # the seed stage needs 129 nodes in x two grids below the finest; the coarse stage 65 one grid below
     assert [p.stage for p in _plan(257, 65, ThermalMode.FULL).stages] == [
         Stage.START, Stage.COARSE, Stage.FINEST, Stage.OUTLET]
-    assert [p.stage for p in _plan(65, 17, ThermalMode.FULL).stages] == [Stage.START, Stage.FINEST, Stage.OUTLET]
+    # without a coarse stage no outlet stage: it refines the finish of one (PointSolve.finish)
+    assert [p.stage for p in _plan(65, 17, ThermalMode.FULL).stages] == [Stage.START, Stage.FINEST]
+    assert not _plan(65, 17, ThermalMode.FULL, outlet_refinement="always").has(Stage.OUTLET)
     assert [p.stage for p in _plan(257, 65, ThermalMode.REDUCED).stages] == [Stage.START, Stage.COARSE, Stage.FINEST]
     assert [p.stage for p in _plan(257, 65, ThermalMode.OFF, coupled=False).stages] == [Stage.START, Stage.FINEST]
     assert not _plan(513, 65, ThermalMode.FULL, outlet_refinement="never").has(Stage.OUTLET)
     assert TUNING.min_seed_stage_grid == 129 and TUNING.min_coarse_thermal_grid == 65
+
+
+def test_reduced_without_a_coarse_stage_is_solved_and_named_full():
+    """`reduced` freezes the state of its coarse stage on the finest grid; on 65 x 17 there is none (the grid below has
+    33 nodes along x), so its one coupled loop is `full`'s: the solve says full, and why; `always` there notes that no
+    outlet stage can run."""
+    point, lubricant = contact_from_moes(20.0, 10.0)
+    solve = PointSolve(point, lubricant, SolverSettings(grid=65, grid_y=17, thermal="reduced",
+                                                        outlet_refinement="always"))
+    assert solve.mode is ThermalMode.FULL and "solved full" in solve.reason
+    assert not solve.plan.has(Stage.OUTLET)
+    assert any("outlet refinement 'always' not run" in note for note in solve.record(Outcome.CONVERGED).notes)
+    staged = PointSolve(point, lubricant, SolverSettings(grid=257, grid_y=65, thermal="reduced"))
+    assert staged.mode is ThermalMode.REDUCED and staged.plan.has(Stage.COARSE)
 
 
 def test_the_record_survives_its_plain_data():

@@ -38,6 +38,13 @@ class SolvePlan:
         return tuple(planned.describe() for planned in self.stages)
 
 
+def has_coarse_stage(shapes: list[tuple[int, int]]) -> bool:
+    """Whether a thermal solve on the hierarchy `shapes` ((nx, ny), coarsest first) solves the coupled problem one
+    grid coarser first: that grid has min_coarse_thermal_grid nodes in x or more. Without it `reduced` (whose result
+    is that stage's state) is solved `full`, and no outlet stage follows (it refines the finish of a coarse stage)."""
+    return len(shapes) > 1 and shapes[-2][0] >= TUNING.min_coarse_thermal_grid
+
+
 def plan_for(shapes: list[tuple[int, int]], mode: ThermalMode, coupled: bool, settings: SolverSettings,
              entrainment_angle: float) -> SolvePlan:
     """The plan on the hierarchy `shapes` ((nx, ny), coarsest first) for the thermal model `mode` (not AUTO) of a
@@ -46,7 +53,7 @@ def plan_for(shapes: list[tuple[int, int]], mode: ThermalMode, coupled: bool, se
     seeds that stage two grids below the finest from min_seed_stage_grid nodes in x. `full` then may refine the
     outlet (outlet.py) where the entrainment is within max_entrainment_angle of x."""
     top = len(shapes) - 1
-    coarse = mode is not ThermalMode.OFF and top > 0 and shapes[top - 1][0] >= TUNING.min_coarse_thermal_grid
+    coarse = mode is not ThermalMode.OFF and has_coarse_stage(shapes)
     seed = coarse and mode is ThermalMode.FULL and len(shapes) >= 3 and shapes[-3][0] >= TUNING.min_seed_stage_grid
     below = 2 if seed else 1 if coarse else 0
     stages = [PlannedStage(Stage.START, *shapes[top - below], f"from the Hertz pressure on {shapes[0][0]} x "
@@ -63,7 +70,7 @@ def plan_for(shapes: list[tuple[int, int]], mode: ThermalMode, coupled: bool, se
     if mode is ThermalMode.OFF and coupled:
         fine = "Ree-Eyring coupled loop to the eyring tolerance"
     stages.append(PlannedStage(Stage.FINEST, *shapes[-1], fine))
-    if (mode is ThermalMode.FULL and settings.outlet_refinement != OutletRefinement.NEVER
+    if (mode is ThermalMode.FULL and coarse and settings.outlet_refinement != OutletRefinement.NEVER
             and abs(entrainment_angle) <= TUNING.max_entrainment_angle):
         always = settings.outlet_refinement == OutletRefinement.ALWAYS
         when = "always" if always else "where the hot spot lies on the spike's flank"

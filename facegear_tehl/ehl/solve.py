@@ -28,7 +28,7 @@ from facegear_tehl.ehl.energy_balance import energy_failure, energy_unbalanced
 from facegear_tehl.ehl.grid_mode import grid_mode
 from facegear_tehl.ehl.multigrid import Iterate, Level, MultigridSolver, Problem, Relaxation
 from facegear_tehl.ehl.outlet import Composite, needs_outlet_patch, outlet_stages
-from facegear_tehl.ehl.plan import SolvePlan, plan_for
+from facegear_tehl.ehl.plan import SolvePlan, has_coarse_stage, plan_for
 from facegear_tehl.ehl.pressure import Best, PressureIteration
 from facegear_tehl.ehl.report import FILM_SCALARS, LevelSummary, point_solution, summarise, with_film_state
 from facegear_tehl.ehl.retry import POLICY
@@ -39,7 +39,7 @@ from facegear_tehl.ehl.thermal import FilmState, FilmThermalModel, thermal_choic
 from facegear_tehl.ehl.tuning import TUNING
 from facegear_tehl.lubricant import Lubricant
 from facegear_tehl.record import Action, Reason, RetryRecord, SolveRecord, Stage, StageRecord
-from facegear_tehl.settings import SolverSettings, ThermalMode
+from facegear_tehl.settings import OutletRefinement, SolverSettings, ThermalMode
 from facegear_tehl.solution import CONVERGED, Outcome, PointSolution, Status
 
 # A smooth-surface EHL film is open at any load (H_min = 3.63 U^0.68 G^0.49 W^-0.073 (1 - exp(-0.68 k)) > 0,
@@ -107,6 +107,12 @@ class PointSolve:
             relaxation = POLICY.attempt(attempt, self.spacing).relaxation
         self.pressure = PressureIteration(MultigridSolver(problem, shapes, relaxation), settings,
                                           History(cycles=settings.cycles_per_level))
+        self.staged = has_coarse_stage(shapes)  # the thermal full multigrid's coarse stage (plan.py)
+        if self.mode is ThermalMode.REDUCED and not self.staged:  # its coupled loop is full's
+            self.mode = ThermalMode.FULL
+            self.reason += (f"; solved full: reduced freezes the state of a grid below the finest with at least "
+                            f"{TUNING.min_coarse_thermal_grid} nodes along x, which {shapes[-1][0]} x {shapes[-1][1]} "
+                            "has not")
         self.plan: SolvePlan = plan_for(shapes, self.mode, self.coupled, settings, point.entrainment_angle)
         self.summaries: list[LevelSummary] = []
         self.coarse_state: FilmState | None = None  # the film state of the coarse thermal stage
@@ -392,6 +398,10 @@ class PointSolve:
     def record(self, iteration: Outcome) -> SolveRecord:
         """The solve record so far; `iteration`: how the iteration ended before a closed film was checked."""
         notes = [self.domain.note(self.asked)]
+        if (self.mode is ThermalMode.FULL and not self.staged
+                and self.settings.outlet_refinement == OutletRefinement.ALWAYS):
+            notes.append(f"outlet refinement 'always' not run: it refines the finest grid after a coarse stage, which "
+                         f"needs at least {TUNING.min_coarse_thermal_grid} nodes along x one grid below the finest")
         if self.outlet is not None:
             notes.append(f"outlet refined: {self.outlet.note} (FAS composite grid, the film state solved on each)")
         if self.start_load_fraction < 1.0:
