@@ -101,17 +101,18 @@ def test_the_composite_surface_is_jaeger_over_the_whole_axis():
                            (np.full((ny, nx_fine), 2e7), np.full((ny, nx_fine), 3e7)))
     for index, q in ((0, 2e7), (1, 3e7)):
         speed = float(point.velocity_1[0] if index == 0 else point.velocity_2[0])
-        surface = model._surface(np.full((ny, size), q), index)
+        surface = model._surface(np.full((ny, size), q), index, speed)
         distance = x - 0.0 if speed > 0 else (nx_fine - 1) * dx - x
         expected = model.t_inlet + 2.0 * q * np.sqrt(distance) / (math.sqrt(math.pi) * model.effusivity[index])
         assert np.allclose(surface, expected, rtol=1e-9)
     # a patch flux of its own: the rise of the whole composite axis evaluated directly, both directions of motion
     own = np.random.default_rng(1).uniform(1e7, 5e7, (ny, size))
     for index in (0, 1):
-        for reverse in (False, True):
+        for speed in (1.0, -1.0):
             whole = jaeger.surface_temperature_rise(model.composite_flux(own, index), dx, model.effusivity[index],
-                                                    reverse=reverse)
-            assert np.allclose(model._rise(own, index, reverse), whole[:, offset:offset + size], rtol=1e-12)
+                                                    reverse=speed < 0.0)
+            assert np.allclose(model._surface(own, index, speed), model.t_inlet + whole[:, offset:offset + size],
+                               rtol=1e-12)
 
 
 def test_the_energy_sweeps_hold_the_inflow_columns():

@@ -88,17 +88,17 @@ class PatchFilmModel(FilmThermalModel):
         composite_flux[:, self.offset + GHOST:self.offset + self.x.size] = flux[:, GHOST:]
         return composite_flux
 
-    def _rise(self, flux: np.ndarray, index: int, reverse: bool) -> np.ndarray:
-        """Jaeger's rise (K) of the composite flux at the patch's columns, body `index` moving toward -x (`reverse`) or
-        +x. By linearity G q = G q_below + G (q - q_below) where they differ: the grids' below part along the whole
-        axis once per body and direction (an FFT convolution, jaeger.convolved_rise), then per call the block of G from
-        the patch's own columns to its energy columns (jaeger.influence_block)."""
+    def _surface(self, flux: np.ndarray, index: int, speed: float) -> np.ndarray:
+        """Jaeger's rise of the composite flux at the patch's columns. By linearity G q = G q_below + G (q - q_below)
+        where they differ: the grids' below part along the whole axis once per body (an FFT convolution,
+        jaeger.convolved_rise), then per call the block of G from the patch's own columns to its energy columns
+        (jaeger.influence_block)."""
         own = slice(self.offset + GHOST, self.offset + self.x.size)
-        key = (index, reverse)
+        key = (index, speed < 0.0)
         if key not in self._split:
             nodes = self.below_flux[index].shape[1]
             columns = np.arange(self.offset, self.offset + self.x.size)
-            if reverse:  # the surface moves toward -x: the kernel along the reversed axis
+            if speed < 0.0:  # the surface moves toward -x: the kernel along the reversed axis
                 whole = jaeger.convolved_rise(self.below_flux[index][:, ::-1], self.dx)[:, ::-1]
                 block = jaeger.influence_block(nodes, self.dx, nodes - 1 - columns, nodes - 1 - np.arange(nodes)[own])
             else:
@@ -107,7 +107,7 @@ class PatchFilmModel(FilmThermalModel):
             self._split[key] = (whole[:, columns], block)
         below, block = self._split[key]
         rise = below + (flux[:, GHOST:] - self.below_flux[index][:, own]) @ block.T
-        return rise / self.effusivity[index]
+        return self.t_inlet + rise / self.effusivity[index]
 
 
 def needs_outlet_patch(solve: Staging, index: int, state: FilmState) -> bool:

@@ -9,10 +9,8 @@ equation needs (temperature and eta*/eta per layer, flow.py):
    the high-Péclet moving heat source (jaeger.py) through the wall heat fluxes of the film's discrete balance:
    T_i = T_0 + (1/(sqrt(pi) B_i)) \\int q_i (x - s)^(-1/2) ds, B_i = sqrt(k_i rho_i c_i |u_ix|), applied along
    x with the x component of each surface's velocity (face gear surfaces move within 2 deg of x). A surface
-   nearly at rest (|Pe| < 1) is given the effusivity of Pe = 1, where the high-Péclet kernel would otherwise
-   diverge: a bounded estimate; its heat is carried both ways, the kernel toward +x weighted by (1 + Pe)/2 and the
-   one toward -x by (1 - Pe)/2 (Pe signed with the speed), so that a surface at rest heats symmetrically, as a
-   conducting solid without a direction does, and the surface temperature is continuous as its speed changes sign.
+   nearly at rest (Pe < 1) is given the effusivity of Pe = 1, where the high-Péclet kernel would otherwise
+   diverge: a bounded, conservative estimate.
 The surfaces (under-relaxed) and then the film's interior layers are iterated TUNING.inner_iterations times, so that
 the state returned solves the film's discrete energy equation for its own surfaces (its energy budget closes,
 energy.energy_budget).
@@ -157,14 +155,6 @@ class _Shear:
     beta: np.ndarray  # 1/K
 
 
-def forward_share(body: Solid, speed: float, half_width: float) -> float:
-    """The share of a surface's heat carried toward +x: (1 + Pe)/2 clipped to [0, 1], Pe = u b/(2 kappa) signed with
-    its speed u (m/s) along x, b the Hertz half-width (m): 1 for a surface moving toward +x at Pe >= 1, 0 toward -x,
-    1/2 at rest."""
-    peclet = speed * half_width / (2.0 * body.thermal_diffusivity)
-    return min(max(0.5 * (1.0 + peclet), 0.0), 1.0)
-
-
 class FilmThermalModel:
     """Across-film state on a uniform (ny, nx) grid with node coordinates x, y (m)."""
 
@@ -196,9 +186,8 @@ class FilmThermalModel:
         # the film and the conductivity)
         self._deferred: list[tuple[np.ndarray, np.ndarray, tuple]] = []
         half_width = point.hertz.b
-        bodies = ((point.body_1, float(self.velocity_1[0])), (point.body_2, float(self.velocity_2[0])))
-        self.effusivity = tuple(self._effusivity(body, speed, half_width) for body, speed in bodies)
-        self.forward = tuple(forward_share(body, speed, half_width) for body, speed in bodies)
+        self.effusivity = tuple(self._effusivity(body, float(v[0]), half_width)
+                                for body, v in ((point.body_1, self.velocity_1), (point.body_2, self.velocity_2)))
 
     @staticmethod
     def _effusivity(body: Solid, speed: float, half_width: float) -> float:
@@ -209,18 +198,9 @@ class FilmThermalModel:
     def initial_temperature(self) -> np.ndarray:
         return np.full((self.layers, self.y.size, self.x.size), self.t_inlet)
 
-    def _surface(self, flux: np.ndarray, index: int) -> np.ndarray:
-        """The surface temperature (K) of body `index` (0, 1) under its wall heat `flux` (W/m^2, (ny, nx)): Jaeger's
-        rise toward +x and toward -x weighted by `forward` (one of them for a surface with |Pe| >= 1)."""
-        share = self.forward[index]
-        rise = [weight * self._rise(flux, index, reverse) for weight, reverse in ((share, False), (1.0 - share, True))
-                if weight > 0.0]
-        return self.t_inlet + sum(rise[1:], rise[0])
-
-    def _rise(self, flux: np.ndarray, index: int, reverse: bool) -> np.ndarray:
-        """Jaeger's rise (K) of body `index` moving toward -x (`reverse`) or +x under `flux`."""
-        return jaeger.surface_temperature_rise(flux, self.dx, self.effusivity[index], matrix=self.matrix,
-                                               reverse=reverse)
+    def _surface(self, flux: np.ndarray, index: int, speed: float) -> np.ndarray:
+        return self.t_inlet + jaeger.surface_temperature_rise(flux, self.dx, self.effusivity[index],
+                                                              matrix=self.matrix, reverse=speed < 0.0)
 
     def update(self, pressure: np.ndarray, film: np.ndarray, temperature: np.ndarray,
                sweep_tolerance: float = TUNING.energy_sweep_tolerance, wall_fluxes: bool = True,
@@ -316,8 +296,8 @@ class FilmThermalModel:
         for _ in range(TUNING.inner_iterations):
             before = temperature.copy()
             energy.wall_fluxes(temperature, *kernel_args, q1, q2)
-            temperature[0] += w * (self._surface(q1, 0) - temperature[0])
-            temperature[-1] += w * (self._surface(q2, 1) - temperature[-1])
+            temperature[0] += w * (self._surface(q1, 0, float(self.velocity_1[0])) - temperature[0])
+            temperature[-1] += w * (self._surface(q2, 1, float(self.velocity_2[0])) - temperature[-1])
             energy.sweep_columns(temperature, *kernel_args, TUNING.energy_sweeps,
                                  max(sweep_tolerance, TUNING.energy_sweep_tolerance), TUNING.energy_min_sweeps,
                                  self.first_column)
