@@ -110,9 +110,9 @@ class PointSolve:
         self.staged = has_coarse_stage(shapes)  # the thermal full multigrid's coarse stage (plan.py)
         if self.mode is ThermalMode.REDUCED and not self.staged:  # its coupled loop is full's
             self.mode = ThermalMode.FULL
-            self.reason += (f"; solved full: reduced freezes the state of a grid below the finest with at least "
-                            f"{TUNING.min_coarse_thermal_grid} nodes along x, which {shapes[-1][0]} x {shapes[-1][1]} "
-                            "has not")
+            below = f"{shapes[-2][0]} nodes" if len(shapes) > 1 else "no grid"
+            self.reason += (f"; solved full: reduced freezes the coupled state of the grid below the finest, which "
+                            f"needs {TUNING.min_coarse_thermal_grid} nodes along x or more ({below} here)")
         self.plan: SolvePlan = plan_for(shapes, self.mode, self.coupled, settings, point.entrainment_angle)
         self.summaries: list[LevelSummary] = []
         self.coarse_state: FilmState | None = None  # the film state of the coarse thermal stage
