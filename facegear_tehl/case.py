@@ -435,8 +435,27 @@ def _solver(block: Block) -> SolverSettings:
     )
     check(settings.thermal_layers % 2 == 1, block.key_path("thermal_layers"), settings.thermal_layers,
           "an odd number of layer nodes (Simpson's rule across the film), e.g. 7, 9 or 11")
+    if block.has("domain"):
+        _warn_unresolved_domain(block, settings)
     block.finish()
     return settings
+
+
+# nodes across the contact's width (two semi-axes) below which a domain given is warned of: the smallest grid, 17
+# nodes over the default 6 semi-axes, puts 5.3 there
+MIN_NODES_ACROSS = 4.0
+
+
+def _warn_unresolved_domain(block: Block, settings: SolverSettings) -> None:
+    """A warning for each axis of solver.domain that leaves fewer than MIN_NODES_ACROSS nodes of the grid asked across
+    the contact (a domain of a million semi-axes passes the checks and runs away on every grid)."""
+    for axis, (low, high), nodes in (("x", settings.domain_x, settings.grid), ("y", settings.domain_y,
+                                                                                 settings.nodes_y)):
+        across = 2.0 * (nodes - 1) / (high - low)
+        if across < MIN_NODES_ACROSS:
+            warn(f"{block.key_path('domain')}.{axis}", f"{[low, high]} puts {across:.2g} of the {nodes} nodes across "
+                 "the contact (two semi-axes): no film is resolved (the default spans 6 semi-axes, and the solver "
+                 "lengthens the inlet itself)")
 
 
 def _check_grids(block: Block, grid: int, coarsest: int, grid_y: int) -> None:

@@ -206,6 +206,8 @@ def test_a_yaml_syntax_error_names_its_line_and_the_parser_message(tmp_path):
     ("gear", "pinion_speed: 3000.0", "pinion_speed: 3.0e5", "gear.pinion_speed", "rpm"),
     ("contact", "viscosity: 0.04", "viscosity: 40", "lubricant.viscosity", "mPa s"),
     ("contact", "entrainment_speed: 0.6383", "entrainment_speed: 638.3", "contact.entrainment_speed", "mm/s"),
+    # 257 nodes over 2e6 semi-axes: 2.6e-4 nodes across the contact (it passed the checks and ran away on every grid)
+    ("contact", "x: [-4.5, 1.5]", "x: [-1.0e6, 1.0e6]", "solver.domain.x", "no film is resolved"),
 ])
 def test_unusual_values_are_accepted_with_a_warning(tmp_path, kind, old, new, key, hint):
     """313 degC is kelvin read as degC (313.15 K = 40 degC); a torque in N mm, a viscosity in mPa s, ..."""
