@@ -107,8 +107,7 @@ class PointSolve:
             relaxation = POLICY.attempt(attempt, self.spacing).relaxation
         self.pressure = PressureIteration(MultigridSolver(problem, shapes, relaxation), settings,
                                           History(cycles=settings.cycles_per_level))
-        self.staged = has_coarse_stage(shapes)  # the thermal full multigrid's coarse stage (plan.py)
-        if self.mode is ThermalMode.REDUCED and not self.staged:  # its coupled loop is full's
+        if self.mode is ThermalMode.REDUCED and not has_coarse_stage(shapes):  # its coupled loop is full's
             self.mode = ThermalMode.FULL
             below = f"{shapes[-2][0]} nodes" if len(shapes) > 1 else "no grid"
             self.reason += (f"; solved full: reduced freezes the coupled state of the grid below the finest, which "
@@ -398,7 +397,7 @@ class PointSolve:
     def record(self, iteration: Outcome) -> SolveRecord:
         """The solve record so far; `iteration`: how the iteration ended before a closed film was checked."""
         notes = [self.domain.note(self.asked)]
-        if (self.mode is ThermalMode.FULL and not self.staged
+        if (self.mode is ThermalMode.FULL and not self.plan.has(Stage.COARSE)
                 and self.settings.outlet_refinement == OutletRefinement.ALWAYS):
             notes.append(f"outlet refinement 'always' not run: it refines the finest grid after a coarse stage, which "
                          f"needs at least {TUNING.min_coarse_thermal_grid} nodes along x one grid below the finest")
